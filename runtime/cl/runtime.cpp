@@ -1,0 +1,71 @@
+#include "cl/runtime.hpp"
+
+#include "cl/kernel_sources.hpp"
+#include "core/config.hpp"
+#include "core/log.hpp"
+
+namespace sgnlf::cl {
+
+Runtime::Runtime(const std::string& spec) : device_(select_device(spec)) { open(); }
+Runtime::Runtime(const DeviceInfo& device) : device_(device) { open(); }
+
+void Runtime::open() {
+  cl_int rc = CL_SUCCESS;
+  cl_context_properties props[] = {CL_CONTEXT_PLATFORM,
+                                   reinterpret_cast<cl_context_properties>(device_.platform), 0};
+  cl_device_id dev = device_.id;
+  cl_context ctx = clCreateContext(props, 1, &dev, nullptr, nullptr, &rc);
+  check(rc, "clCreateContext", device_.describe());
+  context_ = ContextHandle(ctx);
+  cl_command_queue q = clCreateCommandQueue(ctx, dev, CL_QUEUE_PROFILING_ENABLE, &rc);
+  check(rc, "clCreateCommandQueue", device_.describe());
+  queue_ = QueueHandle(q);
+  log::debug("opened OpenCL device ", device_.describe());
+}
+
+cl_program Runtime::program(const std::string& file, const std::string& options) {
+  return program_from_source(kernel_source(file), options, file);
+}
+
+cl_program Runtime::program_from_source(const std::string& source, const std::string& options,
+                                        const std::string& label) {
+  const std::string key = device_.name + "|" + device_.driver_version + "|" +
+                          hex64(fnv1a64(source)) + "|" + options;
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (auto it = programs_.find(key); it != programs_.end()) return it->second.get();
+
+  const char* text = source.c_str();
+  const size_t len = source.size();
+  cl_int rc = CL_SUCCESS;
+  cl_program p = clCreateProgramWithSource(context_.get(), 1, &text, &len, &rc);
+  check(rc, "clCreateProgramWithSource", label);
+  ProgramHandle handle(p);
+  cl_device_id dev = device_.id;
+  const std::string opts = "-cl-std=CL1.2 " + options;
+  rc = clBuildProgram(p, 1, &dev, opts.c_str(), nullptr, nullptr);
+  if (rc != CL_SUCCESS) {
+    size_t n = 0;
+    clGetProgramBuildInfo(p, dev, CL_PROGRAM_BUILD_LOG, 0, nullptr, &n);
+    std::string build_log(n, '\0');
+    if (n) clGetProgramBuildInfo(p, dev, CL_PROGRAM_BUILD_LOG, n, build_log.data(), nullptr);
+    while (!build_log.empty() && build_log.back() == '\0') build_log.pop_back();
+    throw BuildError("clBuildProgram failed: " + std::string(error_name(rc)) + " building '" +
+                         label + "' for device '" + device_.name + "' with options '" + opts +
+                         "'; build log:\n" + build_log,
+                     build_log);
+  }
+  ++builds_;
+  cl_program raw = handle.get();
+  programs_.emplace(key, std::move(handle));
+  return raw;
+}
+
+Kernel Runtime::kernel(const std::string& file, const std::string& name,
+                       const std::string& options) {
+  return Kernel(*this, program(file, options), name);
+}
+
+void Runtime::flush() { check(clFlush(queue_.get()), "clFlush"); }
+void Runtime::finish() { check(clFinish(queue_.get()), "clFinish"); }
+
+}  // namespace sgnlf::cl

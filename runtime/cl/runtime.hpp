@@ -1,0 +1,53 @@
+// The OpenCL runtime of one device: context, in-order profiling queue and program cache.
+//
+// Program cache: key = (device name + driver version, FNV-1a hash of the fully inlined source,
+// build options). Programs live as long as the Runtime; lookups are serialised by a mutex, so
+// one Runtime may be shared by threads, but its queue is in-order and not meant to be fed from
+// several threads at once. Specialisation goes through -D defines in the options string.
+#pragma once
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "cl/device.hpp"
+#include "cl/memory.hpp"
+
+namespace sgnlf::cl {
+
+class Runtime {
+ public:
+  // Opens the device chosen by `spec` (see select_device()).
+  explicit Runtime(const std::string& spec = "");
+  explicit Runtime(const DeviceInfo& device);
+  Runtime(const Runtime&) = delete;
+  Runtime& operator=(const Runtime&) = delete;
+
+  const DeviceInfo& device() const { return device_; }
+  cl_context context() const { return context_.get(); }
+  cl_command_queue queue() const { return queue_.get(); }
+
+  // Builds (or returns the cached) program for a kernel file under kernels/.
+  cl_program program(const std::string& file, const std::string& options = "");
+  // Builds a program from source text (tests, probes). Cached like files.
+  cl_program program_from_source(const std::string& source, const std::string& options = "",
+                                 const std::string& label = "<inline>");
+  // A new kernel object from a (cached) program.
+  Kernel kernel(const std::string& file, const std::string& name,
+                const std::string& options = "");
+
+  void flush();
+  void finish();
+  size_t programs_built() const { return builds_; }
+
+ private:
+  void open();
+  DeviceInfo device_;
+  ContextHandle context_;
+  QueueHandle queue_;
+  std::mutex mutex_;
+  std::map<std::string, ProgramHandle> programs_;
+  size_t builds_ = 0;
+};
+
+}  // namespace sgnlf::cl

@@ -1,0 +1,93 @@
+// Strict JSON configuration reading: every key a struct reads is marked as used, and finish()
+// rejects the keys nobody read, naming them and the config they came from.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <set>
+#include <string>
+#include <type_traits>
+
+#include "core/error.hpp"
+
+namespace sgnlf {
+
+using Json = nlohmann::json;
+
+class ConfigReader {
+ public:
+  // `where` names the source in errors, e.g. "configs/train.json: field".
+  ConfigReader(const Json& j, std::string where);
+
+  // Reads `key` into `out` when present (keeps the default otherwise).
+  template <typename T>
+  ConfigReader& get(const std::string& key, T& out) {
+    if (!j_.contains(key)) return *this;
+    used_.insert(key);
+    convert(key, j_.at(key), out);
+    return *this;
+  }
+  // Reads `key`, which must be present.
+  template <typename T>
+  ConfigReader& require(const std::string& key, T& out) {
+    if (!j_.contains(key)) throw ConfigError(where_ + ": missing required key '" + key + "'");
+    return get(key, out);
+  }
+  // A nested object: returns a reader for it (marked used); the caller must finish() it.
+  ConfigReader child(const std::string& key);
+  bool has(const std::string& key) const { return j_.contains(key); }
+  // Throws ConfigError listing every key that was not read.
+  void finish() const;
+  const std::string& where() const { return where_; }
+
+ private:
+  template <typename T>
+  void convert(const std::string& key, const Json& v, T& out) {
+    try {
+      if constexpr (std::is_same_v<T, bool>) {
+        if (!v.is_boolean()) throw ConfigError("");
+        out = v.get<bool>();
+      } else if constexpr (std::is_integral_v<T>) {
+        if (!v.is_number_integer()) throw ConfigError("");
+        const auto x = v.get<long long>();
+        if constexpr (std::is_unsigned_v<T>) {
+          if (x < 0) throw ConfigError("");
+        }
+        out = static_cast<T>(x);
+      } else if constexpr (std::is_floating_point_v<T>) {
+        if (!v.is_number()) throw ConfigError("");
+        out = v.get<T>();
+        if (!std::isfinite(out)) throw ConfigError("");
+      } else {
+        out = v.get<T>();
+      }
+    } catch (const std::exception&) {
+      throw ConfigError(where_ + ": key '" + key + "' has invalid value " + v.dump());
+    }
+  }
+
+  const Json& j_;
+  std::string where_;
+  std::set<std::string> used_;
+};
+
+// Loads a JSON file; errors name the file and the parser's byte position.
+Json load_json_file(const std::string& path);
+// Writes JSON atomically (temporary file + rename) with 2-space indentation.
+void write_json_file(const std::string& path, const Json& j);
+// Writes any text atomically (temporary file + rename).
+void write_text_file(const std::string& path, const std::string& text);
+
+// Range check helper for validate(): throws ConfigError naming the key and value.
+template <typename T>
+void check_range(const std::string& where, const std::string& key, T value, T lo, T hi) {
+  if (!(value >= lo && value <= hi))
+    throw ConfigError(where + ": '" + key + "' = " + std::to_string(value) + " outside [" +
+                      std::to_string(lo) + ", " + std::to_string(hi) + "]");
+}
+
+// 64-bit FNV-1a hash, used for config hashes and kernel source hashes.
+uint64_t fnv1a64(const std::string& data, uint64_t h = 1469598103934665603ull);
+std::string hex64(uint64_t v);
+
+}  // namespace sgnlf

@@ -1,0 +1,7 @@
+#include "core/error.hpp"
+
+namespace sgnlf {
+void require(bool cond, const std::string& what) {
+  if (!cond) throw Error(what);
+}
+}  // namespace sgnlf

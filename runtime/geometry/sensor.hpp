@@ -1,0 +1,27 @@
+// A spinning LiDAR described as a range image (protocol §1–2).
+#pragma once
+#include <string>
+
+#include "core/config.hpp"
+
+namespace sgnlf {
+
+struct Sensor {
+  std::string name = "kitti360";
+  int height = 66;          // beams (rows)
+  int width = 1030;         // azimuth bins (columns)
+  double fov_up_deg = 2.0;  // elevation of row 0
+  double fov_deg = 26.9;    // total vertical field of view
+  double max_range_m = 80.0;
+  double min_range_m = 0.0;  // nuScenes drops returns ≤ 1.8 m
+  double rate_hz = 10.0;
+
+  void validate() const;
+};
+
+// Built-in presets: "kitti360" (HDL-64E) and "nuscenes" (HDL-32E).
+Sensor sensor_preset(const std::string& name);
+Sensor sensor_from_json(const Json& j, const std::string& where);
+Json sensor_to_json(const Sensor& s);
+
+}  // namespace sgnlf

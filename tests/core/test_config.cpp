@@ -1,0 +1,57 @@
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+#include "core/config.hpp"
+
+using namespace sgnlf;
+
+namespace {
+struct Cfg {
+  int iterations = 10;
+  double lr = 0.01;
+  bool flag = false;
+  std::string name = "x";
+};
+Cfg parse(const Json& j) {
+  Cfg c;
+  ConfigReader r(j, "test.json");
+  r.get("iterations", c.iterations).get("lr", c.lr).get("flag", c.flag).get("name", c.name);
+  r.finish();
+  return c;
+}
+}  // namespace
+
+TEST_CASE("config reader keeps defaults and reads given keys", "[config]") {
+  const auto c = parse(Json::parse(R"({"iterations": 5, "name": "y"})"));
+  CHECK(c.iterations == 5);
+  CHECK(c.lr == 0.01);
+  CHECK(c.name == "y");
+}
+
+TEST_CASE("unknown keys are rejected by name", "[config]") {
+  try {
+    parse(Json::parse(R"({"iterations": 5, "itertions": 6})"));
+    FAIL("expected ConfigError");
+  } catch (const ConfigError& e) {
+    CHECK_THAT(e.what(), Catch::Contains("itertions"));
+    CHECK_THAT(e.what(), Catch::Contains("test.json"));
+  }
+}
+
+TEST_CASE("wrong types name the key and the value", "[config]") {
+  CHECK_THROWS_WITH(parse(Json::parse(R"({"iterations": "many"})")),
+                    Catch::Contains("iterations") && Catch::Contains("many"));
+  CHECK_THROWS_AS(parse(Json::parse(R"({"iterations": 1.5})")), ConfigError);
+  CHECK_THROWS_AS(parse(Json::parse(R"({"flag": 1})")), ConfigError);
+  CHECK_THROWS_AS(parse(Json::parse(R"([1, 2])")), ConfigError);
+}
+
+TEST_CASE("json files: missing and invalid files name the file and offset", "[config]") {
+  CHECK_THROWS_WITH(load_json_file("/nonexistent/cfg.json"), Catch::Contains("/nonexistent/cfg.json"));
+  const std::string p = "test_config_bad.json";
+  std::ofstream(p) << "{\"a\": 1,,}";
+  CHECK_THROWS_WITH(load_json_file(p), Catch::Contains("test_config_bad.json") && Catch::Contains("byte"));
+  write_json_file(p, Json{{"a", 1}});
+  CHECK(load_json_file(p)["a"] == 1);
+}

@@ -1,0 +1,52 @@
+#include "support/test_device.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <memory>
+
+namespace sgnlf::test {
+namespace {
+bool& needs_device_flag() {
+  static bool flag = false;
+  return flag;
+}
+}  // namespace
+
+void mark_needs_device() { needs_device_flag() = true; }
+bool binary_needs_device() { return needs_device_flag(); }
+
+cl::Runtime& runtime() {
+  static std::unique_ptr<cl::Runtime> rt = std::make_unique<cl::Runtime>();
+  return *rt;
+}
+
+std::string source_dir() { return SGNLF_SOURCE_DIR; }
+std::string shared_dir() { return SGNLF_SHARED_DIR; }
+
+std::string temp_dir(const std::string& name) {
+  namespace fs = std::filesystem;
+  const fs::path p = fs::temp_directory_path() / ("sgnlf-test-" + name);
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p.string();
+}
+
+double max_sym_rel_err(const std::vector<float>& a, const std::vector<float>& b, double floor) {
+  REQUIRE(a.size() == b.size());
+  double m = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const double d = std::fabs(double(a[i]) - b[i]);
+    const double s = std::max(std::fabs(double(a[i])) + std::fabs(double(b[i])), floor);
+    m = std::max(m, d / s);
+  }
+  return m;
+}
+
+double max_abs_err(const std::vector<float>& a, const std::vector<float>& b) {
+  REQUIRE(a.size() == b.size());
+  double m = 0;
+  for (size_t i = 0; i < a.size(); ++i) m = std::max(m, std::fabs(double(a[i]) - b[i]));
+  return m;
+}
+
+}  // namespace sgnlf::test

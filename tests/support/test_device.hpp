@@ -1,0 +1,35 @@
+// Shared test helpers: the test device (SGNLF_DEVICE or the default), paths to fixtures, and
+// comparison helpers (symmetric relative error, as tiny-cuda-nn's tests use for gradients).
+#pragma once
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "cl/runtime.hpp"
+
+namespace sgnlf::test {
+
+// Marks the current binary as containing device tests (call from a static initialiser,
+// see SGNLF_DEVICE_TESTS below).
+void mark_needs_device();
+bool binary_needs_device();
+
+// The Runtime every device test in a binary shares.
+cl::Runtime& runtime();
+
+std::string source_dir();
+std::string shared_dir();  // ../shared beside the checkout: real data, specs
+std::string temp_dir(const std::string& name);  // fresh empty folder under the build tree
+
+// max_i |a_i − b_i| / max(|a_i| + |b_i|, floor): symmetric relative error.
+double max_sym_rel_err(const std::vector<float>& a, const std::vector<float>& b,
+                       double floor = 1e-6);
+double max_abs_err(const std::vector<float>& a, const std::vector<float>& b);
+
+}  // namespace sgnlf::test
+
+// Put once in each test .cpp that uses the device.
+#define SGNLF_DEVICE_TESTS \
+  static const bool sgnlf_device_marker_ = (sgnlf::test::mark_needs_device(), true)
