@@ -1,0 +1,44 @@
+// The in-memory dataset every method trains and evaluates on: frames with their scans and
+// ground-truth LiDAR poses, the sensor, and the protocol split. Loaders (KITTI-360, KITTI
+// odometry, nuScenes, the synthetic layout) all produce this. Contract shared by datasets,
+// metrics and pipeline: extend it, do not change the meaning of existing fields.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "geometry/range_image.hpp"
+#include "geometry/se3.hpp"
+#include "geometry/sensor.hpp"
+
+namespace sgnlf {
+
+struct Frame {
+  int id = 0;                 // frame number in the source sequence
+  double timestamp_s = 0.0;   // seconds since the first frame of the sequence
+  Pose T_world_lidar = Pose::Identity();  // ground truth (metres)
+  std::vector<PointXYZI> points;          // scan in the LiDAR frame, intensity in [0, 1]
+  RangeImage image;                       // projection of `points` (protocol §1)
+};
+
+struct Split {
+  std::vector<int> train;  // indices into Dataset::frames
+  std::vector<int> test;   // test views (protocol §3)
+};
+
+// Scene normalisation (protocol §2): p_norm = (p_world − center) · scale.
+struct SceneNormalization {
+  Vec3 center = Vec3::Zero();
+  double scale = 1.0;
+};
+
+struct Dataset {
+  std::string name;      // sequence name
+  std::string source;    // "synthetic", "kitti360", "kitti-odometry", "nuscenes"
+  std::string path;      // where it was loaded from
+  std::string frequency; // "standard" or "low"
+  Sensor sensor;
+  std::vector<Frame> frames;
+  Split split;
+};
+
+}  // namespace sgnlf
