@@ -1,0 +1,130 @@
+// evaluate_view / mean_metrics / pose_metrics: protocol §4 assembled into JSON.
+#include "metrics/evaluate.hpp"
+
+#include <cmath>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "metrics/chamfer.hpp"
+#include "metrics/image_metrics.hpp"
+#include "metrics/pose_errors.hpp"
+
+namespace sgnlf::metrics {
+namespace {
+
+Json number_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+void check_image(const Sensor& s, const RangeImage& img, const char* which) {
+  const size_t n = size_t(s.height) * s.width;
+  require(img.height == s.height && img.width == s.width,
+          std::string("evaluate_view: ") + which + " image is " + std::to_string(img.height) +
+              "x" + std::to_string(img.width) + ", sensor '" + s.name + "' is " +
+              std::to_string(s.height) + "x" + std::to_string(s.width));
+  require(img.range.size() == n && img.intensity.size() == n && img.ray_drop.size() == n,
+          std::string("evaluate_view: ") + which + " channels have " +
+              std::to_string(img.range.size()) + "/" + std::to_string(img.intensity.size()) +
+              "/" + std::to_string(img.ray_drop.size()) + " pixels (range/intensity/ray_drop), " +
+              "expected " + std::to_string(n));
+  for (size_t i = 0; i < n; ++i)
+    require(std::isfinite(img.range[i]) && std::isfinite(img.intensity[i]) &&
+                std::isfinite(img.ray_drop[i]),
+            std::string("evaluate_view: ") + which + " image has a non-finite value at pixel " +
+                std::to_string(i));
+}
+
+// Pixels with range ≠ 0 → points in the LiDAR frame (protocol §1; the peers' pano_to_lidar
+// keeps every non-zero range).
+std::vector<Point3f> to_points(const Sensor& s, const std::vector<float>& range) {
+  std::vector<Point3f> pts;
+  for (int r = 0; r < s.height; ++r)
+    for (int c = 0; c < s.width; ++c) {
+      const float d = range[size_t(r) * s.width + c];
+      if (d != 0.f) pts.push_back(pixel_direction(s, r, c) * d);
+    }
+  return pts;
+}
+
+}  // namespace
+
+const std::vector<std::string>& view_metric_keys() {
+  static const std::vector<std::string> keys = {
+      "cd",           "fscore",          "depth_rmse",     "depth_medae",     "depth_ssim",
+      "depth_psnr",   "depth_delta1",    "depth_lpips",    "intensity_rmse",  "intensity_medae",
+      "intensity_ssim", "intensity_psnr", "raydrop_rmse",  "raydrop_acc",     "raydrop_f1"};
+  return keys;
+}
+
+Json evaluate_view(const Sensor& sensor, const RangeImage& pred, const RangeImage& gt) {
+  check_image(sensor, pred, "predicted");
+  check_image(sensor, gt, "ground-truth");
+  const size_t n = pred.size();
+  std::vector<float> depth(n), intensity(n);
+  for (size_t i = 0; i < n; ++i) {
+    const float mask = pred.ray_drop[i] > float(kRaydropThreshold) ? 1.f : 0.f;
+    depth[i] = pred.range[i] * mask;
+    intensity[i] = pred.intensity[i] * mask;
+  }
+  const ChamferResult ch = chamfer_fscore(to_points(sensor, depth), to_points(sensor, gt.range));
+  if (ch.n_pred == 0 || ch.n_gt == 0)
+    log::warn("evaluate_view: empty point cloud (", ch.n_pred, " predicted, ", ch.n_gt,
+              " ground-truth points): cd = null, fscore = 0");
+  const DepthMetrics dm = depth_metrics(depth, gt.range, gt.height, gt.width);
+  const IntensityMetrics im = intensity_metrics(intensity, gt.intensity, gt.height, gt.width);
+  const RaydropMetrics rm = raydrop_metrics(pred.ray_drop, gt.ray_drop);
+
+  Json j = Json::object();
+  j["cd"] = number_or_null(ch.cd);
+  j["fscore"] = number_or_null(ch.fscore);
+  j["depth_rmse"] = number_or_null(dm.rmse);
+  j["depth_medae"] = number_or_null(dm.medae);
+  j["depth_ssim"] = number_or_null(dm.ssim);
+  j["depth_psnr"] = number_or_null(dm.psnr);
+  j["depth_delta1"] = number_or_null(dm.delta1);
+  j["depth_lpips"] = nullptr;  // needs AlexNet weights, not shipped (protocol §4)
+  j["intensity_rmse"] = number_or_null(im.rmse);
+  j["intensity_medae"] = number_or_null(im.medae);
+  j["intensity_ssim"] = number_or_null(im.ssim);
+  j["intensity_psnr"] = number_or_null(im.psnr);
+  j["raydrop_rmse"] = number_or_null(rm.rmse);
+  j["raydrop_acc"] = number_or_null(rm.acc);
+  j["raydrop_f1"] = number_or_null(rm.f1);
+  return j;
+}
+
+Json mean_metrics(const std::vector<Json>& views) {
+  require(!views.empty(), "mean_metrics: no views to average");
+  for (size_t v = 0; v < views.size(); ++v)
+    require(views[v].is_object(), "mean_metrics: view " + std::to_string(v) + " is not an object");
+  Json out = Json::object();
+  for (const auto& [key, first] : views[0].items()) {
+    double sum = 0.0;
+    bool any_null = false;
+    for (size_t v = 0; v < views.size(); ++v) {
+      require(views[v].contains(key),
+              "mean_metrics: view " + std::to_string(v) + " lacks key '" + key + "'");
+      const Json& x = views[v][key];
+      require(x.is_null() || x.is_number(), "mean_metrics: view " + std::to_string(v) +
+                                                " key '" + key + "' is " + x.dump());
+      if (x.is_null())
+        any_null = true;
+      else
+        sum += x.get<double>();
+    }
+    out[key] = any_null ? Json(nullptr) : number_or_null(sum / double(views.size()));
+  }
+  for (size_t v = 1; v < views.size(); ++v)
+    require(views[v].size() == views[0].size(),
+            "mean_metrics: view " + std::to_string(v) + " has " +
+                std::to_string(views[v].size()) + " keys, view 0 has " +
+                std::to_string(views[0].size()));
+  return out;
+}
+
+Json pose_metrics(const std::vector<Pose>& est, const std::vector<Pose>& gt) {
+  const PoseErrors e = compute_pose_errors(est, gt);
+  return Json{{"ate_m", number_or_null(e.ate_m)},
+              {"rpe_t_cm", number_or_null(e.rpe_t_cm)},
+              {"rpe_r_deg", number_or_null(e.rpe_r_deg)}};
+}
+
+}  // namespace sgnlf::metrics

@@ -1,0 +1,34 @@
+// The metrics entry points the pipeline and `sgnlf eval` call (protocol §4). Results are JSON
+// objects with fixed key names; undefined values (NaN/∞: an empty cloud's CD, the PSNR of
+// identical images, F1 without positives) and LPIPS (AlexNet weights are not shipped) are null.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/config.hpp"
+#include "geometry/range_image.hpp"
+#include "geometry/se3.hpp"
+#include "geometry/sensor.hpp"
+
+namespace sgnlf::metrics {
+
+// Keys of evaluate_view(), in order.
+const std::vector<std::string>& view_metric_keys();
+
+// One test view. `pred`: range (m), intensity, ray_drop = predicted return probability;
+// `gt`: range, intensity, ray_drop = return label. The predicted return mask
+// (probability > 0.5) multiplies predicted range and intensity before every metric; CD and
+// F-score unproject the masked prediction and the GT image (range-0 pixels dropped).
+// Keys: cd, fscore, depth_rmse, depth_medae, depth_ssim, depth_psnr, depth_delta1,
+// depth_lpips (null), intensity_rmse, intensity_medae, intensity_ssim, intensity_psnr,
+// raydrop_rmse, raydrop_acc, raydrop_f1. Throws on size mismatch or non-finite inputs.
+Json evaluate_view(const Sensor& sensor, const RangeImage& pred, const RangeImage& gt);
+
+// Mean per key over views. Every view must have the same keys, each a number or null; a key
+// that is null in any view is null in the mean (an undefined value is never averaged away).
+Json mean_metrics(const std::vector<Json>& views);
+
+// ATE / RPE after Umeyama SE(3) alignment: {ate_m, rpe_t_cm, rpe_r_deg}.
+Json pose_metrics(const std::vector<Pose>& est, const std::vector<Pose>& gt);
+
+}  // namespace sgnlf::metrics
