@@ -26,10 +26,10 @@ void check_image(const Sensor& s, const RangeImage& img, const char* which) {
               "/" + std::to_string(img.ray_drop.size()) + " pixels (range/intensity/ray_drop), " +
               "expected " + std::to_string(n));
   for (size_t i = 0; i < n; ++i)
-    require(std::isfinite(img.range[i]) && std::isfinite(img.intensity[i]) &&
-                std::isfinite(img.ray_drop[i]),
-            std::string("evaluate_view: ") + which + " image has a non-finite value at pixel " +
-                std::to_string(i));
+    if (!std::isfinite(img.range[i]) || !std::isfinite(img.intensity[i]) ||
+        !std::isfinite(img.ray_drop[i]))
+      throw Error(std::string("evaluate_view: ") + which +
+                  " image has a non-finite value at pixel " + std::to_string(i));
 }
 
 // Pixels with range ≠ 0 → points in the LiDAR frame (protocol §1; the peers' pano_to_lidar

@@ -20,8 +20,8 @@ void check_inputs(const char* what, const std::vector<float>& pred, const std::v
           std::string(what) + ": pred has " + std::to_string(pred.size()) + " pixels, gt " +
               std::to_string(gt.size()) + ", expected " + std::to_string(n));
   for (size_t i = 0; i < n; ++i)
-    require(std::isfinite(pred[i]) && std::isfinite(gt[i]),
-            std::string(what) + ": non-finite value at pixel " + std::to_string(i) +
+    if (!std::isfinite(pred[i]) || !std::isfinite(gt[i]))
+      throw Error(std::string(what) + ": non-finite value at pixel " + std::to_string(i) +
                 " (pred " + std::to_string(pred[i]) + ", gt " + std::to_string(gt[i]) + ")");
 }
 
@@ -90,8 +90,8 @@ RaydropMetrics raydrop_metrics(const std::vector<float>& prob, const std::vector
   double se = 0.0;
   size_t tp = 0, fp = 0, tn = 0, fn = 0;
   for (size_t i = 0; i < label.size(); ++i) {
-    require(label[i] == 0.f || label[i] == 1.f,
-            "raydrop_metrics: label at pixel " + std::to_string(i) + " is " +
+    if (label[i] != 0.f && label[i] != 1.f)
+      throw Error("raydrop_metrics: label at pixel " + std::to_string(i) + " is " +
                 std::to_string(label[i]) + ", expected 0 or 1");
     const double d = double(label[i]) - double(prob[i]);
     se += d * d;

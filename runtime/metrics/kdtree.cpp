@@ -16,8 +16,8 @@ KdTree::KdTree(const std::vector<Point3f>& points, int leaf_size)
   require(points.size() < size_t(std::numeric_limits<uint32_t>::max()),
           "KdTree: too many points (" + std::to_string(points.size()) + ")");
   for (size_t i = 0; i < points_.size(); ++i)
-    require(points_[i].allFinite(),
-            "KdTree: point " + std::to_string(i) + " is not finite");
+    if (!points_[i].allFinite())
+      throw Error("KdTree: point " + std::to_string(i) + " is not finite");
   std::iota(order_.begin(), order_.end(), 0u);
   nodes_.reserve(2 * points_.size() / leaf_size_ + 2);
   if (!points_.empty()) build(0, uint32_t(points_.size()));
@@ -87,8 +87,8 @@ void KdTree::search(int32_t node_id, const Point3f& q, float& best, uint32_t& be
 }
 
 float KdTree::nearest(const Point3f& q, uint32_t* index) const {
-  require(!points_.empty(), "KdTree::nearest: the tree holds no points");
-  require(q.allFinite(), "KdTree::nearest: query point is not finite");
+  if (points_.empty()) throw Error("KdTree::nearest: the tree holds no points");
+  if (!q.allFinite()) throw Error("KdTree::nearest: query point is not finite");
   float best = std::numeric_limits<float>::infinity();
   uint32_t best_i = 0;
   search(0, q, best, best_i);

@@ -55,8 +55,8 @@ double ssim(const std::vector<double>& im1, const std::vector<double>& im2, int 
               std::to_string(data_range));
   std::vector<double> xx(n), yy(n), xy(n);
   for (size_t i = 0; i < n; ++i) {
-    require(std::isfinite(im1[i]) && std::isfinite(im2[i]),
-            "ssim: non-finite pixel at index " + std::to_string(i));
+    if (!std::isfinite(im1[i]) || !std::isfinite(im2[i]))
+      throw Error("ssim: non-finite pixel at index " + std::to_string(i));
     xx[i] = im1[i] * im1[i];
     yy[i] = im2[i] * im2[i];
     xy[i] = im1[i] * im2[i];
