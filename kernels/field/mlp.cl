@@ -1,0 +1,207 @@
+// One fully connected layer of a small MLP (method.md §0 density MLP and LiDAR head, §4.1 Ψ):
+// register-tiled float16-vector GEMMs (performance.md) for forward, input backward and a
+// deterministic two-phase weight-gradient reduction (fixed chunking, fixed summation order).
+//
+// Parameters of the layer (at w_off): W_t[N_IN][OUT_PAD] then bias b[OUT_PAD], i.e. a
+// (N_IN + 1) × OUT_PAD row-major block whose last row is the bias. Padding columns are zero.
+// Activations are point-major rows. Defines (set by runtime/field/mlp.cpp):
+//   N_IN, IN_STRIDE (row stride of the input), IN_PAD = round_up(N_IN, 16),
+//   OUT, OUT_PAD = round_up(OUT, 16), OUT_STRIDE (row stride of the output),
+//   ACT (activation of this layer), STORE_PRE (1: also write pre-activations, OUT_PAD stride),
+//   PREV_ACT (activation of the previous layer, -1: none = input of the MLP),
+//   PREV_PRE (1: previous layer's derivative from its pre-activations), DIN_STRIDE,
+//   PTS (points per work-item), ROWS (weight rows per work-item in the weight gradient).
+#define ACT_NONE 0
+#define ACT_RELU 1
+#define ACT_TANH 2
+#define ACT_SOFTPLUS 3
+#define ACT_SINE 4
+
+inline float16 act_fwd(float16 z, int a) {
+  if (a == ACT_RELU) return fmax(z, (float16)(0.0f));
+  if (a == ACT_TANH) return tanh(z);
+  if (a == ACT_SOFTPLUS) return log1p(exp(-fabs(z))) + fmax(z, (float16)(0.0f));
+  if (a == ACT_SINE) return sin(z);
+  return z;
+}
+// Derivative of the activation from its output y (relu, tanh, softplus, none).
+inline float16 act_grad_post(float16 y, int a) {
+  if (a == ACT_RELU) return select((float16)(0.0f), (float16)(1.0f), y > (float16)(0.0f));
+  if (a == ACT_TANH) return (float16)(1.0f) - y * y;
+  if (a == ACT_SOFTPLUS) return -expm1(-y);
+  return (float16)(1.0f);
+}
+// Derivative of the activation from its input z (every activation).
+inline float16 act_grad_pre(float16 z, int a) {
+  if (a == ACT_RELU) return select((float16)(0.0f), (float16)(1.0f), z > (float16)(0.0f));
+  if (a == ACT_TANH) {
+    const float16 t = tanh(z);
+    return (float16)(1.0f) - t * t;
+  }
+  if (a == ACT_SOFTPLUS) return (float16)(1.0f) / ((float16)(1.0f) + exp(-z));
+  if (a == ACT_SINE) return cos(z);
+  return (float16)(1.0f);
+}
+
+// Writes lanes o0.. of a row: full vector when the row is padded, else masked to OUT/N_IN.
+inline void store_row(float16 v, __global float* row, int o0, int width, int padded) {
+  if (padded) {
+    vstore16(v, 0, row + o0);
+  } else {
+    float t[16];
+    vstore16(v, 0, t);
+    for (int k = 0; k < 16; ++k)
+      if (o0 + k < width) row[o0 + k] = t[k];
+  }
+}
+
+// Forward: out = act(in · W_t + b). Work-item = PTS points × 16 outputs.
+__kernel void field_mlp_fwd(const int n, __global const float* params, const uint w_off,
+                            __global const float* in, __global float* out,
+                            __global float* pre) {
+  const int p0 = get_global_id(0) * PTS;
+  const int o0 = get_global_id(1) * 16;
+  if (p0 >= n) return;
+  __global const float* W = params + w_off;
+  const float16 b = vload16(0, W + N_IN * OUT_PAD + o0);
+  float16 acc[PTS];
+  __global const float* rows[PTS];
+#pragma unroll
+  for (int p = 0; p < PTS; ++p) {
+    acc[p] = b;
+    rows[p] = in + (size_t)min(p0 + p, n - 1) * IN_STRIDE;
+  }
+  for (int i = 0; i < N_IN; ++i) {
+    const float16 w = vload16(0, W + i * OUT_PAD + o0);
+#pragma unroll
+    for (int p = 0; p < PTS; ++p) acc[p] = fma((float16)(rows[p][i]), w, acc[p]);
+  }
+#pragma unroll
+  for (int p = 0; p < PTS; ++p) {
+    if (p0 + p < n) {
+#if STORE_PRE
+      vstore16(acc[p], 0, pre + (size_t)(p0 + p) * OUT_PAD + o0);
+#endif
+      store_row(act_fwd(acc[p], ACT), out + (size_t)(p0 + p) * OUT_STRIDE, o0, OUT,
+                OUT_STRIDE == OUT_PAD);
+    }
+  }
+}
+
+// Gradient at the pre-activation of the last layer: d_pre = d_out ⊙ act'(·); zero padding.
+// `y` is the layer output (stride OUT_STRIDE) or, with STORE_PRE, the pre-activation (OUT_PAD).
+__kernel void field_mlp_bwd_out(const int n, __global const float* d_out, __global const float* y,
+                                __global float* d_pre) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  for (int o0 = 0; o0 < OUT_PAD; o0 += 16) {
+    float t[16], a[16];
+    for (int k = 0; k < 16; ++k) {
+      const int o = o0 + k;
+      t[k] = o < OUT ? d_out[(size_t)i * OUT_STRIDE + o] : 0.0f;
+#if STORE_PRE
+      a[k] = o < OUT ? y[(size_t)i * OUT_PAD + o] : 0.0f;
+#else
+      a[k] = o < OUT ? y[(size_t)i * OUT_STRIDE + o] : 0.0f;
+#endif
+    }
+    const float16 g = vload16(0, t);
+#if ACT == ACT_NONE
+    const float16 d = g;
+#elif STORE_PRE
+    const float16 d = g * act_grad_pre(vload16(0, a), ACT);
+#else
+    const float16 d = g * act_grad_post(vload16(0, a), ACT);
+#endif
+    vstore16(d, 0, d_pre + (size_t)i * OUT_PAD + o0);
+  }
+}
+
+// Weight gradient, phase 1: partial[c] = Σ_{points of chunk c, in order} [in, 1]ᵀ · d_pre.
+// Work-item = chunk × ROWS rows of the (N_IN + 1) × OUT_PAD block × 16 outputs.
+__kernel void field_mlp_bwd_wgt(const int n, const int chunk, __global const float* in,
+                                __global const float* d_pre, __global float* partial) {
+  const int c = get_global_id(0);
+  const int r0 = get_global_id(1) * ROWS;
+  const int o0 = get_global_id(2) * 16;
+  if (r0 > N_IN) return;
+  float16 acc[ROWS];
+  int col[ROWS];
+#pragma unroll
+  for (int r = 0; r < ROWS; ++r) {
+    acc[r] = (float16)(0.0f);
+    col[r] = min(r0 + r, N_IN - 1);
+  }
+  const int begin = c * chunk, end = min(n, begin + chunk);
+  for (int i = begin; i < end; ++i) {
+    const float16 d = vload16(0, d_pre + (size_t)i * OUT_PAD + o0);
+    __global const float* row = in + (size_t)i * IN_STRIDE;
+#pragma unroll
+    for (int r = 0; r < ROWS; ++r) {
+      const float v = (r0 + r < N_IN) ? row[col[r]] : 1.0f;  // row N_IN is the bias
+      acc[r] = fma((float16)(v), d, acc[r]);
+    }
+  }
+  __global float* dst = partial + (size_t)c * (N_IN + 1) * OUT_PAD;
+#pragma unroll
+  for (int r = 0; r < ROWS; ++r)
+    if (r0 + r <= N_IN) vstore16(acc[r], 0, dst + (size_t)(r0 + r) * OUT_PAD + o0);
+}
+
+// Weight gradient, phase 2: grad[w_off + k] = Σ_c partial[c][k] in chunk order (overwrites).
+__kernel void field_mlp_bwd_reduce(const int n_chunks, __global const float* partial,
+                                   __global float* grad, const uint w_off) {
+  const int k = get_global_id(0);
+  const int count = (N_IN + 1) * OUT_PAD;
+  if (k >= count) return;
+  float s = 0.0f;
+  for (int c = 0; c < n_chunks; ++c) s += partial[(size_t)c * count + k];
+  grad[w_off + k] = s;
+}
+
+// W transposed to [OUT_PAD][IN_PAD] (zero padded) for the input backward's vector loads.
+__kernel void field_mlp_transpose(__global const float* params, const uint w_off,
+                                  __global float* wt) {
+  const int i = get_global_id(0);
+  const int o = get_global_id(1);
+  if (i >= IN_PAD || o >= OUT_PAD) return;
+  wt[o * IN_PAD + i] = i < N_IN ? params[w_off + i * OUT_PAD + o] : 0.0f;
+}
+
+// Input backward: d_in = d_pre · W (PTS points × 16 inputs per work-item). With PREV_ACT >= 0
+// the previous layer's activation derivative is applied (prev = its output, stride IN_STRIDE,
+// or its pre-activation with PREV_PRE), giving that layer's d_pre (stride IN_PAD).
+__kernel void field_mlp_bwd_in(const int n, __global const float* wt, __global const float* d_pre,
+                               __global const float* prev, __global float* d_in) {
+  const int p0 = get_global_id(0) * PTS;
+  const int i0 = get_global_id(1) * 16;
+  if (p0 >= n) return;
+  float16 acc[PTS];
+  __global const float* rows[PTS];
+#pragma unroll
+  for (int p = 0; p < PTS; ++p) {
+    acc[p] = (float16)(0.0f);
+    rows[p] = d_pre + (size_t)min(p0 + p, n - 1) * OUT_PAD;
+  }
+  for (int o = 0; o < OUT; ++o) {
+    const float16 w = vload16(0, wt + o * IN_PAD + i0);
+#pragma unroll
+    for (int p = 0; p < PTS; ++p) acc[p] = fma((float16)(rows[p][o]), w, acc[p]);
+  }
+#pragma unroll
+  for (int p = 0; p < PTS; ++p) {
+    if (p0 + p >= n) continue;
+    const size_t row = (size_t)(p0 + p);
+#if PREV_ACT < 0
+    store_row(acc[p], d_in + row * DIN_STRIDE, i0, N_IN, DIN_STRIDE == IN_PAD);
+#elif PREV_ACT == ACT_NONE
+    vstore16(acc[p], 0, d_in + row * IN_PAD + i0);
+#elif PREV_PRE
+    vstore16(acc[p] * act_grad_pre(vload16(0, prev + row * IN_PAD + i0), PREV_ACT), 0,
+             d_in + row * IN_PAD + i0);
+#else
+    vstore16(acc[p] * act_grad_post(vload16(0, prev + row * IN_STRIDE + i0), PREV_ACT), 0,
+             d_in + row * IN_PAD + i0);
+#endif
+  }
+}

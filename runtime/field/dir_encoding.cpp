@@ -1,0 +1,76 @@
+// DirEncoding host launcher (kernels/field/direnc.cl).
+#include "field/dir_encoding.hpp"
+
+#include <string>
+
+#include "core/error.hpp"
+
+namespace sgnlf::field {
+namespace {
+void check_bytes(const cl::Buffer& b, size_t floats, const char* what) {
+  if (b.bytes() < floats * sizeof(float))
+    throw Error(std::string("DirEncoding: buffer '") + what + "' has " +
+                std::to_string(b.bytes()) + " bytes, needs " + std::to_string(floats * 4));
+}
+}  // namespace
+
+DirEncoding::DirEncoding(cl::Runtime& rt, int n_freq, int n_geo, int geo_start, int dens_stride)
+    : rt_(rt), n_freq_(n_freq), n_geo_(n_geo), geo_start_(geo_start), dens_stride_(dens_stride) {
+  if (n_freq < 1 || n_freq > 20)
+    throw ConfigError("DirEncoding: n_freq = " + std::to_string(n_freq) + " outside [1, 20]");
+  if (n_geo < 0 || geo_start < 0 || geo_start + n_geo > dens_stride)
+    throw ConfigError("DirEncoding: geometric columns [" + std::to_string(geo_start) + ", +" +
+                      std::to_string(n_geo) + ") do not fit rows of " +
+                      std::to_string(dens_stride));
+  const std::string opt = "-DN_FREQ=" + std::to_string(n_freq);
+  const std::string f = "field/direnc.cl";
+  fwd_ = rt_.kernel(f, "field_direnc_fwd", opt);
+  bwd_ = rt_.kernel(f, "field_direnc_bwd", opt);
+  head_fwd_ = rt_.kernel(f, "field_head_input_fwd", opt);
+  head_bwd_geo_ = rt_.kernel(f, "field_head_input_bwd_geo", opt);
+  head_bwd_dir_ = rt_.kernel(f, "field_head_input_bwd_dir", opt);
+}
+
+void DirEncoding::forward(const cl::Buffer& dir, int n_rays, cl::Buffer& enc) {
+  if (n_rays <= 0) return;
+  check_bytes(dir, size_t(n_rays) * 3, "dir");
+  check_bytes(enc, size_t(n_rays) * enc_dim(), "enc");
+  fwd_.set_args(n_rays, dir, enc);
+  fwd_.launch({cl::round_up(size_t(n_rays), 64)}, {64});
+}
+
+void DirEncoding::backward(const cl::Buffer& dir, int n_rays, const cl::Buffer& d_enc,
+                           cl::Buffer& d_dir) {
+  if (n_rays <= 0) return;
+  check_bytes(dir, size_t(n_rays) * 3, "dir");
+  check_bytes(d_enc, size_t(n_rays) * enc_dim(), "d_enc");
+  check_bytes(d_dir, size_t(n_rays) * 3, "d_dir");
+  bwd_.set_args(n_rays, dir, d_enc, d_dir);
+  bwd_.launch({cl::round_up(size_t(n_rays), 64)}, {64});
+}
+
+void DirEncoding::head_input_forward(const cl::Buffer& dens, const cl::Buffer& enc, int n_rays,
+                                     int samples, cl::Buffer& head_in) {
+  if (n_rays <= 0 || samples <= 0) return;
+  const size_t n = size_t(n_rays) * size_t(samples);
+  check_bytes(dens, n * dens_stride_, "dens");
+  check_bytes(enc, size_t(n_rays) * enc_dim(), "enc");
+  check_bytes(head_in, n * head_width(), "head_in");
+  head_fwd_.set_args(int(n), samples, n_geo_, geo_start_, dens_stride_, dens, enc, head_in);
+  head_fwd_.launch({cl::round_up(n, 64)}, {64});
+}
+
+void DirEncoding::head_input_backward(const cl::Buffer& d_head_in, int n_rays, int samples,
+                                      cl::Buffer& d_dens, cl::Buffer& d_enc) {
+  if (n_rays <= 0 || samples <= 0) return;
+  const size_t n = size_t(n_rays) * size_t(samples);
+  check_bytes(d_head_in, n * head_width(), "d_head_in");
+  check_bytes(d_dens, n * dens_stride_, "d_dens");
+  check_bytes(d_enc, size_t(n_rays) * enc_dim(), "d_enc");
+  head_bwd_geo_.set_args(int(n), n_geo_, geo_start_, dens_stride_, d_head_in, d_dens);
+  head_bwd_geo_.launch({cl::round_up(n, 64)}, {64});
+  head_bwd_dir_.set_args(n_rays, samples, n_geo_, d_head_in, d_enc);
+  head_bwd_dir_.launch({cl::round_up(size_t(enc_dim()), 8), size_t(n_rays)}, {8, 1});
+}
+
+}  // namespace sgnlf::field

@@ -1,0 +1,149 @@
+// HashGrid host launcher: level table, parameter init, and the enqueueing of the kernels in
+// kernels/field/hashgrid.cl.
+#include "field/hash_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/rng.hpp"
+
+namespace sgnlf::field {
+
+void HashGridConfig::validate() const {
+  const std::string w = "hash_grid";
+  check_range(w, "levels", levels, 1, 32);
+  if (features != 1 && features != 2 && features != 4 && features != 8)
+    throw ConfigError(w + ": 'features' = " + std::to_string(features) + " must be 1, 2, 4 or 8");
+  check_range(w, "log2_table_size", log2_table_size, 4, 24);
+  check_range(w, "base_resolution", base_resolution, 1.0f, 8192.0f);
+  check_range(w, "per_level_scale", per_level_scale, 1.0f, 4.0f);
+  const double finest = base_resolution * std::pow(double(per_level_scale), levels - 1);
+  if (finest > 1.0e6)
+    throw ConfigError(w + ": finest resolution " + std::to_string(finest) + " exceeds 1e6");
+}
+
+HashGridConfig HashGridConfig::from_json(ConfigReader& r) {
+  HashGridConfig c;
+  r.get("levels", c.levels)
+      .get("features", c.features)
+      .get("log2_table_size", c.log2_table_size)
+      .get("base_resolution", c.base_resolution)
+      .get("per_level_scale", c.per_level_scale)
+      .get("deterministic", c.deterministic);
+  c.validate();
+  return c;
+}
+
+std::vector<HashGridLevel> hash_grid_levels(const HashGridConfig& cfg) {
+  cfg.validate();
+  const uint64_t table = uint64_t(1) << cfg.log2_table_size;
+  std::vector<HashGridLevel> out;
+  uint64_t offset = 0;
+  for (int l = 0; l < cfg.levels; ++l) {
+    HashGridLevel lv{};
+    lv.scale = float(double(cfg.base_resolution) * std::pow(double(cfg.per_level_scale), l) - 1.0);
+    lv.res = uint32_t(std::ceil(double(lv.scale))) + 2u;
+    const uint64_t dense = uint64_t(lv.res) * lv.res * lv.res;
+    lv.size = uint32_t(std::min(table, (dense + 7) / 8 * 8));
+    lv.hashed = dense > table ? 1u : 0u;
+    lv.offset = uint32_t(offset);
+    offset += lv.size;
+    out.push_back(lv);
+  }
+  if (offset * uint64_t(cfg.features) >= (uint64_t(1) << 32))
+    throw ConfigError("hash_grid: parameter count exceeds 2^32 floats");
+  return out;
+}
+
+std::vector<float> barf_level_weights(double progress, int levels) {
+  const double a = std::clamp(progress / 0.8 * levels, 0.0, double(levels));
+  std::vector<float> w(size_t(std::max(levels, 0)));
+  for (int k = 0; k < levels; ++k) {
+    const double t = std::clamp(a - k, 0.0, 1.0);
+    w[size_t(k)] = float((1.0 - std::cos(M_PI * t)) / 2.0);
+  }
+  return w;
+}
+
+HashGrid::HashGrid(cl::Runtime& rt, const HashGridConfig& cfg)
+    : rt_(rt), cfg_(cfg), levels_(hash_grid_levels(cfg)) {
+  n_params_ = size_t(levels_.back().offset + levels_.back().size) * size_t(cfg_.features);
+  std::vector<float> scale;
+  std::vector<uint32_t> meta;
+  for (const auto& lv : levels_) {
+    scale.push_back(lv.scale);
+    meta.insert(meta.end(), {lv.res, lv.offset, lv.size, lv.hashed});
+  }
+  scale_ = cl::Buffer::from(rt_, scale);
+  meta_ = cl::Buffer::from(rt_, meta);
+  weights_ = cl::Buffer(rt_, sizeof(float) * size_t(cfg_.levels));
+  set_level_weights(std::vector<float>(size_t(cfg_.levels), 1.0f));
+  const std::string opt = "-DLEVELS=" + std::to_string(cfg_.levels) +
+                          " -DFEATURES=" + std::to_string(cfg_.features);
+  const std::string file = "field/hashgrid.cl";
+  fwd_ = rt_.kernel(file, "field_hashgrid_fwd", opt);
+  bwd_ = rt_.kernel(file, "field_hashgrid_bwd", opt);
+  bwd_atomic_ = rt_.kernel(file, "field_hashgrid_bwd_atomic", opt);
+  bwd_dx_ = rt_.kernel(file, "field_hashgrid_bwd_dx", opt);
+  zero_ = rt_.kernel(file, "field_hashgrid_zero", opt);
+}
+
+void HashGrid::init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) const {
+  if (offset + n_params_ > host_params.size())
+    throw Error("HashGrid::init_params: slice [" + std::to_string(offset) + ", +" +
+                std::to_string(n_params_) + ") exceeds buffer of " +
+                std::to_string(host_params.size()));
+  Rng rng(seed, 0x4a5u);
+  for (size_t i = 0; i < n_params_; ++i) host_params[offset + i] = rng.uniform(-1e-4f, 1e-4f);
+}
+
+void HashGrid::set_level_weights(const std::vector<float>& w) {
+  if (w.size() != size_t(cfg_.levels))
+    throw Error("HashGrid::set_level_weights: got " + std::to_string(w.size()) +
+                " weights for " + std::to_string(cfg_.levels) + " levels");
+  weights_host_ = w;
+  weights_.write_vec(w);
+}
+
+static void check_bytes(const cl::Buffer& b, size_t floats, const char* what) {
+  if (b.bytes() < floats * sizeof(float))
+    throw Error(std::string("HashGrid: buffer '") + what + "' has " + std::to_string(b.bytes()) +
+                " bytes, needs " + std::to_string(floats * sizeof(float)));
+}
+
+void HashGrid::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& x, int n,
+                       cl::Buffer& enc) {
+  if (n <= 0) return;
+  check_bytes(params, offset + n_params_, "params");
+  check_bytes(x, size_t(n) * 3, "x");
+  check_bytes(enc, size_t(n) * size_t(n_output()), "enc");
+  fwd_.set_args(n, params, uint32_t(offset), x, scale_, meta_, weights_, enc);
+  fwd_.launch({cl::round_up(size_t(n), 64), size_t(cfg_.levels)}, {64, 1});
+}
+
+void HashGrid::backward(const cl::Buffer& params, size_t offset, const cl::Buffer& x, int n,
+                        const cl::Buffer& d_enc, cl::Buffer& grad, size_t grad_offset,
+                        cl::Buffer* d_x) {
+  check_bytes(grad, grad_offset + n_params_, "grad");
+  check_bytes(x, size_t(std::max(n, 0)) * 3, "x");
+  check_bytes(d_enc, size_t(std::max(n, 0)) * size_t(n_output()), "d_enc");
+  if (cfg_.deterministic || n <= 0) {
+    bwd_.set_args(std::max(n, 0), x, scale_, meta_, weights_, d_enc, grad, uint32_t(grad_offset));
+    bwd_.launch({size_t(cfg_.levels)}, {1});
+  } else {
+    zero_.set_args(grad, uint32_t(grad_offset), uint32_t(n_params_));
+    zero_.launch({cl::round_up(n_params_, 64)}, {64});
+    bwd_atomic_.set_args(n, x, scale_, meta_, weights_, d_enc, grad, uint32_t(grad_offset));
+    bwd_atomic_.launch({cl::round_up(size_t(n), 64), size_t(cfg_.levels)}, {64, 1});
+  }
+  if (d_x && n > 0) {
+    check_bytes(params, offset + n_params_, "params");
+    check_bytes(*d_x, size_t(n) * 3, "d_x");
+    bwd_dx_.set_args(n, params, uint32_t(offset), x, scale_, meta_, weights_, d_enc, *d_x);
+    bwd_dx_.launch({cl::round_up(size_t(n), 64)}, {64});
+  }
+}
+
+}  // namespace sgnlf::field

@@ -1,0 +1,84 @@
+// Multi-resolution hash-grid encoding (method.md §0; instant-ngp) on OpenCL: forward, parameter
+// backward (race-free and deterministic by default) and input-position backward d_x, which is
+// how ray origins/directions and hence poses receive gradients.
+//
+// Layout of this module's parameter slice: levels one after another; level l has `size` entries
+// of F floats (entry-major). Level l: scale_l = base · growth^l − 1, res_l = ceil(scale_l) + 2,
+// size_l = min(2^log2_table_size, round_up(res_l³, 8)); levels with res_l³ > table size use the
+// spatial hash (x ⊕ y·2654435761 ⊕ z·805459861), the others a dense index. Inputs x are N×3
+// in [−1, 1]; pos = ((x + 1)/2)·scale_l + 0.5; trilinear over the 8 corners.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "cl/runtime.hpp"
+#include "core/config.hpp"
+
+namespace sgnlf::field {
+
+struct HashGridConfig {
+  int levels = 16;
+  int features = 2;          // per level: 1, 2, 4 or 8
+  int log2_table_size = 19;  // entries per level (upper bound)
+  float base_resolution = 16.0f;
+  float per_level_scale = 1.6625f;
+  // true: level-partitioned, bit-reproducible backward; false: atomic compare-and-swap adds
+  // (summation order varies; kept to measure what determinism costs).
+  bool deterministic = true;
+
+  void validate() const;  // throws ConfigError
+  static HashGridConfig from_json(ConfigReader& r);  // reads known keys; caller calls finish()
+};
+
+struct HashGridLevel {
+  float scale;    // grid scale (base · growth^l − 1)
+  uint32_t res;   // grid points per axis
+  uint32_t offset;  // first entry of the level within the module slice
+  uint32_t size;  // entries
+  uint32_t hashed;  // 1 = spatial hash, 0 = dense index
+};
+
+// The per-level table of a configuration (pure host function, shared with tests).
+std::vector<HashGridLevel> hash_grid_levels(const HashGridConfig& cfg);
+
+// BARF coarse-to-fine level weights (method.md §3): a = clamp(progress/0.8 · L, 0, L);
+// w_k = (1 − cos(π · clamp(a − k, 0, 1))) / 2.
+std::vector<float> barf_level_weights(double progress, int levels);
+
+class HashGrid {
+ public:
+  HashGrid(cl::Runtime& rt, const HashGridConfig& cfg);
+
+  const HashGridConfig& config() const { return cfg_; }
+  const std::vector<HashGridLevel>& levels() const { return levels_; }
+  size_t n_params() const { return n_params_; }
+  int n_output() const { return cfg_.levels * cfg_.features; }
+
+  // Uniform ±1e-4 (instant-ngp) into host_params[offset, offset + n_params()) from `seed`.
+  void init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) const;
+
+  // Level weights (L floats, 1 = on) used by forward and backward until changed. Blocking
+  // upload: call between training steps. Default: all ones.
+  void set_level_weights(const std::vector<float>& w);
+  const std::vector<float>& level_weights() const { return weights_host_; }
+
+  // enc (N × L·F floats) = encoding of x (N × 3 floats). Enqueued, no wait.
+  void forward(const cl::Buffer& params, size_t offset, const cl::Buffer& x, int n,
+               cl::Buffer& enc);
+  // Overwrites grad[grad_offset, + n_params()) with dL/dparams; if d_x is given, writes
+  // dL/dx (N × 3). Enqueued, no wait.
+  void backward(const cl::Buffer& params, size_t offset, const cl::Buffer& x, int n,
+                const cl::Buffer& d_enc, cl::Buffer& grad, size_t grad_offset,
+                cl::Buffer* d_x = nullptr);
+
+ private:
+  cl::Runtime& rt_;
+  HashGridConfig cfg_;
+  std::vector<HashGridLevel> levels_;
+  size_t n_params_ = 0;
+  std::vector<float> weights_host_;
+  cl::Buffer scale_, meta_, weights_;
+  cl::Kernel fwd_, bwd_, bwd_atomic_, bwd_dx_, zero_;
+};
+
+}  // namespace sgnlf::field

@@ -1,0 +1,223 @@
+// Mlp host launcher: layer programs specialised by -D defines, parameter init, and the
+// enqueueing of forward and backward passes (kernels/field/mlp.cl).
+#include "field/mlp.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "core/rng.hpp"
+
+namespace sgnlf::field {
+namespace {
+constexpr int kPts = 8;          // points per work-item in the GEMM kernels
+constexpr int kRows = 8;         // weight rows per work-item in the weight gradient
+constexpr int kMaxChunks = 64;   // weight-gradient partial sums (fixed for a given N)
+constexpr int kMinChunk = 256;   // points per chunk at least
+constexpr size_t kLocal = 16;    // work-group size along the point dimension
+
+void check_bytes(const cl::Buffer& b, size_t floats, const char* what) {
+  if (b.bytes() < floats * sizeof(float))
+    throw Error(std::string("Mlp: buffer '") + what + "' has " + std::to_string(b.bytes()) +
+                " bytes, needs " + std::to_string(floats * sizeof(float)));
+}
+size_t ceil_div(size_t a, size_t b) { return (a + b - 1) / b; }
+}  // namespace
+
+Activation activation_from_string(const std::string& s) {
+  if (s == "none") return Activation::None;
+  if (s == "relu") return Activation::Relu;
+  if (s == "tanh") return Activation::Tanh;
+  if (s == "softplus") return Activation::Softplus;
+  if (s == "sine") return Activation::Sine;
+  throw ConfigError("activation '" + s + "' is not one of none, relu, tanh, softplus, sine");
+}
+
+std::string to_string(Activation a) {
+  switch (a) {
+    case Activation::None: return "none";
+    case Activation::Relu: return "relu";
+    case Activation::Tanh: return "tanh";
+    case Activation::Softplus: return "softplus";
+    case Activation::Sine: return "sine";
+  }
+  return "?";
+}
+
+void MlpSpec::validate() const {
+  check_range("mlp", "n_in", n_in, 1, 128);
+  if (layers.empty()) throw ConfigError("mlp: at least one layer is required");
+  for (size_t l = 0; l < layers.size(); ++l)
+    check_range("mlp", "layers[" + std::to_string(l) + "].width", layers[l].width, 1, 128);
+}
+
+double MlpSpec::macs_per_point() const {
+  double macs = 0;
+  int in = n_in;
+  for (const auto& l : layers) {
+    macs += double(in) * l.width;
+    in = l.width;
+  }
+  return macs;
+}
+
+MlpSpec make_mlp_spec(int n_in, int width, int hidden, int n_out, Activation act,
+                      Activation out_act) {
+  MlpSpec s;
+  s.n_in = n_in;
+  for (int h = 0; h < hidden; ++h) s.layers.push_back({width, act});
+  s.layers.push_back({n_out, out_act});
+  return s;
+}
+
+Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec) : rt_(rt), spec_(spec) {
+  spec_.validate();
+  const int n_layers = int(spec_.layers.size());
+  int n_in = spec_.n_in;
+  for (int l = 0; l < n_layers; ++l) {
+    const auto& ls = spec_.layers[size_t(l)];
+    Layer L{};
+    L.n_in = n_in;
+    L.in_stride = l == 0 ? n_in : pad16(n_in);
+    L.out = ls.width;
+    L.out_pad = pad16(ls.width);
+    L.out_stride = l == n_layers - 1 ? ls.width : L.out_pad;
+    L.act = ls.activation;
+    L.store_pre = L.act == Activation::Sine ||
+                  (l == n_layers - 1 && L.act != Activation::None);
+    layer_off_.push_back(n_params_);
+    n_params_ += size_t(n_in + 1) * size_t(L.out_pad);
+    const bool prev_pre = l > 0 && layers_.back().store_pre;
+    const int prev_act = l > 0 ? int(layers_.back().act) : -1;
+    auto d = [](const char* k, int v) { return std::string(" -D") + k + "=" + std::to_string(v); };
+    const std::string opt = d("N_IN", n_in) + d("IN_STRIDE", L.in_stride) +
+                            d("IN_PAD", pad16(n_in)) + d("OUT", L.out) +
+                            d("OUT_PAD", L.out_pad) + d("OUT_STRIDE", L.out_stride) +
+                            d("ACT", int(L.act)) + d("STORE_PRE", L.store_pre) +
+                            d("PREV_ACT", prev_act) + d("PREV_PRE", prev_pre) +
+                            d("DIN_STRIDE", l == 0 ? n_in : pad16(n_in)) + d("PTS", kPts) +
+                            d("ROWS", kRows);
+    const std::string f = "field/mlp.cl";
+    L.fwd = rt_.kernel(f, "field_mlp_fwd", opt);
+    L.bwd_out = rt_.kernel(f, "field_mlp_bwd_out", opt);
+    L.wgt = rt_.kernel(f, "field_mlp_bwd_wgt", opt);
+    L.reduce = rt_.kernel(f, "field_mlp_bwd_reduce", opt);
+    L.transpose = rt_.kernel(f, "field_mlp_transpose", opt);
+    L.bwd_in = rt_.kernel(f, "field_mlp_bwd_in", opt);
+    layers_.push_back(std::move(L));
+    n_in = ls.width;
+  }
+}
+
+void Mlp::init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) const {
+  if (offset + n_params_ > host_params.size())
+    throw Error("Mlp::init_params: slice exceeds buffer of " +
+                std::to_string(host_params.size()) + " floats");
+  Rng rng(seed, 0x4d4cu);
+  for (size_t l = 0; l < layers_.size(); ++l) {
+    const Layer& L = layers_[l];
+    const double gain = L.act == Activation::Relu ? 6.0 : 3.0;
+    const float bound = float(std::sqrt(gain / L.n_in));
+    float* w = host_params.data() + offset + layer_off_[l];
+    for (int i = 0; i <= L.n_in; ++i)
+      for (int o = 0; o < L.out_pad; ++o) {
+        const float u = rng.uniform(-bound, bound);  // drawn for every slot: layout-stable
+        w[size_t(i) * L.out_pad + o] = (i < L.n_in && o < L.out) ? u : 0.0f;
+      }
+  }
+}
+
+void Mlp::ensure(MlpContext& ctx, int n) const {
+  if (ctx.capacity >= size_t(n) && ctx.post.size() == layers_.size()) return;
+  ctx.post.clear();
+  ctx.pre.clear();
+  for (const Layer& L : layers_) {
+    ctx.post.emplace_back(rt_, size_t(n) * L.out_pad * sizeof(float));
+    ctx.pre.push_back(L.store_pre ? cl::Buffer(rt_, size_t(n) * L.out_pad * sizeof(float))
+                                  : cl::Buffer());
+  }
+  ctx.capacity = size_t(n);
+}
+
+void Mlp::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& in, int n,
+                  cl::Buffer& out, MlpContext& ctx) {
+  check_bytes(params, offset + n_params_, "params");
+  check_bytes(in, size_t(std::max(n, 0)) * spec_.n_in, "in");
+  check_bytes(out, size_t(std::max(n, 0)) * spec_.n_out(), "out");
+  ctx.n = n;
+  ctx.in = &in;
+  if (n <= 0) return;
+  ensure(ctx, n);
+  const size_t groups = cl::round_up(ceil_div(size_t(n), kPts), kLocal);
+  for (size_t l = 0; l < layers_.size(); ++l) {
+    Layer& L = layers_[l];
+    const cl::Buffer& src = l == 0 ? in : ctx.post[l - 1];
+    cl::Buffer& dst = l + 1 == layers_.size() ? out : ctx.post[l];
+    cl::Buffer& pre = L.store_pre ? ctx.pre[l] : dst;
+    L.fwd.set_args(n, params, uint32_t(offset + layer_off_[l]), src, dst, pre);
+    L.fwd.launch({groups, size_t(L.out_pad / 16)}, {kLocal, 1});
+  }
+}
+
+void Mlp::ensure_scratch(int n) {
+  int max_pad = 16;
+  size_t partial = 0;
+  const size_t chunks = std::min<size_t>(kMaxChunks, ceil_div(size_t(n), kMinChunk));
+  for (const Layer& L : layers_) {
+    max_pad = std::max({max_pad, L.out_pad, pad16(L.n_in)});
+    partial = std::max(partial, chunks * size_t(L.n_in + 1) * L.out_pad);
+  }
+  if (scratch_points_ < size_t(n)) {
+    for (auto& b : d_pre_) b = cl::Buffer(rt_, size_t(n) * max_pad * sizeof(float));
+    scratch_points_ = size_t(n);
+  }
+  if (partial_floats_ < partial) {
+    partial_ = cl::Buffer(rt_, partial * sizeof(float));
+    partial_floats_ = partial;
+  }
+  if (!wt_) wt_ = cl::Buffer(rt_, size_t(128) * 128 * sizeof(float));
+}
+
+void Mlp::backward(const cl::Buffer& params, size_t offset, const MlpContext& ctx,
+                   const cl::Buffer& out, const cl::Buffer& d_out, cl::Buffer& grad,
+                   size_t grad_offset, cl::Buffer* d_in) {
+  const int n = ctx.n;
+  check_bytes(grad, grad_offset + n_params_, "grad");
+  if (n <= 0 || !ctx.in) throw Error("Mlp::backward: context holds no forward pass");
+  check_bytes(d_out, size_t(n) * spec_.n_out(), "d_out");
+  if (d_in) check_bytes(*d_in, size_t(n) * spec_.n_in, "d_in");
+  ensure_scratch(n);
+  const size_t chunks = std::min<size_t>(kMaxChunks, ceil_div(size_t(n), kMinChunk));
+  const int chunk = int(ceil_div(size_t(n), chunks));
+  const size_t groups = cl::round_up(ceil_div(size_t(n), kPts), kLocal);
+  const int last = int(layers_.size()) - 1;
+  int cur = 0;
+  {
+    Layer& L = layers_[size_t(last)];
+    const cl::Buffer& y = L.store_pre ? ctx.pre[size_t(last)] : out;
+    L.bwd_out.set_args(n, d_out, y, d_pre_[cur]);
+    L.bwd_out.launch({cl::round_up(size_t(n), 64)}, {64});
+  }
+  for (int l = last; l >= 0; --l) {
+    Layer& L = layers_[size_t(l)];
+    const cl::Buffer& src = l == 0 ? *ctx.in : ctx.post[size_t(l - 1)];
+    L.wgt.set_args(n, chunk, src, d_pre_[cur], partial_);
+    L.wgt.launch({chunks, ceil_div(size_t(L.n_in + 1), kRows), size_t(L.out_pad / 16)},
+                 {1, 1, 1});
+    const size_t count = size_t(L.n_in + 1) * L.out_pad;
+    L.reduce.set_args(int(chunks), partial_, grad, uint32_t(grad_offset + layer_off_[size_t(l)]));
+    L.reduce.launch({cl::round_up(count, 64)}, {64});
+    if (l == 0 && !d_in) break;
+    L.transpose.set_args(params, uint32_t(offset + layer_off_[size_t(l)]), wt_);
+    L.transpose.launch({size_t(pad16(L.n_in)), size_t(L.out_pad)});
+    cl::Buffer& dst = l == 0 ? *d_in : d_pre_[1 - cur];
+    const cl::Buffer& prev =
+        l == 0 ? d_out
+               : (layers_[size_t(l - 1)].store_pre ? ctx.pre[size_t(l - 1)] : ctx.post[size_t(l - 1)]);
+    L.bwd_in.set_args(n, wt_, d_pre_[cur], prev, dst);
+    L.bwd_in.launch({groups, size_t(pad16(L.n_in) / 16)}, {kLocal, 1});
+    cur = 1 - cur;
+  }
+}
+
+}  // namespace sgnlf::field
