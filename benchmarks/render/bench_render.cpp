@@ -1,0 +1,1 @@
+#include "support/bench_support.hpp"

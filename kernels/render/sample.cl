@@ -1,0 +1,100 @@
+// LiDAR ray sampling (method.md §0): stratified uniform samples with Philox jitter, and
+// importance samples drawn by inverse CDF from a coarse pass's weights, merged sorted with the
+// coarse ones. Rays are given as origins o and unit directions d (n_rays x 3, normalised
+// scene frame, protocol §2); samples are ray-major (ray r owns r*S .. r*S+S-1); positions
+// x = o + t*d are point-major (N x 3). Host references: tests/render/render_reference.hpp.
+#include "common/philox.clh"
+
+// Philox streams of this file (seed, stream, index = step << 32 | counter).
+#define RENDER_STREAM_UNIFORM 0x52454e31u
+#define RENDER_STREAM_IMPORTANCE 0x52454e32u
+
+inline float render_jitter(uint seed_lo, uint seed_hi, uint stream, uint step, uint counter) {
+  const ulong index = ((ulong)step << 32) | (ulong)counter;
+  return philox_unit(philox_block(seed_lo, seed_hi, stream, index).x);
+}
+
+inline void render_store_point(__global const float* o, __global const float* d, int r,
+                               float t, int s, __global float* x) {
+  x[3 * s + 0] = o[3 * r + 0] + t * d[3 * r + 0];
+  x[3 * s + 1] = o[3 * r + 1] + t * d[3 * r + 1];
+  x[3 * s + 2] = o[3 * r + 2] + t * d[3 * r + 2];
+}
+
+// One work-item per sample: t = near + (i + xi) * (far - near) / S, xi from Philox when
+// jitter != 0, else 0.5 (bin midpoints, used for evaluation).
+__kernel void render_sample_uniform(const int n_rays, const int n_samples, const float near,
+                                    const float far, const int jitter, const uint seed_lo,
+                                    const uint seed_hi, const uint step,
+                                    __global const float* o, __global const float* d,
+                                    __global float* t_out, __global float* x_out) {
+  const int s = get_global_id(0);
+  if (s >= n_rays * n_samples) return;
+  const int r = s / n_samples, i = s - r * n_samples;
+  const float xi = jitter ? render_jitter(seed_lo, seed_hi, RENDER_STREAM_UNIFORM, step, (uint)s)
+                          : 0.5f;
+  const float t = near + ((float)i + xi) * ((far - near) / (float)n_samples);
+  t_out[s] = t;
+  render_store_point(o, d, r, t, s, x_out);
+}
+
+// One work-item per ray. The coarse samples t_c (S_c, sorted) define bins with edges
+// e_0 = near, e_k = (t_{k-1} + t_k)/2, e_{S_c} = far; bin k has probability proportional to
+// w_k + 1e-5 (NeRF's floor keeps empty rays sampled uniformly). Fine sample j uses
+// u_j = (j + xi_j) / S_f (xi from Philox, or 0.5), so the fine samples come out sorted and one
+// walk over the bins inverts the CDF; they are merged with the coarse samples on the fly
+// (ties: coarse first). Output: S_c + S_f sorted samples per ray.
+__kernel void render_sample_importance(const int n_rays, const int n_coarse, const int n_fine,
+                                       const float near, const float far, const int jitter,
+                                       const uint seed_lo, const uint seed_hi, const uint step,
+                                       __global const float* o, __global const float* d,
+                                       __global const float* t_coarse,
+                                       __global const float* w_coarse, __global float* t_out,
+                                       __global float* x_out) {
+  const int r = get_global_id(0);
+  if (r >= n_rays) return;
+  const int cbase = r * n_coarse, obase = r * (n_coarse + n_fine);
+  float total = 0.0f;
+  for (int k = 0; k < n_coarse; ++k) total += w_coarse[cbase + k] + 1e-5f;
+  const float inv_total = 1.0f / total;
+
+  // Inverse-CDF walk state: bin k, its edges, its probability and the CDF below it.
+  int k = 0;
+  float cdf_lo = 0.0f;
+  float p_k = (w_coarse[cbase] + 1e-5f) * inv_total;
+  float e_lo = near;
+  float e_hi = n_coarse > 1 ? 0.5f * (t_coarse[cbase] + t_coarse[cbase + 1]) : far;
+
+  int ic = 0, j = 0, need_fine = 1;
+  float t_fine = 0.0f;
+  for (int out = 0; out < n_coarse + n_fine; ++out) {
+    if (j < n_fine && need_fine) {
+      need_fine = 0;
+      const float xi = jitter ? render_jitter(seed_lo, seed_hi, RENDER_STREAM_IMPORTANCE, step,
+                                              (uint)(r * n_fine + j))
+                              : 0.5f;
+      const float u = ((float)j + xi) / (float)n_fine;
+      while (k < n_coarse - 1 && cdf_lo + p_k <= u) {
+        cdf_lo += p_k;
+        ++k;
+        p_k = (w_coarse[cbase + k] + 1e-5f) * inv_total;
+        e_lo = e_hi;
+        e_hi = k < n_coarse - 1 ? 0.5f * (t_coarse[cbase + k] + t_coarse[cbase + k + 1]) : far;
+      }
+      const float f = clamp((u - cdf_lo) / p_k, 0.0f, 1.0f);
+      t_fine = e_lo + f * (e_hi - e_lo);
+    }
+    const int take_coarse = ic < n_coarse && (j >= n_fine || t_coarse[cbase + ic] <= t_fine);
+    float t;
+    if (take_coarse) {
+      t = t_coarse[cbase + ic];
+      ++ic;
+    } else {
+      t = t_fine;
+      ++j;
+      need_fine = 1;
+    }
+    t_out[obase + out] = t;
+    render_store_point(o, d, r, t, obase + out, x_out);
+  }
+}

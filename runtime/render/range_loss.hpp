@@ -1,0 +1,46 @@
+// The LiDAR range loss on the device (method.md §0) and LiDAR-NeRF's range-image gradient
+// loss on patch batches (§1), both as the batch mean with its gradient dL/d(depth, prob,
+// intensity) (n_rays x 3). Per-ray terms go to a buffer; each scalar is then summed on the
+// device by one work-group in a fixed order (strided slices, then a fixed tree), so the loss
+// is bit-identical from run to run. Targets are n_rays x 3 (range in normalised units,
+// intensity, return label 0/1). Calls only enqueue; read_losses() reads the four scalars.
+#pragma once
+#include "cl/runtime.hpp"
+#include "render/render_config.hpp"
+
+namespace sgnlf::render {
+
+// The loss buffer holds these four floats, in this order.
+struct LossValues {
+  float depth = 0, ret = 0, intensity = 0, grad = 0;
+  float total() const { return depth + ret + intensity + grad; }
+};
+inline constexpr size_t kLossFloats = 4;
+
+class RangeLoss {
+ public:
+  RangeLoss(cl::Runtime& rt, const RenderConfig& cfg, float scene_scale);
+
+  // Writes grad_out (n_rays x 3) = d(mean loss)/d out, terms (n_rays x 3) and loss[0..2].
+  cl::Event range(const cl::Buffer& out, const cl::Buffer& target, int n_rays,
+                  cl::Buffer& grad_out, cl::Buffer& terms, cl::Buffer& loss);
+  // Gradient loss over n_patches patch-major P×P patches (n_rays = n_patches·P²): ADDS its
+  // gradient to grad_out[:, 0] (enqueue after range()), writes terms (n_rays) and loss[3].
+  // Pairs count when both pixels have a GT return and |GT step| < grad_clip_m; differences
+  // are in metres (LiDAR-NeRF divides by the scale); the mean runs over all 2P(P−1) pairs
+  // per patch (masked pairs count as zero).
+  cl::Event patch_gradient(const cl::Buffer& out, const cl::Buffer& target, int n_patches,
+                           cl::Buffer& grad_out, cl::Buffer& terms, cl::Buffer& loss);
+
+  static LossValues read_losses(const cl::Buffer& loss);
+
+ private:
+  cl::Event reduce(const cl::Buffer& in, int n, int stride, int offset, float scale,
+                   cl::Buffer& loss, int index);
+  RenderConfig cfg_;
+  float scene_scale_;
+  size_t reduce_wg_;
+  cl::Kernel range_k_, patch_k_, reduce_k_;
+};
+
+}  // namespace sgnlf::render

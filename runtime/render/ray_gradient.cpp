@@ -1,0 +1,24 @@
+// RayGradReducer: launcher of kernels/render/ray_grad.cl.
+#include "render/ray_gradient.hpp"
+
+#include "render/launch.hpp"
+
+namespace sgnlf::render {
+
+RayGradReducer::RayGradReducer(cl::Runtime& rt)
+    : k_(rt.kernel("render/ray_grad.cl", "render_raygrad_reduce")) {}
+
+cl::Event RayGradReducer::reduce(const cl::Buffer& t, const cl::Buffer& grad_x, int n_rays,
+                                 int n_samples, cl::Buffer& grad_o, cl::Buffer& grad_d) {
+  require(n_rays >= 0 && n_samples > 0 && size_t(n_rays) * n_samples < (size_t(1) << 31),
+          "RayGradReducer::reduce: bad shape");
+  const size_t n = size_t(n_rays) * n_samples;
+  check_floats(t, n, "RayGradReducer::reduce t");
+  check_floats(grad_x, 3 * n, "RayGradReducer::reduce grad_x");
+  check_floats(grad_o, 3 * size_t(n_rays), "RayGradReducer::reduce grad_o");
+  check_floats(grad_d, 3 * size_t(n_rays), "RayGradReducer::reduce grad_d");
+  k_.set_args(n_rays, n_samples, t, grad_x, grad_o, grad_d);
+  return launch_1d(k_, size_t(n_rays));
+}
+
+}  // namespace sgnlf::render

@@ -1,0 +1,20 @@
+// Per-ray gradient of the sample positions x_i = o + t_i d (kernels/render/ray_grad.cl):
+// dL/do = Σ_i dL/dx_i and dL/dd = Σ_i t_i dL/dx_i, in a fixed order. The pipeline adds the
+// direction encoding's gradient to dL/dd and hands both to pose_gradient() (pose-free methods).
+#pragma once
+#include "cl/runtime.hpp"
+
+namespace sgnlf::render {
+
+class RayGradReducer {
+ public:
+  explicit RayGradReducer(cl::Runtime& rt);
+  // t: n_rays·S, grad_x: n_rays·S x 3 -> grad_o, grad_d: n_rays x 3. Only enqueues.
+  cl::Event reduce(const cl::Buffer& t, const cl::Buffer& grad_x, int n_rays, int n_samples,
+                   cl::Buffer& grad_o, cl::Buffer& grad_d);
+
+ private:
+  cl::Kernel k_;
+};
+
+}  // namespace sgnlf::render

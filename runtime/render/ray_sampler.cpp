@@ -1,0 +1,53 @@
+// RaySampler: launchers of kernels/render/sample.cl.
+#include "render/ray_sampler.hpp"
+
+#include "render/launch.hpp"
+
+namespace sgnlf::render {
+
+RaySampler::RaySampler(cl::Runtime& rt, const RenderConfig& cfg, float scene_scale)
+    : cfg_(cfg),
+      near_(cfg.near_m * scene_scale),
+      far_(cfg.far_m * scene_scale),
+      uniform_k_(rt.kernel("render/sample.cl", "render_sample_uniform")),
+      importance_k_(rt.kernel("render/sample.cl", "render_sample_importance")) {
+  cfg_.validate("RaySampler");
+  require(scene_scale > 0.0f, "RaySampler: scene_scale must be positive");
+}
+
+cl::Event RaySampler::uniform(const cl::Buffer& origins, const cl::Buffer& dirs, int n_rays,
+                              bool jitter, uint64_t seed, uint32_t step, cl::Buffer& t,
+                              cl::Buffer& x) {
+  const size_t n = size_t(n_rays) * cfg_.n_samples;
+  require(n_rays >= 0 && n < (size_t(1) << 31), "RaySampler::uniform: bad n_rays");
+  check_floats(origins, size_t(n_rays) * 3, "RaySampler::uniform origins");
+  check_floats(dirs, size_t(n_rays) * 3, "RaySampler::uniform dirs");
+  check_floats(t, n, "RaySampler::uniform t");
+  check_floats(x, n * 3, "RaySampler::uniform x");
+  uniform_k_.set_args(n_rays, cfg_.n_samples, near_, far_, int(jitter), uint32_t(seed),
+                      uint32_t(seed >> 32), step, origins, dirs, t, x);
+  return launch_1d(uniform_k_, n);
+}
+
+cl::Event RaySampler::importance(const cl::Buffer& origins, const cl::Buffer& dirs, int n_rays,
+                                 int n_coarse, const cl::Buffer& t_coarse,
+                                 const cl::Buffer& w_coarse, bool jitter, uint64_t seed,
+                                 uint32_t step, cl::Buffer& t_out, cl::Buffer& x_out) {
+  const int n_fine = cfg_.n_importance;
+  require(n_fine > 0, "RaySampler::importance: config has n_importance = 0");
+  require(n_coarse > 0, "RaySampler::importance: n_coarse must be positive");
+  const size_t nc = size_t(n_rays) * n_coarse, no = size_t(n_rays) * (n_coarse + n_fine);
+  require(n_rays >= 0 && no < (size_t(1) << 31), "RaySampler::importance: bad n_rays");
+  check_floats(origins, size_t(n_rays) * 3, "RaySampler::importance origins");
+  check_floats(dirs, size_t(n_rays) * 3, "RaySampler::importance dirs");
+  check_floats(t_coarse, nc, "RaySampler::importance t_coarse");
+  check_floats(w_coarse, nc, "RaySampler::importance w_coarse");
+  check_floats(t_out, no, "RaySampler::importance t_out");
+  check_floats(x_out, no * 3, "RaySampler::importance x_out");
+  importance_k_.set_args(n_rays, n_coarse, n_fine, near_, far_, int(jitter), uint32_t(seed),
+                         uint32_t(seed >> 32), step, origins, dirs, t_coarse, w_coarse, t_out,
+                         x_out);
+  return launch_1d(importance_k_, size_t(n_rays));
+}
+
+}  // namespace sgnlf::render

@@ -1,0 +1,71 @@
+// RenderConfig presets, validation and JSON.
+#include "render/render_config.hpp"
+
+namespace sgnlf::render {
+
+RenderConfig RenderConfig::preset(const std::string& dataset) {
+  RenderConfig c;
+  if (dataset == "kitti360") {
+    c.weights = {1000.0f, 1.0f, 10.0f, 100.0f};
+  } else if (dataset == "nuscenes") {
+    c.weights = {1000.0f, 4.5f, 100.0f, 100.0f};
+  } else {
+    throw ConfigError("render preset: unknown dataset '" + dataset +
+                      "' (expected kitti360 or nuscenes)");
+  }
+  return c;
+}
+
+void RenderConfig::validate(const std::string& where) const {
+  check_range(where, "near_m", near_m, 0.0f, 1e4f);
+  check_range(where, "far_m", far_m, 0.0f, 1e5f);
+  if (!(far_m > near_m))
+    throw ConfigError(where + ": 'far_m' = " + std::to_string(far_m) + " must exceed 'near_m' = " +
+                      std::to_string(near_m));
+  check_range(where, "n_samples", n_samples, 1, 1 << 16);
+  check_range(where, "n_importance", n_importance, 0, 1 << 16);
+  check_range(where, "weights.depth", weights.depth, 0.0f, 1e9f);
+  check_range(where, "weights.ret", weights.ret, 0.0f, 1e9f);
+  check_range(where, "weights.intensity", weights.intensity, 0.0f, 1e9f);
+  check_range(where, "weights.grad", weights.grad, 0.0f, 1e9f);
+  check_range(where, "patch_size", patch_size, 2, 256);
+  check_range(where, "grad_clip_m", grad_clip_m, 0.0f, 1e5f);
+}
+
+RenderConfig RenderConfig::from_json(const Json& j, const std::string& where,
+                                     RenderConfig c) {
+  ConfigReader r(j, where);
+  r.get("near_m", c.near_m).get("far_m", c.far_m).get("n_samples", c.n_samples);
+  r.get("n_importance", c.n_importance).get("jitter", c.jitter);
+  r.get("patch_size", c.patch_size).get("grad_clip_m", c.grad_clip_m);
+  if (r.has("weights")) {
+    auto w = r.child("weights");
+    w.get("depth", c.weights.depth).get("ret", c.weights.ret);
+    w.get("intensity", c.weights.intensity).get("grad", c.weights.grad);
+    w.finish();
+  }
+  r.finish();
+  c.validate(where);
+  return c;
+}
+
+RenderConfig RenderConfig::from_json(const Json& j, const std::string& where) {
+  return from_json(j, where, RenderConfig());
+}
+
+Json RenderConfig::to_json() const {
+  return Json{{"near_m", near_m},
+              {"far_m", far_m},
+              {"n_samples", n_samples},
+              {"n_importance", n_importance},
+              {"jitter", jitter},
+              {"patch_size", patch_size},
+              {"grad_clip_m", grad_clip_m},
+              {"weights",
+               {{"depth", weights.depth},
+                {"ret", weights.ret},
+                {"intensity", weights.intensity},
+                {"grad", weights.grad}}}};
+}
+
+}  // namespace sgnlf::render

@@ -1,0 +1,42 @@
+// Configuration of LiDAR ray sampling, volume rendering and the range loss (method.md §0,
+// §1). Lengths are in metres here; the render classes take the scene scale s (protocol §2)
+// and work in the normalised frame (near·s, far·s, ranges·s).
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "core/config.hpp"
+
+namespace sgnlf::render {
+
+struct RangeLossWeights {
+  float depth = 1000.0f;    // α_d: L1 of depth, masked by the GT return
+  float ret = 1.0f;         // α_r: MSE of return probability vs the GT label
+  float intensity = 10.0f;  // α_i: MSE of intensity, masked
+  float grad = 100.0f;      // range-image gradient loss on patches (LiDAR-NeRF)
+};
+
+struct RenderConfig {
+  float near_m = 1.0f;
+  float far_m = 81.0f;
+  int n_samples = 64;       // uniform samples per ray (paper: 768)
+  int n_importance = 0;     // extra importance samples (LiDAR-NeRF: 64); 0 = off
+  bool jitter = true;       // stratified jitter in training; midpoints when false
+  RangeLossWeights weights;
+  int patch_size = 8;       // P of the P×P patches of the gradient loss
+  float grad_clip_m = 0.01f;  // pairs whose GT depth step is ≥ this are ignored (LiDAR-NeRF)
+
+  // Dataset presets of the loss weights: "kitti360" (1000, 1, 10), "nuscenes" (1000, 4.5, 100).
+  static RenderConfig preset(const std::string& dataset);
+  void validate(const std::string& where = "render") const;
+  // Reads the keys of this struct (all optional, unknown keys rejected) and validates.
+  static RenderConfig from_json(const Json& j, const std::string& where);
+  static RenderConfig from_json(const Json& j, const std::string& where, RenderConfig defaults);
+  Json to_json() const;
+  // Uniform bin width in normalised units: also the last sample's δ (see kernels/render/volume.cl).
+  float bin_width(float scene_scale) const {
+    return (far_m - near_m) * scene_scale / float(n_samples);
+  }
+};
+
+}  // namespace sgnlf::render

@@ -1,0 +1,37 @@
+// Volume rendering of LiDAR rays on the device (method.md §0): raw densities h0 (N) and raw
+// head outputs (N x 2: return-probability logit, intensity logit) along ray-major samples t
+// become per-ray (depth, return probability, intensity) (n_rays x 3), with the sample
+// weights; the backward turns dL/d(depth, prob, intensity) into dL/dh0 (N) and dL/dhead
+// (N x 2). trunc_exp and the sigmoids are applied inside. The last sample's δ is the uniform
+// bin width (far − near)/n_samples (torch-ngp / LiDAR-NeRF). Calls only enqueue.
+#pragma once
+#include "cl/runtime.hpp"
+#include "render/render_config.hpp"
+
+namespace sgnlf::render {
+
+class VolumeRenderer {
+ public:
+  VolumeRenderer(cl::Runtime& rt, const RenderConfig& cfg, float scene_scale);
+
+  float last_delta() const { return last_delta_; }
+
+  // out: n_rays x 3; weights: N (needed by backward(); also for importance sampling).
+  cl::Event forward(const cl::Buffer& t, const cl::Buffer& h0, const cl::Buffer& head,
+                    int n_rays, int n_samples, cl::Buffer& out, cl::Buffer& weights);
+  // Weights only, from densities alone (coarse pass of importance sampling).
+  cl::Event weights(const cl::Buffer& t, const cl::Buffer& h0, int n_rays, int n_samples,
+                    cl::Buffer& weights);
+  // `weights` must be the forward's weights for the same inputs.
+  cl::Event backward(const cl::Buffer& t, const cl::Buffer& h0, const cl::Buffer& head,
+                     const cl::Buffer& weights, const cl::Buffer& grad_out, int n_rays,
+                     int n_samples, cl::Buffer& grad_h0, cl::Buffer& grad_head);
+
+ private:
+  void check(const char* what, const cl::Buffer& t, const cl::Buffer& h0, int n_rays,
+             int n_samples) const;
+  float last_delta_;
+  cl::Kernel fwd_k_, weights_k_, bwd_k_;
+};
+
+}  // namespace sgnlf::render

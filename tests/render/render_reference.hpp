@@ -1,0 +1,206 @@
+// Host reference implementations of every kernel in kernels/render/ (tests only; the runtime
+// never calls them). Templated on the scalar so that float versions check the device and
+// double versions serve the finite-difference gradient tests.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/rng.hpp"
+
+namespace sgnlf::test {
+
+template <typename T>
+using Vec = std::vector<T>;
+
+inline constexpr uint32_t kStreamUniform = 0x52454e31u, kStreamImportance = 0x52454e32u;
+
+inline float ref_jitter(uint64_t seed, uint32_t stream, uint32_t step, uint32_t counter) {
+  return u32_to_unit_float(philox_block(seed, stream, (uint64_t(step) << 32) | counter)[0]);
+}
+
+// render_sample_uniform
+inline void ref_sample_uniform(int n_rays, int S, float near, float far, bool jitter,
+                               uint64_t seed, uint32_t step, const Vec<float>& o,
+                               const Vec<float>& d, Vec<float>& t, Vec<float>& x) {
+  t.assign(size_t(n_rays) * S, 0.f);
+  x.assign(t.size() * 3, 0.f);
+  for (int s = 0; s < n_rays * S; ++s) {
+    const int r = s / S, i = s % S;
+    const float xi = jitter ? ref_jitter(seed, kStreamUniform, step, uint32_t(s)) : 0.5f;
+    t[s] = near + (float(i) + xi) * ((far - near) / float(S));
+    for (int c = 0; c < 3; ++c) x[3 * s + c] = o[3 * r + c] + t[s] * d[3 * r + c];
+  }
+}
+
+// render_sample_importance: inverse CDF over bins between coarse midpoints, merged sorted.
+inline void ref_sample_importance(int n_rays, int Sc, int Sf, float near, float far,
+                                  bool jitter, uint64_t seed, uint32_t step,
+                                  const Vec<float>& o, const Vec<float>& d,
+                                  const Vec<float>& tc, const Vec<float>& wc, Vec<float>& t,
+                                  Vec<float>& x) {
+  const int So = Sc + Sf;
+  t.assign(size_t(n_rays) * So, 0.f);
+  x.assign(t.size() * 3, 0.f);
+  for (int r = 0; r < n_rays; ++r) {
+    const float* tr = &tc[size_t(r) * Sc];
+    const float* wr = &wc[size_t(r) * Sc];
+    std::vector<float> edges(Sc + 1), p(Sc), fine(Sf);
+    edges[0] = near;
+    edges[Sc] = far;
+    for (int k = 1; k < Sc; ++k) edges[k] = 0.5f * (tr[k - 1] + tr[k]);
+    float total = 0.f;
+    for (int k = 0; k < Sc; ++k) total += wr[k] + 1e-5f;
+    for (int k = 0; k < Sc; ++k) p[k] = (wr[k] + 1e-5f) * (1.0f / total);
+    for (int j = 0; j < Sf; ++j) {
+      const float xi =
+          jitter ? ref_jitter(seed, kStreamImportance, step, uint32_t(r * Sf + j)) : 0.5f;
+      const float u = (float(j) + xi) / float(Sf);
+      int k = 0;
+      float cdf = 0.f;
+      while (k < Sc - 1 && cdf + p[k] <= u) cdf += p[k++];
+      const float f = std::clamp((u - cdf) / p[k], 0.f, 1.f);
+      fine[j] = edges[k] + f * (edges[k + 1] - edges[k]);
+    }
+    std::vector<float> merged(tr, tr + Sc);
+    merged.insert(merged.end(), fine.begin(), fine.end());
+    std::stable_sort(merged.begin(), merged.end());  // coarse first on ties, as the kernel
+    for (int i = 0; i < So; ++i) {
+      const size_t s = size_t(r) * So + i;
+      t[s] = merged[i];
+      for (int c = 0; c < 3; ++c) x[3 * s + c] = o[3 * r + c] + t[s] * d[3 * r + c];
+    }
+  }
+}
+
+template <typename T>
+T ref_sigmoid(T v) {
+  return T(1) / (T(1) + std::exp(-v));
+}
+
+// render_volume_fwd: out (n x 3) and weights (N).
+template <typename T>
+void ref_volume_fwd(int n_rays, int S, T last_delta, const Vec<T>& t, const Vec<T>& h0,
+                    const Vec<T>& head, Vec<T>& out, Vec<T>& w) {
+  out.assign(size_t(n_rays) * 3, T(0));
+  w.assign(size_t(n_rays) * S, T(0));
+  for (int r = 0; r < n_rays; ++r) {
+    T trans = 1;
+    for (int i = 0; i < S; ++i) {
+      const size_t s = size_t(r) * S + i;
+      const T delta = i + 1 < S ? t[s + 1] - t[s] : last_delta;
+      const T e = std::exp(-std::exp(std::min(h0[s], T(80))) * delta);
+      w[s] = trans * (T(1) - e);
+      out[3 * r] += w[s] * t[s];
+      out[3 * r + 1] += w[s] * ref_sigmoid(head[2 * s]);
+      out[3 * r + 2] += w[s] * ref_sigmoid(head[2 * s + 1]);
+      trans *= e;
+    }
+  }
+}
+
+// render_volume_bwd, written independently of the kernel: dL/dτ_i by explicit suffix sums.
+template <typename T>
+void ref_volume_bwd(int n_rays, int S, T last_delta, const Vec<T>& t, const Vec<T>& h0,
+                    const Vec<T>& head, const Vec<T>& grad_out, Vec<T>& grad_h0,
+                    Vec<T>& grad_head) {
+  Vec<T> out, w;
+  ref_volume_fwd(n_rays, S, last_delta, t, h0, head, out, w);
+  grad_h0.assign(size_t(n_rays) * S, T(0));
+  grad_head.assign(size_t(n_rays) * S * 2, T(0));
+  for (int r = 0; r < n_rays; ++r) {
+    const T* g = &grad_out[3 * r];
+    // suffix[i] = Σ_{k>i} w_k (g·c_k)
+    Vec<T> gc(S), suffix(S + 1, T(0));
+    for (int i = 0; i < S; ++i) {
+      const size_t s = size_t(r) * S + i;
+      gc[i] = g[0] * t[s] + g[1] * ref_sigmoid(head[2 * s]) + g[2] * ref_sigmoid(head[2 * s + 1]);
+    }
+    for (int i = S - 1; i >= 0; --i) suffix[i] = suffix[i + 1] + w[size_t(r) * S + i] * gc[i];
+    T trans = 1;
+    for (int i = 0; i < S; ++i) {
+      const size_t s = size_t(r) * S + i;
+      const T delta = i + 1 < S ? t[s + 1] - t[s] : last_delta;
+      const T e = std::exp(-std::exp(std::min(h0[s], T(80))) * delta);
+      trans *= e;  // T_{i+1}
+      const T g_tau = trans * gc[i] - suffix[i + 1];
+      grad_h0[s] = g_tau * delta * std::exp(std::clamp(h0[s], T(-15), T(15)));
+      const T sp = ref_sigmoid(head[2 * s]), si = ref_sigmoid(head[2 * s + 1]);
+      grad_head[2 * s] = g[1] * w[s] * sp * (T(1) - sp);
+      grad_head[2 * s + 1] = g[2] * w[s] * si * (T(1) - si);
+    }
+  }
+}
+
+// render_raygrad_reduce
+template <typename T>
+void ref_raygrad(int n_rays, int S, const Vec<T>& t, const Vec<T>& grad_x, Vec<T>& grad_o,
+                 Vec<T>& grad_d) {
+  grad_o.assign(size_t(n_rays) * 3, T(0));
+  grad_d.assign(size_t(n_rays) * 3, T(0));
+  for (int r = 0; r < n_rays; ++r)
+    for (int i = 0; i < S; ++i) {
+      const size_t s = size_t(r) * S + i;
+      for (int c = 0; c < 3; ++c) {
+        grad_o[3 * r + c] += grad_x[3 * s + c];
+        grad_d[3 * r + c] += t[s] * grad_x[3 * s + c];
+      }
+    }
+}
+
+// render_loss_range: returns the batch-mean terms (depth, ret, intensity) and its gradient.
+template <typename T>
+std::array<T, 3> ref_range_loss(int n, T a_d, T a_r, T a_i, const Vec<T>& out,
+                                const Vec<T>& target, Vec<T>& grad_out) {
+  std::array<T, 3> L{0, 0, 0};
+  grad_out.assign(size_t(n) * 3, T(0));
+  const T inv_n = T(1) / T(n);
+  for (int r = 0; r < n; ++r) {
+    const T m = target[3 * r + 2];
+    const T e_d = m * (out[3 * r] - target[3 * r]);
+    const T e_r = out[3 * r + 1] - m;
+    const T e_i = m * (out[3 * r + 2] - target[3 * r + 1]);
+    L[0] += a_d * std::abs(e_d) * inv_n;
+    L[1] += a_r * e_r * e_r * inv_n;
+    L[2] += a_i * e_i * e_i * inv_n;
+    grad_out[3 * r] = inv_n * a_d * m * T((e_d > 0) - (e_d < 0));
+    grad_out[3 * r + 1] = inv_n * 2 * a_r * e_r;
+    grad_out[3 * r + 2] = inv_n * 2 * a_i * m * e_i;
+  }
+  return L;
+}
+
+// render_loss_patchgrad: loss and its depth gradient ADDED to grad_out[3r] (pair by pair).
+template <typename T>
+T ref_patch_grad_loss(int n_patches, int P, T a_g, T inv_scale, T clip, const Vec<T>& out,
+                      const Vec<T>& target, Vec<T>& grad_out) {
+  const T inv_pairs = T(1) / (T(n_patches) * 2 * P * (P - 1));
+  T loss = 0;
+  auto pair = [&](size_t a, size_t b) {
+    const T dg = (target[3 * b] - target[3 * a]) * inv_scale;
+    const T dp = (out[3 * b] - out[3 * a]) * inv_scale;
+    const T m = target[3 * a + 2] * target[3 * b + 2] * (std::abs(dg) < clip ? T(1) : T(0));
+    const T e = m * (dp - dg);
+    loss += a_g * e * e * inv_pairs;
+    const T g = inv_pairs * 2 * a_g * e * m * inv_scale;
+    grad_out[3 * b] += g;
+    grad_out[3 * a] -= g;
+  };
+  for (int p = 0; p < n_patches; ++p)
+    for (int row = 0; row < P; ++row)
+      for (int col = 0; col < P; ++col) {
+        const size_t r = size_t(p) * P * P + row * P + col;
+        if (col + 1 < P) pair(r, r + 1);
+        if (row + 1 < P) pair(r, r + P);
+      }
+  return loss;
+}
+
+template <typename To, typename From>
+Vec<To> cast_vec(const Vec<From>& v) {
+  return Vec<To>(v.begin(), v.end());
+}
+
+}  // namespace sgnlf::test

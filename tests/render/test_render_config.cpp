@@ -1,0 +1,34 @@
+// RenderConfig: presets, validation and strict JSON.
+#include <catch2/catch.hpp>
+
+#include "render/render_config.hpp"
+
+using namespace sgnlf;
+
+TEST_CASE("Render config presets, JSON round trip and rejection of bad values",
+          "[render][config]") {
+  const auto k = render::RenderConfig::preset("kitti360");
+  CHECK(k.weights.depth == 1000.f);
+  CHECK(k.weights.ret == 1.f);
+  CHECK(k.weights.intensity == 10.f);
+  const auto n = render::RenderConfig::preset("nuscenes");
+  CHECK(n.weights.ret == 4.5f);
+  CHECK(n.weights.intensity == 100.f);
+  CHECK_THROWS_AS(render::RenderConfig::preset("waymo"), ConfigError);
+
+  auto c = k;
+  c.n_samples = 96;
+  c.n_importance = 16;
+  c.weights.grad = 50.f;
+  const auto back = render::RenderConfig::from_json(c.to_json(), "test");
+  CHECK(back.to_json() == c.to_json());
+
+  CHECK_THROWS_AS(render::RenderConfig::from_json(Json{{"samples", 3}}, "test"), ConfigError);
+  CHECK_THROWS_AS(render::RenderConfig::from_json(Json{{"weights", {{"dpth", 1.0}}}}, "test"),
+                  ConfigError);
+  CHECK_THROWS_AS(render::RenderConfig::from_json(Json{{"far_m", 0.5}}, "test"), ConfigError);
+  CHECK_THROWS_AS(render::RenderConfig::from_json(Json{{"n_samples", 0}}, "test"), ConfigError);
+  CHECK(render::RenderConfig::from_json(Json::object(), "test").to_json() ==
+        render::RenderConfig().to_json());
+  CHECK(k.bin_width(0.5f) == Approx(80.0 * 0.5 / 64));
+}

@@ -1,0 +1,128 @@
+// Ray sampling kernels vs the host reference: uniform stratified (jitter, midpoints,
+// determinism) and importance sampling (inverse CDF, merged sorted).
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+
+#include "render/ray_sampler.hpp"
+#include "render_reference.hpp"
+#include "render_test_data.hpp"
+#include "support/test_device.hpp"
+
+SGNLF_DEVICE_TESTS;
+using namespace sgnlf;
+
+namespace {
+const float kScale = 0.0125f;  // 1 / 80 m
+
+struct Sampled {
+  std::vector<float> t, x;
+};
+
+Sampled run_uniform(render::RaySampler& s, const std::vector<float>& o,
+                    const std::vector<float>& d, int n_rays, bool jitter, uint64_t seed,
+                    uint32_t step) {
+  auto& rt = test::runtime();
+  auto bo = cl::Buffer::from(rt, o), bd = cl::Buffer::from(rt, d);
+  const size_t n = size_t(n_rays) * s.uniform_samples();
+  cl::Buffer bt(rt, n * 4), bx(rt, n * 12);
+  s.uniform(bo, bd, n_rays, jitter, seed, step, bt, bx).wait();
+  return {bt.read_vec<float>(n), bx.read_vec<float>(3 * n)};
+}
+}  // namespace
+
+TEST_CASE("Uniform jittered samples equal the reference and stay in their bins",
+          "[render][sample]") {
+  render::RenderConfig cfg;
+  cfg.n_samples = 48;
+  render::RaySampler sampler(test::runtime(), cfg, kScale);
+  const int n_rays = 300;
+  std::vector<float> o, d;
+  test::make_rays(n_rays, 1, o, d);
+  const uint64_t seed = 0xabcdef0123ull;
+  const auto dev = run_uniform(sampler, o, d, n_rays, true, seed, 7);
+  std::vector<float> t_ref, x_ref;
+  test::ref_sample_uniform(n_rays, cfg.n_samples, sampler.near(), sampler.far(), true, seed, 7,
+                           o, d, t_ref, x_ref);
+  CHECK(test::max_abs_err(dev.t, t_ref) < 1e-6);
+  CHECK(test::max_abs_err(dev.x, x_ref) < 1e-6);
+
+  const float bin = (sampler.far() - sampler.near()) / cfg.n_samples;
+  size_t outside = 0;
+  double mean_frac = 0;
+  for (size_t s = 0; s < dev.t.size(); ++s) {
+    const int i = int(s % cfg.n_samples);
+    const float lo = sampler.near() + i * bin;
+    outside += dev.t[s] < lo - 1e-6f || dev.t[s] > lo + bin + 1e-6f;
+    mean_frac += (dev.t[s] - lo) / bin;
+  }
+  CHECK(outside == 0);
+  CHECK(mean_frac / dev.t.size() == Approx(0.5).margin(0.02));  // jitter is uniform
+
+  // Same (seed, step): bit-identical; another step: different.
+  const auto again = run_uniform(sampler, o, d, n_rays, true, seed, 7);
+  CHECK(again.t == dev.t);
+  CHECK(again.x == dev.x);
+  const auto other = run_uniform(sampler, o, d, n_rays, true, seed, 8);
+  CHECK(other.t != dev.t);
+}
+
+TEST_CASE("Uniform samples without jitter are the bin midpoints", "[render][sample]") {
+  render::RenderConfig cfg;
+  cfg.n_samples = 16;
+  render::RaySampler sampler(test::runtime(), cfg, kScale);
+  std::vector<float> o, d;
+  test::make_rays(5, 2, o, d);
+  const auto dev = run_uniform(sampler, o, d, 5, false, 1, 0);
+  const float bin = (sampler.far() - sampler.near()) / cfg.n_samples;
+  for (size_t s = 0; s < dev.t.size(); ++s)
+    REQUIRE(dev.t[s] == Approx(sampler.near() + (s % 16 + 0.5f) * bin).epsilon(1e-6));
+  CHECK(sampler.near() == Approx(1.0f * kScale));
+  CHECK(sampler.far() == Approx(81.0f * kScale));
+}
+
+TEST_CASE("Importance samples equal the reference, are sorted and follow the weights",
+          "[render][sample]") {
+  auto& rt = test::runtime();
+  render::RenderConfig cfg;
+  cfg.n_samples = 32;
+  cfg.n_importance = 24;
+  render::RaySampler sampler(rt, cfg, kScale);
+  const int n_rays = 200, Sc = 32, Sf = 24, So = Sc + Sf;
+  std::vector<float> o, d;
+  test::make_rays(n_rays, 3, o, d);
+  const auto coarse = run_uniform(sampler, o, d, n_rays, true, 5, 1);
+  // Weights: a peak in bin (r % Sc) holding ~90 % of the mass, small noise elsewhere.
+  auto w = test::make_uniform(size_t(n_rays) * Sc, 0.0f, 0.004f, 4);
+  for (int r = 0; r < n_rays; ++r) w[size_t(r) * Sc + r % Sc] = 0.9f;
+  auto bo = cl::Buffer::from(rt, o), bd = cl::Buffer::from(rt, d);
+  auto btc = cl::Buffer::from(rt, coarse.t), bwc = cl::Buffer::from(rt, w);
+  cl::Buffer bt(rt, size_t(n_rays) * So * 4), bx(rt, size_t(n_rays) * So * 12);
+  for (bool jitter : {true, false}) {
+    sampler.importance(bo, bd, n_rays, Sc, btc, bwc, jitter, 99, 3, bt, bx).wait();
+    const auto t = bt.read_vec<float>(size_t(n_rays) * So);
+    const auto x = bx.read_vec<float>(size_t(n_rays) * So * 3);
+    std::vector<float> t_ref, x_ref;
+    test::ref_sample_importance(n_rays, Sc, Sf, sampler.near(), sampler.far(), jitter, 99, 3, o,
+                                d, coarse.t, w, t_ref, x_ref);
+    CHECK(test::max_abs_err(t, t_ref) < 1e-5);
+    CHECK(test::max_abs_err(x, x_ref) < 1e-5);
+    size_t unsorted = 0, in_peak = 0, fine_total = 0;
+    for (int r = 0; r < n_rays; ++r) {
+      const float* tr = &t[size_t(r) * So];
+      unsorted += !std::is_sorted(tr, tr + So);
+      // The peak bin lies between the midpoints around coarse sample k = r % Sc.
+      const int k = r % Sc;
+      const float* tc = &coarse.t[size_t(r) * Sc];
+      const float lo = k == 0 ? sampler.near() : 0.5f * (tc[k - 1] + tc[k]);
+      const float hi = k == Sc - 1 ? sampler.far() : 0.5f * (tc[k] + tc[k + 1]);
+      for (int i = 0; i < So; ++i) in_peak += tr[i] >= lo && tr[i] <= hi;
+      in_peak -= 1;  // the coarse sample itself
+      fine_total += Sf;
+    }
+    CHECK(unsorted == 0);
+    // The peak holds 0.9 / (0.9 + 31 * 0.002 + 32e-5) ≈ 93.5 % of the probability.
+    CHECK(double(in_peak) / fine_total > 0.88);
+    CHECK(double(in_peak) / fine_total < 0.99);
+  }
+}
