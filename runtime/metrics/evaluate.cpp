@@ -58,19 +58,23 @@ Json evaluate_view(const Sensor& sensor, const RangeImage& pred, const RangeImag
   check_image(sensor, pred, "predicted");
   check_image(sensor, gt, "ground-truth");
   const size_t n = pred.size();
-  std::vector<float> depth(n), intensity(n);
+  // LiDAR4D's eval_step: gt depth and intensity are multiplied by the gt label, the prediction
+  // by its own mask (probability > 0.5).
+  std::vector<float> depth(n), intensity(n), gt_depth(n), gt_intensity(n);
   for (size_t i = 0; i < n; ++i) {
     const float mask = pred.ray_drop[i] > float(kRaydropThreshold) ? 1.f : 0.f;
     depth[i] = pred.range[i] * mask;
     intensity[i] = pred.intensity[i] * mask;
+    gt_depth[i] = gt.range[i] * gt.ray_drop[i];
+    gt_intensity[i] = gt.intensity[i] * gt.ray_drop[i];
   }
-  const ChamferResult ch = chamfer_fscore(to_points(sensor, depth), to_points(sensor, gt.range));
+  const RaydropMetrics rm = raydrop_metrics(pred.ray_drop, gt.ray_drop);  // checks labels 0/1
+  const ChamferResult ch = chamfer_fscore(to_points(sensor, depth), to_points(sensor, gt_depth));
   if (ch.n_pred == 0 || ch.n_gt == 0)
     log::warn("evaluate_view: empty point cloud (", ch.n_pred, " predicted, ", ch.n_gt,
               " ground-truth points): cd = null, fscore = 0");
-  const DepthMetrics dm = depth_metrics(depth, gt.range, gt.height, gt.width);
-  const IntensityMetrics im = intensity_metrics(intensity, gt.intensity, gt.height, gt.width);
-  const RaydropMetrics rm = raydrop_metrics(pred.ray_drop, gt.ray_drop);
+  const DepthMetrics dm = depth_metrics(depth, gt_depth, gt.height, gt.width);
+  const IntensityMetrics im = intensity_metrics(intensity, gt_intensity, gt.height, gt.width);
 
   Json j = Json::object();
   j["cd"] = number_or_null(ch.cd);

@@ -16,9 +16,10 @@ namespace sgnlf::metrics {
 const std::vector<std::string>& view_metric_keys();
 
 // One test view. `pred`: range (m), intensity, ray_drop = predicted return probability;
-// `gt`: range, intensity, ray_drop = return label. The predicted return mask
-// (probability > 0.5) multiplies predicted range and intensity before every metric; CD and
-// F-score unproject the masked prediction and the GT image (range-0 pixels dropped).
+// `gt`: range, intensity, ray_drop = return label (0 or 1). The predicted return mask
+// (probability > 0.5) multiplies predicted range and intensity, the gt label the gt range and
+// intensity (as LiDAR4D's eval_step), before every metric; CD and F-score unproject the masked
+// prediction and the masked GT image (range-0 pixels dropped).
 // Keys: cd, fscore, depth_rmse, depth_medae, depth_ssim, depth_psnr, depth_delta1,
 // depth_lpips (null), intensity_rmse, intensity_medae, intensity_ssim, intensity_psnr,
 // raydrop_rmse, raydrop_acc, raydrop_f1. Throws on size mismatch or non-finite inputs.

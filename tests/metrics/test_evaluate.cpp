@@ -70,7 +70,13 @@ TEST_CASE("evaluate_view masks the prediction by probability > 0.5", "[metrics][
   while (gt.range[k] == 0.f) ++k;
   pred.ray_drop[k] = 0.4f;   // one true return predicted as dropped
   pred.intensity[k] = 0.3f;  // must not count either
-  const Json j = evaluate_view(s, pred, gt);
+  // Ground truth is masked by its label: a stray intensity or range without a return is ignored.
+  RangeImage gt_stray = gt;
+  size_t z = 0;
+  while (gt.ray_drop[z] != 0.f) ++z;
+  gt_stray.intensity[z] = 0.8f;
+  gt_stray.range[z] = 7.f;
+  const Json j = evaluate_view(s, pred, gt_stray);
   const double n = double(gt.size());
   // Depth: only pixel k differs, pred → 0 → clipped 1e-6.
   CHECK(j["depth_rmse"].get<double>() ==
