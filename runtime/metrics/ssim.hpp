@@ -8,7 +8,8 @@
 //   mean of S over the image with the (7−1)/2 = 3-pixel border cropped.
 // The window never reaches past the image for the cropped pixels, so scipy's reflect padding
 // does not enter the result. We compute in double; scikit-image computes in the input's
-// float type (float32 for the peers' arrays), so theirs carries float32 rounding (~1e-5).
+// float type (float32 for the peers' arrays), so theirs differs from ours by float32 rounding
+// only (not measured here: no Python/scikit-image on the build machine).
 #pragma once
 #include <vector>
 
