@@ -1,0 +1,130 @@
+#include "datasets/loader.hpp"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "datasets/loader_internal.hpp"
+#include "datasets/protocol.hpp"
+#include "io/scan_io.hpp"
+
+namespace sgnlf {
+namespace fs = std::filesystem;
+
+void LoadOptions::validate() const {
+  if (!frequency.empty() && frequency != "standard" && frequency != "low")
+    throw ConfigError("load options: frequency '" + frequency + "' (expected standard or low)");
+  if (frames == 0 || frames < -1) throw ConfigError("load options: frames = " + std::to_string(frames));
+  if (stride == 0 || stride < -1) throw ConfigError("load options: stride = " + std::to_string(stride));
+  if (start < -1) throw ConfigError("load options: start = " + std::to_string(start));
+}
+
+std::string detect_layout(const std::string& path) {
+  const fs::path p(path);
+  if (!fs::exists(p)) throw IoError(path + ": no such file or directory");
+  if (fs::is_regular_file(p)) {
+    if (io::is_scan_file(path)) return "scans";
+    throw IoError(path + ": not a scan file (.bin / .pcd.bin) nor a dataset folder");
+  }
+  if (fs::exists(p / "sgnlf_dataset.json")) return "synthetic";
+  if (fs::exists(p / "data_3d_raw") || fs::exists(p / "data_poses")) return "kitti360";
+  if (fs::exists(p / "sequences") && fs::exists(p / "poses")) return "kitti-odometry";
+  if (fs::exists(p / "samples") || fs::exists(p / "v1.0-mini") || fs::exists(p / "sweeps"))
+    return "nuscenes";
+  for (const auto& e : fs::directory_iterator(p))
+    if (e.is_regular_file() && io::is_scan_file(e.path().string())) return "scans";
+  throw IoError(path + ": unknown dataset layout (expected sgnlf_dataset.json, data_3d_raw/, "
+                       "sequences/ + poses/, samples/ + v1.0-mini/, or .bin scans)");
+}
+
+Dataset load_dataset(const std::string& path, const LoadOptions& opt) {
+  opt.validate();
+  const std::string layout = detect_layout(path);
+  log::info("loading ", path, " (layout ", layout, ")");
+  if (layout == "synthetic") return detail::load_kitti360(path, opt, true);
+  if (layout == "kitti360") return detail::load_kitti360(path, opt, false);
+  if (layout == "kitti-odometry") return detail::load_kitti_odometry(path, opt);
+  if (layout == "nuscenes") return detail::load_nuscenes(path, opt);
+  return detail::load_scans(path, opt);
+}
+
+namespace detail {
+
+std::vector<int> select_window(const std::vector<int>& available, int start, int stride, int count,
+                               const std::string& where) {
+  if (available.empty()) throw IoError(where + ": no frames");
+  std::vector<int> ids;
+  int missing = 0;
+  for (int id = start; id <= available.back() && int(ids.size()) < count; id += stride) {
+    if (std::binary_search(available.begin(), available.end(), id))
+      ids.push_back(id);
+    else
+      ++missing;
+  }
+  if (missing > 0)
+    log::warn(where, ": skipped ", missing, " frame ids without a pose or scan in the window from ",
+              start, " with stride ", stride);
+  if (ids.empty())
+    throw IoError(where + ": no frame in the window starting at " + std::to_string(start) +
+                  " (frames " + std::to_string(available.front()) + ".." +
+                  std::to_string(available.back()) + ")");
+  if (int(ids.size()) < count)
+    log::warn(where, ": only ", ids.size(), " of ", count, " requested frames available");
+  return ids;
+}
+
+std::string resolve_frequency(const LoadOptions& opt, const std::string& fallback) {
+  return opt.frequency.empty() ? fallback : opt.frequency;
+}
+
+int default_stride(const LoadOptions& opt, const std::string& frequency, double rate_hz) {
+  if (opt.stride > 0) return opt.stride;
+  if (frequency == "low") return std::max(1, int(std::lround(rate_hz / 2.0)));  // 2 Hz
+  return 1;
+}
+
+int default_count(const LoadOptions& opt, const std::string& frequency) {
+  if (opt.frames > 0) return opt.frames;
+  return frequency == "low" ? 36 : 64;
+}
+
+Sensor resolve_sensor(const LoadOptions& opt, const Sensor& layout_default) {
+  if (opt.sensor.empty()) return layout_default;
+  if (fs::is_regular_file(opt.sensor)) return sensor_from_json(load_json_file(opt.sensor), opt.sensor);
+  return sensor_preset(opt.sensor);
+}
+
+void load_frame_scan(Frame& f, const std::string& scan_path, const Sensor& s, bool load_points) {
+  io::ScanReadStats rs;
+  auto pts = io::read_scan(scan_path, &rs);
+  ProjectionStats ps;
+  f.image = project_points(s, pts, &ps);
+  if (ps.beyond_range + ps.below_min_range + ps.out_of_fov + ps.non_finite > 0)
+    log::debug(scan_path, ": ", rs.records, " points; not projected: ", ps.beyond_range,
+               " beyond ", s.max_range_m, " m, ", ps.below_min_range, " within min range, ",
+               ps.out_of_fov, " outside the field of view; ", ps.occluded,
+               " behind a nearer return in their pixel");
+  if (load_points) f.points = std::move(pts);
+}
+
+void finish_dataset(Dataset& d) {
+  if (d.frames.empty()) throw IoError(d.path + ": no frames loaded");
+  const double t0 = d.frames.front().timestamp_s;
+  for (auto& f : d.frames) f.timestamp_s -= t0;
+  d.split = protocol_split(int(d.frames.size()), d.frequency);
+  size_t pts = 0, beyond = 0, returns = 0;
+  for (const auto& f : d.frames) {
+    pts += f.points.size();
+    for (float r : f.image.range) returns += r > 0.f;
+    for (const auto& p : f.points)
+      beyond += double(p.x) * p.x + double(p.y) * p.y + double(p.z) * p.z >=
+                d.sensor.max_range_m * d.sensor.max_range_m;
+  }
+  log::info(d.path, ": ", d.frames.size(), " frames (", d.source, ", ", d.frequency, "), ", pts,
+            " points, ", returns, " range-image returns; ", beyond, " points at >= ",
+            d.sensor.max_range_m, " m not projected");
+}
+
+}  // namespace detail
+}  // namespace sgnlf

@@ -1,0 +1,29 @@
+// Loading a dataset from disk with layout autodetection: the synthetic layout (KITTI-360-like,
+// with sgnlf_dataset.json), KITTI-360 raw, KITTI odometry, nuScenes v1.0-mini, or a single scan
+// file / folder of scans (no poses). Every frame gets its range image (protocol §1) and the
+// protocol split (protocol §3).
+#pragma once
+#include <string>
+
+#include "datasets/dataset.hpp"
+
+namespace sgnlf {
+
+struct LoadOptions {
+  std::string sequence;   // KITTI-360 drive / KITTI odometry "NN" / nuScenes scene name; "" = default
+  std::string frequency;  // "standard" | "low"; "" = the dataset's own (synthetic) or "standard"
+  int start = -1;         // first frame id; −1 = default (KITTI-360: 1538, others: first frame)
+  int frames = -1;        // −1 = protocol count (64 standard, 36 low), fewer if the data is shorter
+  int stride = -1;        // −1 = 1 standard, native rate / 2 Hz for low (KITTI 5, nuScenes 10)
+  std::string sensor;     // "" = the layout's sensor; else a preset name or a sensor JSON file
+  bool load_points = true;
+
+  void validate() const;
+};
+
+// "synthetic", "kitti360", "kitti-odometry", "nuscenes", "scans"; IoError when none matches.
+std::string detect_layout(const std::string& path);
+
+Dataset load_dataset(const std::string& path, const LoadOptions& opt = {});
+
+}  // namespace sgnlf

@@ -1,0 +1,31 @@
+// Shared pieces of the per-layout loaders (internal to the datasets module).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "datasets/loader.hpp"
+
+namespace sgnlf::detail {
+
+// Frame ids `start, start+stride, ...` (up to `count`) among `available` (sorted); missing ids
+// are skipped and counted in the log. Throws IoError when none is found.
+std::vector<int> select_window(const std::vector<int>& available, int start, int stride, int count,
+                               const std::string& where);
+
+// Resolved defaults for a frequency: stride (from the native rate) and frame count.
+int default_stride(const LoadOptions& opt, const std::string& frequency, double rate_hz);
+int default_count(const LoadOptions& opt, const std::string& frequency);
+std::string resolve_frequency(const LoadOptions& opt, const std::string& fallback);
+Sensor resolve_sensor(const LoadOptions& opt, const Sensor& layout_default);
+
+// Reads the scan into `f.points` and projects it into `f.image`, logging dropped points.
+void load_frame_scan(Frame& f, const std::string& scan_path, const Sensor& s, bool load_points);
+// Fills timestamps relative to the first frame, the split and logs a summary.
+void finish_dataset(Dataset& d);
+
+Dataset load_kitti360(const std::string& root, const LoadOptions& opt, bool synthetic);
+Dataset load_kitti_odometry(const std::string& root, const LoadOptions& opt);
+Dataset load_nuscenes(const std::string& root, const LoadOptions& opt);
+Dataset load_scans(const std::string& path, const LoadOptions& opt);
+
+}  // namespace sgnlf::detail

@@ -1,0 +1,62 @@
+#include "io/range_array.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "core/error.hpp"
+#include "io/scan_io.hpp"
+
+namespace sgnlf::io {
+
+void write_range_npy(const std::string& path, const RangeImage& img) {
+  std::string dict = "{'descr': '<f4', 'fortran_order': False, 'shape': (" +
+                     std::to_string(img.height) + ", " + std::to_string(img.width) + ", 3), }";
+  // Pad so that magic (6) + version (2) + length (2) + dict + '\n' is a multiple of 64.
+  while ((10 + dict.size() + 1) % 64 != 0) dict += ' ';
+  dict += '\n';
+  std::vector<char> buf(10 + dict.size() + img.size() * 3 * sizeof(float));
+  std::memcpy(buf.data(), "\x93NUMPY\x01\x00", 8);
+  buf[8] = char(dict.size() & 0xff);
+  buf[9] = char(dict.size() >> 8);
+  std::memcpy(buf.data() + 10, dict.data(), dict.size());
+  float* out = reinterpret_cast<float*>(buf.data() + 10 + dict.size());
+  for (size_t i = 0; i < img.size(); ++i) {
+    const float v[3] = {img.range[i], img.intensity[i], img.ray_drop[i]};
+    std::memcpy(out + 3 * i, v, sizeof(v));
+  }
+  write_file_bytes(path, buf.data(), buf.size());
+}
+
+RangeImage read_range_npy(const std::string& path) {
+  const auto b = read_file_bytes(path);
+  if (b.size() < 10 || std::memcmp(b.data(), "\x93NUMPY\x01\x00", 8) != 0)
+    throw IoError(path + ": not a NumPy v1.0 .npy file (bad magic at byte offset 0)");
+  const size_t hlen = size_t(uint8_t(b[8])) | (size_t(uint8_t(b[9])) << 8);
+  if (10 + hlen > b.size()) throw IoError(path + ": header runs past the end of the file");
+  const std::string dict(b.data() + 10, hlen);
+  if (dict.find("'<f4'") == std::string::npos || dict.find("False") == std::string::npos)
+    throw IoError(path + ": expected float32 little-endian C-order array, header " + dict);
+  int h = 0, w = 0, c = 0;
+  const auto pos = dict.find("'shape': (");
+  if (pos == std::string::npos ||
+      std::sscanf(dict.c_str() + pos + 10, "%d, %d, %d", &h, &w, &c) != 3 || c != 3 || h <= 0 || w <= 0)
+    throw IoError(path + ": expected shape (H, W, 3), header " + dict);
+  RangeImage img(h, w);
+  const size_t need = 10 + hlen + img.size() * 3 * sizeof(float);
+  if (b.size() != need)
+    throw IoError(path + ": size " + std::to_string(b.size()) + " bytes, expected " +
+                  std::to_string(need) + " for shape (" + std::to_string(h) + ", " +
+                  std::to_string(w) + ", 3)");
+  const char* p = b.data() + 10 + hlen;
+  for (size_t i = 0; i < img.size(); ++i) {
+    float v[3];
+    std::memcpy(v, p + 12 * i, 12);
+    img.range[i] = v[0];
+    img.intensity[i] = v[1];
+    img.ray_drop[i] = v[2];
+  }
+  return img;
+}
+
+}  // namespace sgnlf::io

@@ -1,0 +1,35 @@
+// LiDAR scan files: KITTI / KITTI-360 `.bin` (float32 × 4: x, y, z, reflectance) and nuScenes
+// `.pcd.bin` (float32 × 5: x, y, z, intensity 0–255, ring). Bad files (empty, truncated,
+// misaligned) throw IoError naming the file and byte offset; NaN/Inf points are dropped and
+// counted (protocol §2 formats).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "geometry/range_image.hpp"
+
+namespace sgnlf::io {
+
+struct ScanReadStats {
+  size_t records = 0;     // records in the file
+  size_t non_finite = 0;  // records dropped because a coordinate or intensity was NaN/Inf
+};
+
+// KITTI .bin: reflectance kept as is (already in [0, 1]).
+std::vector<PointXYZI> read_kitti_bin(const std::string& path, ScanReadStats* stats = nullptr);
+// nuScenes .pcd.bin: intensity divided by 255; `rings` (optional) receives the ring index.
+std::vector<PointXYZI> read_nuscenes_bin(const std::string& path, ScanReadStats* stats = nullptr,
+                                         std::vector<uint8_t>* rings = nullptr);
+// Picks the reader by file name (".pcd.bin" → nuScenes, ".bin" → KITTI).
+std::vector<PointXYZI> read_scan(const std::string& path, ScanReadStats* stats = nullptr);
+bool is_scan_file(const std::string& path);
+
+void write_kitti_bin(const std::string& path, const std::vector<PointXYZI>& pts);
+
+// Whole-file binary read; throws IoError naming the file.
+std::vector<char> read_file_bytes(const std::string& path);
+// Writes bytes atomically (temporary file + rename).
+void write_file_bytes(const std::string& path, const void* data, size_t bytes);
+
+}  // namespace sgnlf::io
