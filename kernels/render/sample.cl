@@ -21,21 +21,30 @@ inline void render_store_point(__global const float* o, __global const float* d,
   x[3 * s + 2] = o[3 * r + 2] + t * d[3 * r + 2];
 }
 
-// One work-item per sample: t = near + (i + xi) * (far - near) / S, xi from Philox when
-// jitter != 0, else 0.5 (bin midpoints, used for evaluation).
+// t = near + (i + xi) * (far - near) / S, xi from Philox when jitter != 0, else 0.5 (bin
+// midpoints, used for evaluation). One work-item per 4 consecutive samples s = 4q .. 4q+3:
+// sample s uses word s % 4 of Philox block (step << 32 | s / 4) of RENDER_STREAM_UNIFORM.
 __kernel void render_sample_uniform(const int n_rays, const int n_samples, const float near,
                                     const float far, const int jitter, const uint seed_lo,
                                     const uint seed_hi, const uint step,
                                     __global const float* o, __global const float* d,
                                     __global float* t_out, __global float* x_out) {
-  const int s = get_global_id(0);
-  if (s >= n_rays * n_samples) return;
-  const int r = s / n_samples, i = s - r * n_samples;
-  const float xi = jitter ? render_jitter(seed_lo, seed_hi, RENDER_STREAM_UNIFORM, step, (uint)s)
-                          : 0.5f;
-  const float t = near + ((float)i + xi) * ((far - near) / (float)n_samples);
-  t_out[s] = t;
-  render_store_point(o, d, r, t, s, x_out);
+  const int q = get_global_id(0);
+  const int n = n_rays * n_samples;
+  if (4 * q >= n) return;
+  const ulong index = ((ulong)step << 32) | (ulong)q;
+  const uint4 bits = jitter ? philox_block(seed_lo, seed_hi, RENDER_STREAM_UNIFORM, index)
+                            : (uint4)(0x80000000u);  // philox_unit -> 0.5
+  const uint words[4] = {bits.x, bits.y, bits.z, bits.w};
+  const float bin = (far - near) / (float)n_samples;
+  for (int lane = 0; lane < 4; ++lane) {
+    const int s = 4 * q + lane;
+    if (s >= n) break;
+    const int r = s / n_samples, i = s - r * n_samples;
+    const float t = near + ((float)i + philox_unit(words[lane])) * bin;
+    t_out[s] = t;
+    render_store_point(o, d, r, t, s, x_out);
+  }
 }
 
 // One work-item per ray. The coarse samples t_c (S_c, sorted) define bins with edges

@@ -29,7 +29,10 @@ inline void ref_sample_uniform(int n_rays, int S, float near, float far, bool ji
   x.assign(t.size() * 3, 0.f);
   for (int s = 0; s < n_rays * S; ++s) {
     const int r = s / S, i = s % S;
-    const float xi = jitter ? ref_jitter(seed, kStreamUniform, step, uint32_t(s)) : 0.5f;
+    const float xi =
+        jitter ? u32_to_unit_float(philox_block(seed, kStreamUniform,
+                                                (uint64_t(step) << 32) | uint32_t(s / 4))[s % 4])
+               : 0.5f;
     t[s] = near + (float(i) + xi) * ((far - near) / float(S));
     for (int c = 0; c < 3; ++c) x[3 * s + c] = o[3 * r + c] + t[s] * d[3 * r + c];
   }
