@@ -14,22 +14,63 @@
 #endif
 #define LF (LEVELS * FEATURES)
 
-// Index of integer grid point g in level (res, size, hashed).
-inline uint hg_index(uint gx, uint gy, uint gz, uint4 m) {
-  if (m.w) return (gx ^ (gy * 2654435761u) ^ (gz * 805459861u)) & (m.z - 1u);
-  return (gx + gy * m.x + gz * m.x * m.x) % m.z;
+// Feature vector type of one entry (FEATURES floats) and its load/store.
+#if FEATURES == 1
+#define featv float
+#define LOADF(p) (*(p))
+#define STOREF(v, p) (*(p) = (v))
+#elif FEATURES == 2
+#define featv float2
+#define LOADF(p) vload2(0, p)
+#define STOREF(v, p) vstore2(v, 0, p)
+#elif FEATURES == 4
+#define featv float4
+#define LOADF(p) vload4(0, p)
+#define STOREF(v, p) vstore4(v, 0, p)
+#elif FEATURES == 8
+#define featv float8
+#define LOADF(p) vload8(0, p)
+#define STOREF(v, p) vstore8(v, 0, p)
+#else
+#error "FEATURES must be 1, 2, 4 or 8"
+#endif
+
+// Sum of the lanes of a feature vector.
+inline float hg_sum(featv v) {
+#if FEATURES == 1
+  return v;
+#elif FEATURES == 2
+  return v.x + v.y;
+#elif FEATURES == 4
+  return (v.x + v.y) + (v.z + v.w);
+#else
+  return ((v.s0 + v.s1) + (v.s2 + v.s3)) + ((v.s4 + v.s5) + (v.s6 + v.s7));
+#endif
 }
 
-// Grid position of point i at level scale s: integer cell and fractional part.
-inline void hg_locate(__global const float* x, int i, float s, uint* g, float* fr) {
-  for (int d = 0; d < 3; ++d) {
-    const float x01 = fma(x[3 * i + d], 0.5f, 0.5f);
-    const float pos = fma(x01, s, 0.5f);
-    const float fl = floor(pos);
-    g[d] = (uint)(int)fl;
-    fr[d] = pos - fl;
-  }
+// Index of integer grid point g in level m = (res, offset, size, hashed).
+// Dense levels clamp each coordinate to [0, res − 1] (no-op inside [−1, 1]³, where res =
+// ceil(scale) + 2 covers every corner), so the index needs no division.
+inline uint hg_index(uint gx, uint gy, uint gz, uint4 m) {
+  const uint r1 = m.x - 1u;
+  return m.w ? ((gx ^ (gy * 2654435761u) ^ (gz * 805459861u)) & (m.z - 1u))
+             : (min(gx, r1) + (min(gy, r1) + min(gz, r1) * m.x) * m.x);
 }
+
+// Grid position of point i at level scale s: integer cell g and fractional part (returned).
+inline float3 hg_locate(__global const float* x, int i, float s, uint3* g) {
+  const float3 x01 = fma(vload3(i, x), (float3)(0.5f), (float3)(0.5f));
+  const float3 pos = fma(x01, (float3)(s), (float3)(0.5f));
+  const float3 fl = floor(pos);
+  *g = convert_uint3(convert_int3(fl));
+  return pos - fl;
+}
+
+// Loop-free trilinear corner visit: CORNER(cx, cy, cz) defines wc (weight) and e (entry).
+#define CORNER_W(cx, cy, cz, fr) \
+  (((cx) ? (fr).x : 1.0f - (fr).x) * ((cy) ? (fr).y : 1.0f - (fr).y) * \
+   ((cz) ? (fr).z : 1.0f - (fr).z))
+#define CORNER_E(cx, cy, cz, g, m) hg_index((g).x + (cx), (g).y + (cy), (g).z + (cz), m)
 
 // One work-item per (point, level); the level is the slow dimension (level-major scheduling).
 __kernel void field_hashgrid_fwd(const int n, __global const float* params, const uint param_offset,
@@ -40,23 +81,19 @@ __kernel void field_hashgrid_fwd(const int n, __global const float* params, cons
   const int l = get_global_id(1);
   if (i >= n) return;
   const float w = level_weight[l];
-  float acc[FEATURES];
-  for (int f = 0; f < FEATURES; ++f) acc[f] = 0.0f;
+  featv acc = (featv)(0.0f);
   if (w != 0.0f) {
     const uint4 m = meta[l];
-    uint g[3];
-    float fr[3];
-    hg_locate(x, i, scale[l], g, fr);
-    __global const float* table = params + param_offset + (size_t)m.y * FEATURES;
-    for (int c = 0; c < 8; ++c) {
-      const uint cx = c & 1, cy = (c >> 1) & 1, cz = c >> 2;
-      const float wc = (cx ? fr[0] : 1.0f - fr[0]) * (cy ? fr[1] : 1.0f - fr[1]) *
-                       (cz ? fr[2] : 1.0f - fr[2]);
-      const uint e = hg_index(g[0] + cx, g[1] + cy, g[2] + cz, m);
-      for (int f = 0; f < FEATURES; ++f) acc[f] = fma(wc, table[(size_t)e * FEATURES + f], acc[f]);
-    }
+    uint3 g;
+    const float3 fr = hg_locate(x, i, scale[l], &g);
+    __global const float* t = params + param_offset + (size_t)m.y * FEATURES;
+#define FWD_CORNER(cx, cy, cz) \
+  acc = fma((featv)(CORNER_W(cx, cy, cz, fr)), LOADF(t + (size_t)CORNER_E(cx, cy, cz, g, m) * FEATURES), acc)
+    FWD_CORNER(0, 0, 0); FWD_CORNER(1, 0, 0); FWD_CORNER(0, 1, 0); FWD_CORNER(1, 1, 0);
+    FWD_CORNER(0, 0, 1); FWD_CORNER(1, 0, 1); FWD_CORNER(0, 1, 1); FWD_CORNER(1, 1, 1);
+#undef FWD_CORNER
   }
-  for (int f = 0; f < FEATURES; ++f) enc[(size_t)i * LF + l * FEATURES + f] = w * acc[f];
+  STOREF(w * acc, enc + (size_t)i * LF + l * FEATURES);
 }
 
 // Deterministic parameter gradient: one work-item per level owns its slice of the gradient
@@ -68,24 +105,23 @@ __kernel void field_hashgrid_bwd(const int n, __global const float* x, __global 
   const int l = get_global_id(0);
   if (l >= LEVELS) return;
   const uint4 m = meta[l];
-  __global float* table = grad + grad_offset + (size_t)m.y * FEATURES;
-  for (uint e = 0; e < m.z * FEATURES; ++e) table[e] = 0.0f;
+  __global float* t = grad + grad_offset + (size_t)m.y * FEATURES;
+  for (uint e = 0; e < m.z * FEATURES; ++e) t[e] = 0.0f;
   const float w = level_weight[l];
   if (w == 0.0f) return;
   const float s = scale[l];
   for (int i = 0; i < n; ++i) {
-    float de[FEATURES];
-    for (int f = 0; f < FEATURES; ++f) de[f] = w * d_enc[(size_t)i * LF + l * FEATURES + f];
-    uint g[3];
-    float fr[3];
-    hg_locate(x, i, s, g, fr);
-    for (int c = 0; c < 8; ++c) {
-      const uint cx = c & 1, cy = (c >> 1) & 1, cz = c >> 2;
-      const float wc = (cx ? fr[0] : 1.0f - fr[0]) * (cy ? fr[1] : 1.0f - fr[1]) *
-                       (cz ? fr[2] : 1.0f - fr[2]);
-      const uint e = hg_index(g[0] + cx, g[1] + cy, g[2] + cz, m);
-      for (int f = 0; f < FEATURES; ++f) table[(size_t)e * FEATURES + f] += wc * de[f];
-    }
+    const featv de = w * LOADF(d_enc + (size_t)i * LF + l * FEATURES);
+    uint3 g;
+    const float3 fr = hg_locate(x, i, s, &g);
+#define BWD_CORNER(cx, cy, cz)                                              \
+  {                                                                         \
+    __global float* p = t + (size_t)CORNER_E(cx, cy, cz, g, m) * FEATURES;  \
+    STOREF(fma((featv)(CORNER_W(cx, cy, cz, fr)), de, LOADF(p)), p);        \
+  }
+    BWD_CORNER(0, 0, 0) BWD_CORNER(1, 0, 0) BWD_CORNER(0, 1, 0) BWD_CORNER(1, 1, 0)
+    BWD_CORNER(0, 0, 1) BWD_CORNER(1, 0, 1) BWD_CORNER(0, 1, 1) BWD_CORNER(1, 1, 1)
+#undef BWD_CORNER
   }
 }
 
@@ -111,18 +147,15 @@ __kernel void field_hashgrid_bwd_atomic(const int n, __global const float* x,
   const float w = level_weight[l];
   if (w == 0.0f) return;
   const uint4 m = meta[l];
-  __global float* table = grad + grad_offset + (size_t)m.y * FEATURES;
-  uint g[3];
-  float fr[3];
-  hg_locate(x, i, scale[l], g, fr);
+  __global float* t = grad + grad_offset + (size_t)m.y * FEATURES;
+  uint3 g;
+  const float3 fr = hg_locate(x, i, scale[l], &g);
   for (int c = 0; c < 8; ++c) {
     const uint cx = c & 1, cy = (c >> 1) & 1, cz = c >> 2;
-    const float wc = (cx ? fr[0] : 1.0f - fr[0]) * (cy ? fr[1] : 1.0f - fr[1]) *
-                     (cz ? fr[2] : 1.0f - fr[2]);
-    const uint e = hg_index(g[0] + cx, g[1] + cy, g[2] + cz, m);
+    const float wc = CORNER_W(cx, cy, cz, fr) * w;
+    const uint e = CORNER_E(cx, cy, cz, g, m);
     for (int f = 0; f < FEATURES; ++f)
-      hg_atomic_add(table + (size_t)e * FEATURES + f,
-                    wc * w * d_enc[(size_t)i * LF + l * FEATURES + f]);
+      hg_atomic_add(t + (size_t)e * FEATURES + f, wc * d_enc[(size_t)i * LF + l * FEATURES + f]);
   }
 }
 
@@ -135,38 +168,34 @@ __kernel void field_hashgrid_bwd_dx(const int n, __global const float* params,
                                     __global const float* d_enc, __global float* d_x) {
   const int i = get_global_id(0);
   if (i >= n) return;
-  float dx0 = 0.0f, dx1 = 0.0f, dx2 = 0.0f;
+  float3 dx = (float3)(0.0f);
   for (int l = 0; l < LEVELS; ++l) {
     const float w = level_weight[l];
     if (w == 0.0f) continue;
     const uint4 m = meta[l];
     const float s = scale[l];
-    uint g[3];
-    float fr[3];
-    hg_locate(x, i, s, g, fr);
-    __global const float* table = params + param_offset + (size_t)m.y * FEATURES;
-    float dp0 = 0.0f, dp1 = 0.0f, dp2 = 0.0f;
-    for (int c = 0; c < 8; ++c) {
-      const uint cx = c & 1, cy = (c >> 1) & 1, cz = c >> 2;
-      const float wx = cx ? fr[0] : 1.0f - fr[0], sx = cx ? 1.0f : -1.0f;
-      const float wy = cy ? fr[1] : 1.0f - fr[1], sy = cy ? 1.0f : -1.0f;
-      const float wz = cz ? fr[2] : 1.0f - fr[2], sz = cz ? 1.0f : -1.0f;
-      const uint e = hg_index(g[0] + cx, g[1] + cy, g[2] + cz, m);
-      float v = 0.0f;  // Σ_f d_enc · feature of this corner
-      for (int f = 0; f < FEATURES; ++f)
-        v = fma(d_enc[(size_t)i * LF + l * FEATURES + f], table[(size_t)e * FEATURES + f], v);
-      dp0 = fma(sx * wy * wz, v, dp0);
-      dp1 = fma(wx * sy * wz, v, dp1);
-      dp2 = fma(wx * wy * sz, v, dp2);
-    }
-    const float k = w * s * 0.5f;
-    dx0 = fma(k, dp0, dx0);
-    dx1 = fma(k, dp1, dx1);
-    dx2 = fma(k, dp2, dx2);
+    uint3 g;
+    const float3 fr = hg_locate(x, i, s, &g);
+    const float3 om = (float3)(1.0f) - fr;
+    __global const float* t = params + param_offset + (size_t)m.y * FEATURES;
+    const featv de = LOADF(d_enc + (size_t)i * LF + l * FEATURES);
+    float3 dp = (float3)(0.0f);
+    // v = Σ_f d_enc · feature of the corner; ∂w/∂pos_d = ±(product of the other two factors).
+#define DX_CORNER(cx, cy, cz)                                                              \
+  {                                                                                        \
+    const featv fv = LOADF(t + (size_t)CORNER_E(cx, cy, cz, g, m) * FEATURES) * de;        \
+    const float v = hg_sum(fv);                                                            \
+    const float wx = (cx) ? fr.x : om.x, wy = (cy) ? fr.y : om.y, wz = (cz) ? fr.z : om.z; \
+    dp = fma((float3)((cx) ? wy * wz : -(wy * wz), (cy) ? wx * wz : -(wx * wz),            \
+                      (cz) ? wx * wy : -(wx * wy)),                                        \
+             (float3)(v), dp);                                                             \
   }
-  d_x[3 * i + 0] = dx0;
-  d_x[3 * i + 1] = dx1;
-  d_x[3 * i + 2] = dx2;
+    DX_CORNER(0, 0, 0) DX_CORNER(1, 0, 0) DX_CORNER(0, 1, 0) DX_CORNER(1, 1, 0)
+    DX_CORNER(0, 0, 1) DX_CORNER(1, 0, 1) DX_CORNER(0, 1, 1) DX_CORNER(1, 1, 1)
+#undef DX_CORNER
+    dx = fma((float3)(w * s * 0.5f), dp, dx);
+  }
+  vstore3(dx, i, d_x);
 }
 
 // Zeroes count floats of buf from offset (the atomic path accumulates into a zeroed slice).

@@ -5,7 +5,8 @@
 // Layout of this module's parameter slice: levels one after another; level l has `size` entries
 // of F floats (entry-major). Level l: scale_l = base · growth^l − 1, res_l = ceil(scale_l) + 2,
 // size_l = min(2^log2_table_size, round_up(res_l³, 8)); levels with res_l³ > table size use the
-// spatial hash (x ⊕ y·2654435761 ⊕ z·805459861), the others a dense index. Inputs x are N×3
+// spatial hash (x ⊕ y·2654435761 ⊕ z·805459861), the others a dense index (coordinates clamped
+// to [0, res − 1], which only matters outside the unit box). Inputs x are N×3
 // in [−1, 1]; pos = ((x + 1)/2)·scale_l + 0.5; trilinear over the 8 corners.
 #pragma once
 #include <cstdint>

@@ -1,6 +1,7 @@
 // Host references of the field kernels (tests only).
 #include "reference.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace sgnlf::test::ref {
@@ -14,7 +15,8 @@ struct Corners {
 
 uint32_t grid_index(uint32_t gx, uint32_t gy, uint32_t gz, const field::HashGridLevel& lv) {
   if (lv.hashed) return (gx ^ (gy * 2654435761u) ^ (gz * 805459861u)) & (lv.size - 1u);
-  return (gx + gy * lv.res + gz * lv.res * lv.res) % lv.size;
+  const uint32_t r1 = lv.res - 1;
+  return std::min(gx, r1) + (std::min(gy, r1) + std::min(gz, r1) * lv.res) * lv.res;
 }
 
 Corners corners(const float* x, const field::HashGridLevel& lv) {

@@ -1,0 +1,13 @@
+// Device roofline measured in the benchmark run itself: peak GFLOP/s of a float16-vector FMA
+// loop and streaming-copy GB/s (kernels/field/probe.cl). Measured once per process.
+#pragma once
+
+namespace sgnlf::bench {
+
+struct Roofline {
+  double gflops = 0;  // float16 FMA loop
+  double gbs = 0;     // streaming copy (read + write bytes)
+};
+const Roofline& roofline();
+
+}  // namespace sgnlf::bench
