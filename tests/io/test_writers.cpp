@@ -1,0 +1,86 @@
+// Writers: PLY, PCD, PNG pictures, the .npy range-image format.
+#include <catch2/catch.hpp>
+
+#include <cstring>
+
+#include "core/error.hpp"
+#include "io/cloud_writers.hpp"
+#include "io/png_writer.hpp"
+#include "io/range_array.hpp"
+#include "io/scan_io.hpp"
+#include "support/test_device.hpp"
+
+using namespace sgnlf;
+
+TEST_CASE("PLY and PCD: header then packed float32 x y z intensity", "[io]") {
+  const std::string dir = test::temp_dir("io_clouds");
+  const std::vector<PointXYZI> pts = {{1, 2, 3, 0.5f}, {4, 5, 6, 0.75f}, {7, 8, 9, 1.f}};
+  io::write_ply(dir + "/a.ply", pts);
+  io::write_pcd(dir + "/a.pcd", pts);
+  for (const std::string f : {"/a.ply", "/a.pcd"}) {
+    const auto b = io::read_file_bytes(dir + f);
+    const std::string s(b.begin(), b.end());
+    const std::string end_marker = f == "/a.ply" ? "end_header\n" : "DATA binary\n";
+    const size_t h = s.find(end_marker);
+    REQUIRE(h != std::string::npos);
+    REQUIRE(b.size() == h + end_marker.size() + 3 * 16);
+    float v[4];
+    std::memcpy(v, b.data() + h + end_marker.size() + 16, 16);
+    CHECK(v[0] == 4.f);
+    CHECK(v[3] == 0.75f);
+    CHECK(s.find(f == "/a.ply" ? "element vertex 3" : "POINTS 3") != std::string::npos);
+  }
+}
+
+TEST_CASE("npy range image round trip and bad files", "[io]") {
+  const std::string dir = test::temp_dir("io_npy");
+  RangeImage img(3, 5);
+  for (size_t i = 0; i < img.size(); ++i) {
+    img.range[i] = float(i) * 1.5f;
+    img.intensity[i] = float(i) / 20.f;
+    img.ray_drop[i] = i % 2 ? 1.f : 0.f;
+  }
+  io::write_range_npy(dir + "/r.npy", img);
+  const auto b = io::read_file_bytes(dir + "/r.npy");
+  CHECK((b.size() - 15 * 12) % 64 == 0);  // header padded to 64 bytes as NumPy does
+  const auto back = io::read_range_npy(dir + "/r.npy");
+  CHECK(back.height == 3);
+  CHECK(back.width == 5);
+  CHECK(back.range == img.range);
+  CHECK(back.intensity == img.intensity);
+  CHECK(back.ray_drop == img.ray_drop);
+  io::write_file_bytes(dir + "/cut.npy", b.data(), b.size() - 4);
+  CHECK_THROWS_AS(io::read_range_npy(dir + "/cut.npy"), IoError);
+  io::write_file_bytes(dir + "/bad.npy", "hello world", 11);
+  CHECK_THROWS_WITH(io::read_range_npy(dir + "/bad.npy"), Catch::Contains("bad magic"));
+}
+
+TEST_CASE("PNG range picture: three stacked panels, turbo colormap", "[io]") {
+  const auto lo = io::turbo(0.1), hi = io::turbo(0.9), mid = io::turbo(0.5);
+  CHECK(int(lo[2]) > int(lo[0]) + 100);  // blue end
+  CHECK(int(hi[0]) > int(hi[2]) + 100);  // red end
+  CHECK(int(mid[1]) > 200);        // bright green-yellow middle
+  RangeImage img(4, 6);
+  img.range[img.idx(1, 2)] = 10.f;
+  img.intensity[img.idx(1, 2)] = 1.f;
+  img.ray_drop[img.idx(1, 2)] = 1.f;
+  io::RangePictureOptions o;
+  o.row_repeat = 2;
+  o.gap = 1;
+  const auto pic = io::range_image_picture(img, o);
+  CHECK(pic.height == 3 * 8 + 2);
+  CHECK(pic.width == 6);
+  auto px = [&](int y, int x, int c) { return int(pic.rgb[(size_t(y) * pic.width + x) * 3 + c]); };
+  CHECK(px(2, 2, 0) + px(2, 2, 1) + px(2, 2, 2) > 0);  // depth colour at the return
+  CHECK(px(2, 3, 0) + px(2, 3, 1) + px(2, 3, 2) == 0);  // no return: black
+  CHECK(px(8 + 1 + 3, 2, 0) == 255);                    // intensity 1 → white
+  CHECK(px(2 * 9 + 2, 2, 1) == 255);                    // mask
+  CHECK(px(2 * 9 + 2, 3, 1) == 0);
+  const std::string dir = test::temp_dir("io_png");
+  io::write_png(dir + "/p.png", pic);
+  const auto b = io::read_file_bytes(dir + "/p.png");
+  REQUIRE(b.size() > 24);
+  CHECK(std::memcmp(b.data(), "\x89PNG\r\n\x1a\n", 8) == 0);
+  CHECK(uint8_t(b[19]) == 6);   // IHDR width (big-endian)
+  CHECK(uint8_t(b[23]) == 26);  // IHDR height
+}
