@@ -53,20 +53,43 @@ void set_counters(benchmark::State& state, double points, double flops, double b
 }
 }  // namespace
 
-static void BM_HashGridFwd(benchmark::State& state) {
+static void hash_fwd(benchmark::State& state, bool half) {
   auto& rt = bench::runtime();
-  field::HashGrid grid(rt, field::HashGridConfig{});
+  field::HashGridConfig cfg;
+  cfg.half_table = half;
+  field::HashGrid grid(rt, cfg);
   const int n = int(state.range(0));
   std::vector<float> params(grid.n_params());
   grid.init_params(params, 0, 1);
   auto b_p = cl::Buffer::from(rt, params), b_x = cl::Buffer::from(rt, uniform(size_t(n) * 3, -1, 1, 2));
   cl::Buffer b_enc(rt, size_t(n) * grid.n_output() * 4);
   run_timed(state, [&] { grid.forward(b_p, 0, b_x, n, b_enc); });
-  // Bytes: 8 corner gathers of F floats per level, x read, encoding written.
-  const double bytes = double(n) * (16 * 8 * 2 * 4 + 12 + grid.n_output() * 4);
+  // Bytes: 8 corner gathers of F values per level, x read, encoding written.
+  const double bytes = double(n) * (16 * 8 * 2 * (half ? 2 : 4) + 12 + grid.n_output() * 4);
   set_counters(state, n, 0, bytes);
 }
+static void BM_HashGridFwd(benchmark::State& s) { hash_fwd(s, false); }
+static void BM_HashGridFwdHalfTable(benchmark::State& s) { hash_fwd(s, true); }
 BENCHMARK(BM_HashGridFwd)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HashGridFwdHalfTable)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
+
+// fp16 table refresh after an optimiser step (half_table): 16.8M parameters.
+static void BM_HashGridHalfRefresh(benchmark::State& state) {
+  auto& rt = bench::runtime();
+  field::HashGridConfig cfg;
+  cfg.half_table = true;
+  field::HashGrid grid(rt, cfg);
+  std::vector<float> params(grid.n_params());
+  grid.init_params(params, 0, 1);
+  auto b_p = cl::Buffer::from(rt, params), b_x = cl::Buffer::from(rt, uniform(3, -1, 1, 2));
+  cl::Buffer b_enc(rt, size_t(grid.n_output()) * 4);
+  run_timed(state, [&] {
+    grid.params_changed();
+    grid.forward(b_p, 0, b_x, 1, b_enc);  // one point: the time is the refresh
+  });
+  set_counters(state, double(params.size()), 0, double(params.size()) * 6);
+}
+BENCHMARK(BM_HashGridHalfRefresh)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 static void hash_bwd(benchmark::State& state, bool deterministic, bool with_dx) {
   auto& rt = bench::runtime();

@@ -2,7 +2,7 @@
 // level-partitioned parameter backward, an atomic (non-deterministic) parameter backward kept for
 // comparison, and the input-position backward d_x that carries gradients into poses.
 //
-// Defines: LEVELS (L), FEATURES (F, 1..8). Level table `meta` holds per level (res, entry offset,
+// Defines: LEVELS (L), FEATURES (F, 1..8), HALF_TABLE (0|1). Level table `meta` holds per level (res, entry offset,
 // entry count, hashed flag); `scale` the float grid scale. Entry e of level l stores its F
 // features at params[param_offset + (meta.offset + e) * F + f]. Encoding layout: enc[n*L*F + l*F + f].
 // x is N×3 in [-1, 1]; it is mapped to [0, 1] and then pos = x01 * scale + 0.5 (instant-ngp).
@@ -11,6 +11,9 @@
 #endif
 #ifndef FEATURES
 #error "FEATURES must be defined"
+#endif
+#ifndef HALF_TABLE
+#define HALF_TABLE 0
 #endif
 #define LF (LEVELS * FEATURES)
 
@@ -34,6 +37,22 @@
 #else
 #error "FEATURES must be 1, 2, 4 or 8"
 #endif
+
+// The table the forward and d_x read: the fp32 parameters, or with HALF_TABLE a packed fp16
+// copy (one 32-bit word per entry at F = 2: 4-byte gathers, performance.md).
+#if HALF_TABLE
+#define table_t half
+#if FEATURES == 1
+#define LOADT(p) vload_half(0, p)
+#else
+#define LOADT(p) CONCAT(vload_half, FEATURES)(0, p)
+#endif
+#else
+#define table_t float
+#define LOADT(p) LOADF(p)
+#endif
+#define CONCAT_(a, b) a##b
+#define CONCAT(a, b) CONCAT_(a, b)
 
 // Sum of the lanes of a feature vector.
 inline float hg_sum(featv v) {
@@ -73,7 +92,7 @@ inline float3 hg_locate(__global const float* x, int i, float s, uint3* g) {
 #define CORNER_E(cx, cy, cz, g, m) hg_index((g).x + (cx), (g).y + (cy), (g).z + (cz), m)
 
 // One work-item per (point, level); the level is the slow dimension (level-major scheduling).
-__kernel void field_hashgrid_fwd(const int n, __global const float* params, const uint param_offset,
+__kernel void field_hashgrid_fwd(const int n, __global const table_t* params, const uint param_offset,
                                  __global const float* x, __global const float* scale,
                                  __global const uint4* meta, __global const float* level_weight,
                                  __global float* enc) {
@@ -86,9 +105,9 @@ __kernel void field_hashgrid_fwd(const int n, __global const float* params, cons
     const uint4 m = meta[l];
     uint3 g;
     const float3 fr = hg_locate(x, i, scale[l], &g);
-    __global const float* t = params + param_offset + (size_t)m.y * FEATURES;
+    __global const table_t* t = params + param_offset + (size_t)m.y * FEATURES;
 #define FWD_CORNER(cx, cy, cz) \
-  acc = fma((featv)(CORNER_W(cx, cy, cz, fr)), LOADF(t + (size_t)CORNER_E(cx, cy, cz, g, m) * FEATURES), acc)
+  acc = fma((featv)(CORNER_W(cx, cy, cz, fr)), LOADT(t + (size_t)CORNER_E(cx, cy, cz, g, m) * FEATURES), acc)
     FWD_CORNER(0, 0, 0); FWD_CORNER(1, 0, 0); FWD_CORNER(0, 1, 0); FWD_CORNER(1, 1, 0);
     FWD_CORNER(0, 0, 1); FWD_CORNER(1, 0, 1); FWD_CORNER(0, 1, 1); FWD_CORNER(1, 1, 1);
 #undef FWD_CORNER
@@ -161,7 +180,7 @@ __kernel void field_hashgrid_bwd_atomic(const int n, __global const float* x,
 
 // Input-position gradient: d_x[i] = Σ_l Σ_f d_enc[i,l,f] · w_l · ∂interp/∂pos · scale_l · 0.5,
 // from the derivatives of the trilinear weights (piecewise smooth inside each cell).
-__kernel void field_hashgrid_bwd_dx(const int n, __global const float* params,
+__kernel void field_hashgrid_bwd_dx(const int n, __global const table_t* params,
                                     const uint param_offset, __global const float* x,
                                     __global const float* scale, __global const uint4* meta,
                                     __global const float* level_weight,
@@ -177,13 +196,13 @@ __kernel void field_hashgrid_bwd_dx(const int n, __global const float* params,
     uint3 g;
     const float3 fr = hg_locate(x, i, s, &g);
     const float3 om = (float3)(1.0f) - fr;
-    __global const float* t = params + param_offset + (size_t)m.y * FEATURES;
+    __global const table_t* t = params + param_offset + (size_t)m.y * FEATURES;
     const featv de = LOADF(d_enc + (size_t)i * LF + l * FEATURES);
     float3 dp = (float3)(0.0f);
     // v = Σ_f d_enc · feature of the corner; ∂w/∂pos_d = ±(product of the other two factors).
 #define DX_CORNER(cx, cy, cz)                                                              \
   {                                                                                        \
-    const featv fv = LOADF(t + (size_t)CORNER_E(cx, cy, cz, g, m) * FEATURES) * de;        \
+    const featv fv = LOADT(t + (size_t)CORNER_E(cx, cy, cz, g, m) * FEATURES) * de;        \
     const float v = hg_sum(fv);                                                            \
     const float wx = (cx) ? fr.x : om.x, wy = (cy) ? fr.y : om.y, wz = (cz) ? fr.z : om.z; \
     dp = fma((float3)((cx) ? wy * wz : -(wy * wz), (cy) ? wx * wz : -(wx * wz),            \
@@ -202,4 +221,11 @@ __kernel void field_hashgrid_bwd_dx(const int n, __global const float* params,
 __kernel void field_hashgrid_zero(__global float* buf, const uint offset, const uint count) {
   const uint i = get_global_id(0);
   if (i < count) buf[offset + i] = 0.0f;
+}
+
+// fp16 copy of the table for HALF_TABLE forward/d_x: half_table[i] = params[offset + i] (RTE).
+__kernel void field_hashgrid_to_half(__global const float* params, const uint offset,
+                                     const uint count, __global half* half_table) {
+  const uint i = get_global_id(0);
+  if (i < count) vstore_half_rte(params[offset + i], i, half_table);
 }

@@ -31,7 +31,8 @@ HashGridConfig HashGridConfig::from_json(ConfigReader& r) {
       .get("log2_table_size", c.log2_table_size)
       .get("base_resolution", c.base_resolution)
       .get("per_level_scale", c.per_level_scale)
-      .get("deterministic", c.deterministic);
+      .get("deterministic", c.deterministic)
+      .get("half_table", c.half_table);
   c.validate();
   return c;
 }
@@ -82,12 +83,17 @@ HashGrid::HashGrid(cl::Runtime& rt, const HashGridConfig& cfg)
   set_level_weights(std::vector<float>(size_t(cfg_.levels), 1.0f));
   const std::string opt = "-DLEVELS=" + std::to_string(cfg_.levels) +
                           " -DFEATURES=" + std::to_string(cfg_.features);
+  const std::string table_opt = opt + " -DHALF_TABLE=" + (cfg_.half_table ? "1" : "0");
   const std::string file = "field/hashgrid.cl";
-  fwd_ = rt_.kernel(file, "field_hashgrid_fwd", opt);
+  fwd_ = rt_.kernel(file, "field_hashgrid_fwd", table_opt);
   bwd_ = rt_.kernel(file, "field_hashgrid_bwd", opt);
   bwd_atomic_ = rt_.kernel(file, "field_hashgrid_bwd_atomic", opt);
-  bwd_dx_ = rt_.kernel(file, "field_hashgrid_bwd_dx", opt);
+  bwd_dx_ = rt_.kernel(file, "field_hashgrid_bwd_dx", table_opt);
   zero_ = rt_.kernel(file, "field_hashgrid_zero", opt);
+  if (cfg_.half_table) {
+    to_half_ = rt_.kernel(file, "field_hashgrid_to_half", opt);
+    half_ = cl::Buffer(rt_, n_params_ * 2);
+  }
 }
 
 void HashGrid::init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) const {
@@ -119,7 +125,12 @@ void HashGrid::forward(const cl::Buffer& params, size_t offset, const cl::Buffer
   check_bytes(params, offset + n_params_, "params");
   check_bytes(x, size_t(n) * 3, "x");
   check_bytes(enc, size_t(n) * size_t(n_output()), "enc");
-  fwd_.set_args(n, params, uint32_t(offset), x, scale_, meta_, weights_, enc);
+  if (cfg_.half_table) {
+    refresh_half(params, offset);
+    fwd_.set_args(n, half_, uint32_t(0), x, scale_, meta_, weights_, enc);
+  } else {
+    fwd_.set_args(n, params, uint32_t(offset), x, scale_, meta_, weights_, enc);
+  }
   fwd_.launch({cl::round_up(size_t(n), 64), size_t(cfg_.levels)}, {64, 1});
 }
 
@@ -141,9 +152,23 @@ void HashGrid::backward(const cl::Buffer& params, size_t offset, const cl::Buffe
   if (d_x && n > 0) {
     check_bytes(params, offset + n_params_, "params");
     check_bytes(*d_x, size_t(n) * 3, "d_x");
-    bwd_dx_.set_args(n, params, uint32_t(offset), x, scale_, meta_, weights_, d_enc, *d_x);
+    if (cfg_.half_table) {
+      refresh_half(params, offset);
+      bwd_dx_.set_args(n, half_, uint32_t(0), x, scale_, meta_, weights_, d_enc, *d_x);
+    } else {
+      bwd_dx_.set_args(n, params, uint32_t(offset), x, scale_, meta_, weights_, d_enc, *d_x);
+    }
     bwd_dx_.launch({cl::round_up(size_t(n), 64)}, {64});
   }
+}
+
+void HashGrid::refresh_half(const cl::Buffer& params, size_t offset) {
+  if (!half_dirty_ && half_src_ == params.get() && half_src_offset_ == offset) return;
+  to_half_.set_args(params, uint32_t(offset), uint32_t(n_params_), half_);
+  to_half_.launch({cl::round_up(n_params_, 64)}, {64});
+  half_dirty_ = false;
+  half_src_ = params.get();
+  half_src_offset_ = offset;
 }
 
 }  // namespace sgnlf::field

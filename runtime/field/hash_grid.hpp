@@ -26,6 +26,10 @@ struct HashGridConfig {
   // true: level-partitioned, bit-reproducible backward; false: atomic compare-and-swap adds
   // (summation order varies; kept to measure what determinism costs).
   bool deterministic = true;
+  // true: forward and d_x read an fp16 copy of the table (4-byte gathers at F = 2), refreshed
+  // from the fp32 parameters on the first forward after params_changed(). Gradients and Adam
+  // stay fp32 (fp32 master copy).
+  bool half_table = false;
 
   void validate() const;  // throws ConfigError
   static HashGridConfig from_json(ConfigReader& r);  // reads known keys; caller calls finish()
@@ -63,6 +67,10 @@ class HashGrid {
   void set_level_weights(const std::vector<float>& w);
   const std::vector<float>& level_weights() const { return weights_host_; }
 
+  // With half_table: the fp32 parameters changed (e.g. after an Adam step); the next forward
+  // refreshes the fp16 copy. Also refreshed when forward sees another buffer or offset.
+  void params_changed() { half_dirty_ = true; }
+
   // enc (N × L·F floats) = encoding of x (N × 3 floats). Enqueued, no wait.
   void forward(const cl::Buffer& params, size_t offset, const cl::Buffer& x, int n,
                cl::Buffer& enc);
@@ -79,7 +87,12 @@ class HashGrid {
   size_t n_params_ = 0;
   std::vector<float> weights_host_;
   cl::Buffer scale_, meta_, weights_;
-  cl::Kernel fwd_, bwd_, bwd_atomic_, bwd_dx_, zero_;
+  cl::Kernel fwd_, bwd_, bwd_atomic_, bwd_dx_, zero_, to_half_;
+  cl::Buffer half_;  // fp16 table when half_table
+  bool half_dirty_ = true;
+  cl_mem half_src_ = nullptr;
+  size_t half_src_offset_ = 0;
+  void refresh_half(const cl::Buffer& params, size_t offset);
 };
 
 }  // namespace sgnlf::field
