@@ -29,6 +29,7 @@ const Registrar reg("simulate", "Generate a synthetic LiDAR sequence (urban stre
   sub.add_option("--moving-vehicles", o->moving_vehicles, "Number of moving vehicles (default: the sequence's)");
   sub.add_option("--threads", o->threads, "Ray-casting threads (0 = all cores; output is identical)");
   sub.add_flag("--no-noise", *no_noise, "Exact ranges and intensities, no random drop");
+  sub.add_option("--beams", o->lidar.beams, "native (the sensor's lasers and azimuth steps) | grid (one ray per pixel)");
   return std::function<int()>([=] {
     if (*list) {
       std::printf("%-18s %-9s %-9s %-6s %6s %7s  %s\n", "name", "preset", "frequency", "layout", "frames", "movers", "description");
@@ -42,14 +43,16 @@ const Registrar reg("simulate", "Generate a synthetic LiDAR sequence (urban stre
     const SimResult r = simulate(*o);
     write_synthetic(r, *out);
     const auto& rd = r.metadata["ray_drop"];
-    std::printf("wrote %s: %zu frames of %dx%d (%s, %s, stride %d), drop rate %.4f (no hit %.4f, grazing %.4f, "
-                "weak %.4f, specular %.4f, random %.4f, out of range %.4f)\n",
+    const double rays = rd["rays"].get<double>();
+    auto frac = [&](const char* k) { return rd[k].get<double>() / rays; };
+    std::printf("wrote %s: %zu frames, %dx%d range images (%s, %s, stride %d, %s beams)\n"
+                "  range-image drop rate %.4f; per ray: drop %.4f = no hit %.4f + ego car %.4f + out of range %.4f"
+                " + grazing %.4f + weak %.4f + specular %.4f + random %.4f\n",
                 out->c_str(), r.dataset.frames.size(), r.dataset.sensor.height, r.dataset.sensor.width,
                 r.dataset.sensor.name.c_str(), r.dataset.frequency.c_str(), r.metadata["stride"].get<int>(),
-                rd["drop_rate"].get<double>(), rd["no_hit"].get<double>() / rd["rays"].get<double>(),
-                rd["grazing"].get<double>() / rd["rays"].get<double>(), rd["weak"].get<double>() / rd["rays"].get<double>(),
-                rd["specular"].get<double>() / rd["rays"].get<double>(), rd["random"].get<double>() / rd["rays"].get<double>(),
-                rd["out_of_range"].get<double>() / rd["rays"].get<double>());
+                o->lidar.beams.c_str(), rd["image_drop_rate"].get<double>(), rd["drop_rate"].get<double>(),
+                frac("no_hit"), frac("ego"), frac("out_of_range"), frac("grazing"), frac("weak"), frac("specular"),
+                frac("random"));
     return 0;
   });
 });

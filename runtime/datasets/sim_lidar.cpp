@@ -4,13 +4,36 @@
 #include <cmath>
 #include <thread>
 
+#include "core/error.hpp"
 #include "core/rng.hpp"
 
 namespace sgnlf::sim {
 
 void DropStats::add(const DropStats& o) {
   rays += o.rays; returns += o.returns; no_hit += o.no_hit; out_of_range += o.out_of_range;
-  grazing += o.grazing; weak += o.weak; specular += o.specular; random += o.random;
+  grazing += o.grazing; weak += o.weak; specular += o.specular; random += o.random; ego += o.ego;
+}
+
+BeamPattern beam_pattern(const Sensor& s, const std::string& beams) {
+  BeamPattern b;
+  if (beams == "native" && s.name == "kitti360") {
+    // HDL-64E: upper block 32 lasers +2° … −8.33° (1/3° apart), lower block 32 lasers
+    // −8.83° … −24.33° (1/2° apart); 0.1728° azimuth steps at 10 Hz.
+    for (int k = 0; k < 32; ++k) b.elevation_deg.push_back(2.0 - k / 3.0);
+    for (int k = 0; k < 32; ++k) b.elevation_deg.push_back(-8.83 - 0.5 * k);
+    b.azimuth_steps = 2083;
+  } else if (beams == "native" && s.name == "nuscenes") {
+    // HDL-32E: 32 lasers +10.67° … −30.67° (4/3° apart); 0.33° azimuth steps at 20 Hz.
+    for (int k = 0; k < 32; ++k) b.elevation_deg.push_back(10.67 - k * 4.0 / 3.0);
+    b.azimuth_steps = 1084;
+  } else if (beams == "native" || beams == "grid") {
+    b.grid = true;
+    b.azimuth_steps = s.width;
+    for (int r = 0; r < s.height; ++r) b.elevation_deg.push_back(s.fov_up_deg - r * s.fov_deg / s.height);
+  } else {
+    throw ConfigError("lidar model: beams '" + beams + "' (expected native or grid)");
+  }
+  return b;
 }
 
 namespace {
@@ -22,17 +45,32 @@ struct PixelOut {
 
 double unit(uint32_t x) { return (double(x) + 0.5) * (1.0 / 4294967296.0); }
 
+// Ego car body in the LiDAR frame (sensor on the roof): rays into it return nothing.
+bool hits_ego(const Eigen::Vector3f& d, float sensor_height) {
+  const float lo[3] = {-2.4f, -0.9f, -sensor_height}, hi[3] = {1.4f, 0.9f, -1.0f};  // hood / trunk level
+  float t0 = 0.f, t1 = 1e30f;
+  for (int a = 0; a < 3; ++a) {
+    if (std::abs(d[a]) < 1e-9f) { if (0.f < lo[a] || 0.f > hi[a]) return false; continue; }
+    float ta = lo[a] / d[a], tb = hi[a] / d[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  return t0 <= t1;
+}
+
 PixelOut cast_pixel(const Scene& scene, const Sensor& s, const Pose& T, const LidarModel& m,
-                    uint64_t seed, uint32_t frame, int row, int col, DropStats& st) {
+                    uint64_t seed, uint32_t frame, int row, int width, int col,
+                    const Eigen::Vector3f& d_l, DropStats& st) {
   PixelOut out;
   ++st.rays;
-  const Eigen::Vector3f d_l = pixel_direction(s, row, col);
+  if (m.ego_vehicle && hits_ego(d_l, float(T.translation().z() - scene.ground_z))) { ++st.ego; return out; }
   const V3 o = T.translation().cast<float>();
   const V3 d = (T.linear().cast<float>() * d_l).normalized();
   Hit h;
   const float t_max = float(s.max_range_m) + 1.0f;
   if (!scene.cast(o, d, t_max, h)) { ++st.no_hit; return out; }
-  const auto rnd = philox_block(seed, 1000u + frame, uint64_t(row) * uint64_t(s.width) + uint64_t(col));
+  const auto rnd = philox_block(seed, 1000u + frame, uint64_t(row) * uint64_t(width) + uint64_t(col));
   // Two normals by Box–Muller from words 0, 1; words 2, 3 drive the drop decisions.
   const double rr = std::sqrt(-2.0 * std::log(unit(rnd[0]))), ang = 2 * M_PI * unit(rnd[1]);
   const double n_range = m.noise ? rr * std::cos(ang) : 0.0, n_int = m.noise ? rr * std::sin(ang) : 0.0;
@@ -65,14 +103,25 @@ PixelOut cast_pixel(const Scene& scene, const Sensor& s, const Pose& T, const Li
 std::vector<PointXYZI> cast_scan(const Scene& scene, const Sensor& s, const Pose& T_world_lidar,
                                  const LidarModel& model, uint64_t seed, uint32_t frame, int threads,
                                  DropStats* stats) {
+  const BeamPattern bp = beam_pattern(s, model.beams);
+  const int rows = int(bp.elevation_deg.size()), cols = bp.azimuth_steps;
   if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
-  threads = std::min(threads, s.height);
-  std::vector<PixelOut> px(size_t(s.height) * s.width);
+  threads = std::min(threads, rows);
+  std::vector<PixelOut> px(size_t(rows) * cols);
   std::vector<DropStats> st(static_cast<size_t>(threads), DropStats{});
+  auto direction = [&](int row, int col) -> Eigen::Vector3f {
+    if (bp.grid) return pixel_direction(s, row, col);
+    // Azimuth of step `col` measured like protocol §1 (β = π − col·2π/N), so that step k
+    // sweeps the range-image columns in order.
+    const double beta = M_PI - (col + 0.5) * 2.0 * M_PI / cols, alpha = bp.elevation_deg[size_t(row)] * M_PI / 180.0;
+    return Eigen::Vector3f(float(std::cos(alpha) * std::cos(beta)), float(std::cos(alpha) * std::sin(beta)),
+                           float(std::sin(alpha)));
+  };
   auto work = [&](int k) {
-    for (int row = k; row < s.height; row += threads)  // interleaved rows balance the load
-      for (int col = 0; col < s.width; ++col)
-        px[size_t(row) * s.width + col] = cast_pixel(scene, s, T_world_lidar, model, seed, frame, row, col, st[size_t(k)]);
+    for (int row = k; row < rows; row += threads)  // interleaved rows balance the load
+      for (int col = 0; col < cols; ++col)
+        px[size_t(row) * cols + col] = cast_pixel(scene, s, T_world_lidar, model, seed, frame, row, cols, col,
+                                                  direction(row, col), st[size_t(k)]);
   };
   std::vector<std::thread> pool;
   for (int k = 1; k < threads; ++k) pool.emplace_back(work, k);

@@ -4,6 +4,7 @@
 // Noise comes from Philox keyed by (seed, frame, pixel): identical for any thread count.
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "datasets/sim_scene.hpp"
@@ -23,18 +24,34 @@ struct LidarModel {
   double glass_drop = 0.55;             // extra drop probability on glass (specular)
   double foliage_drop = 0.12;           // leaves: partial returns lost
   bool noise = true;                    // false: exact ranges and intensities, no random drop
+  // "native": the real sensor's laser elevations and azimuth steps (HDL-64E for kitti360,
+  // HDL-32E for nuscenes), projected into the range image like real scans (empty rows where
+  // beams are sparser than the grid, several returns per pixel); "grid": one ray per pixel.
+  std::string beams = "native";
+  bool ego_vehicle = true;  // rays blocked by the ego car's body return nothing
 };
+
+// Laser elevations (degrees, top first) and azimuth steps per revolution of a sensor's beams.
+struct BeamPattern {
+  std::vector<double> elevation_deg;
+  int azimuth_steps = 0;
+  bool grid = false;  // one ray per range-image pixel
+};
+// "native" patterns exist for the kitti360 (HDL-64E) and nuscenes (HDL-32E) sensors; other
+// sensors (user-defined) use the grid.
+BeamPattern beam_pattern(const Sensor& s, const std::string& beams);
 
 // Per-cause counts of pixels without a return.
 struct DropStats {
   size_t rays = 0, returns = 0, no_hit = 0, out_of_range = 0, grazing = 0, weak = 0, specular = 0,
-         random = 0;
+         random = 0, ego = 0;
   void add(const DropStats& o);
   double drop_rate() const { return rays ? 1.0 - double(returns) / double(rays) : 0.0; }
 };
 
-// Casts every pixel of `s` from T_world_lidar; returns the returns as points in the LiDAR frame
-// in row-major pixel order. `threads` ≤ 0 uses the hardware concurrency.
+// Casts every beam of the pattern from T_world_lidar; returns the returns as points in the
+// LiDAR frame (laser-major order). Counts are per ray (the range image's drop rate is
+// measured on the projected image). `threads` ≤ 0 uses the hardware concurrency.
 std::vector<PointXYZI> cast_scan(const Scene& scene, const Sensor& s, const Pose& T_world_lidar,
                                  const LidarModel& model, uint64_t seed, uint32_t frame,
                                  int threads = 0, DropStats* stats = nullptr);

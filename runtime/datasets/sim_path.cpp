@@ -86,10 +86,15 @@ std::vector<Pose> drive(const StreetWorld& w, const DriveConfig& cfg, const std:
   std::vector<Pose> out;
   for (double t_req : times_s) {
     // Integrate s(t) from 0 with a fixed step (midpoint rule): exact for any time order.
+    // The ego drives at `speed` on its lane: the centreline advances by v / (1 − κ·lateral).
+    auto ds_dt = [&](double s, double t) {
+      const double kappa = std::remainder(w.path.heading_at(s + 0.25) - w.path.heading_at(s - 0.25), 2 * M_PI) / 0.5;
+      return speed(t) / std::max(0.2, 1.0 - kappa * w.ego_lateral);
+    };
     const double dt = 0.005;
     double s = w.ego_start_s, t = 0;
-    while (t + dt <= t_req) { s += dt * speed(t + 0.5 * dt); t += dt; }
-    s += (t_req - t) * speed(0.5 * (t + t_req));
+    while (t + dt <= t_req) { s += dt * ds_dt(s, t + 0.5 * dt); t += dt; }
+    s += (t_req - t) * ds_dt(s, 0.5 * (t + t_req));
     const double accel = (speed(t_req + 0.05) - speed(std::max(0.0, t_req - 0.05))) / 0.1;
     const Eigen::Vector2d p = w.path.point(s) + w.path.left(s) * w.ego_lateral;
     const double yaw = w.path.heading_at(s);

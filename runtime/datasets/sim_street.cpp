@@ -15,6 +15,7 @@ using V2 = Eigen::Vector2d;
 
 void append(Path& p, double len, double curvature) {
   const int n = std::max(1, int(std::lround(len / p.ds)));
+  curvature *= len / (n * p.ds);  // keep the piece's total turn exact despite the rounding
   for (int i = 0; i < n; ++i) {
     const double h = p.heading.back();
     const double hm = h + 0.5 * curvature * p.ds;
@@ -46,7 +47,7 @@ Path make_loop_path(double L, double W, double R) {
   p.closed = true;
   p.pts = {V2(0, 0)};
   p.heading = {0.0};
-  const double k = 1.0 / R, arc = 0.5 * M_PI * R;
+  const double k = -1.0 / R, arc = 0.5 * M_PI * R;  // clockwise: the ego's lane is the inner one
   append(p, L / 2 - R, 0);
   append(p, arc, k);
   append(p, W - 2 * R, 0);
@@ -56,7 +57,9 @@ Path make_loop_path(double L, double W, double R) {
   append(p, W - 2 * R, 0);
   append(p, arc, k);
   append(p, L / 2 - R, 0);
-  p.pts.back() = p.pts.front();  // close exactly
+  // Close exactly: spread the small rounding gap linearly along the loop.
+  const V2 gap = p.pts.back() - p.pts.front();
+  for (size_t i = 0; i < p.pts.size(); ++i) p.pts[i] -= gap * (double(i) / double(p.pts.size() - 1));
   return p;
 }
 
@@ -199,7 +202,7 @@ StreetWorld generate_street(const StreetConfig& cfg) {
   w.road_half_width = rng.uniform(5.2f, 7.0f);
   w.sidewalk_width = rng.uniform(2.2f, 4.5f);
   if (cfg.layout == "loop") {
-    w.path = make_loop_path(rng.uniform(44.f, 52.f) + 4 * w.road_half_width, rng.uniform(30.f, 36.f) + 4 * w.road_half_width, 10.0);
+    w.path = make_loop_path(rng.uniform(24.f, 28.f) + 4 * w.road_half_width, rng.uniform(18.f, 22.f) + 4 * w.road_half_width, 10.0);
     w.ego_start_s = 0;
   } else {
     w.path = make_open_path(rng, cfg.drive_length_m + 180.0);

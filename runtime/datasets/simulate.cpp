@@ -74,7 +74,7 @@ SimResult simulate(const SimOptions& opt) {
   dc.seed = world_seed;
   dc.v_min = nus ? 3.0 : 5.0;
   dc.v_max = nus ? 8.0 : 10.0;
-  if (ns.layout == "loop") { dc.v_min = 8.5; dc.v_max = 10.5; }
+  if (ns.layout == "loop") { dc.v_min = 10.0; dc.v_max = 12.0; }  // around the block and back
   dc.sensor_height_m = nus ? 1.84 : 1.73;
   std::vector<double> times;
   std::vector<int> ids;
@@ -98,6 +98,7 @@ SimResult simulate(const SimOptions& opt) {
   d.sensor = sensor;
   Progress prog("simulate " + ns.name, n);
   std::vector<Json> per_frame;
+  double image_drop = 0;
   for (int k = 0; k < n; ++k) {
     world.place_movers(times[size_t(k)]);
     Frame f;
@@ -107,9 +108,13 @@ SimResult simulate(const SimOptions& opt) {
     sim::DropStats st;
     f.points = sim::cast_scan(world.scene, sensor, f.T_world_lidar, opt.lidar, world_seed, uint32_t(f.id),
                               opt.threads, &st);
-    f.image = project_points(sensor, f.points);
+    ProjectionStats ps;
+    f.image = project_points(sensor, f.points, &ps);
     res.drops.add(st);
-    per_frame.push_back(Json{{"frame", f.id}, {"returns", st.returns}, {"drop_rate", st.drop_rate()}});
+    const double img_drop = 1.0 - double(ps.projected) / double(f.image.size());
+    image_drop += img_drop / n;
+    per_frame.push_back(Json{{"frame", f.id}, {"points", f.points.size()}, {"ray_drop_rate", st.drop_rate()},
+                             {"image_drop_rate", img_drop}});
     d.frames.push_back(std::move(f));
     prog.update(k + 1);
   }
@@ -124,11 +129,13 @@ SimResult simulate(const SimOptions& opt) {
       {"scene", {{"primitives", world.scene.primitives().size()}, {"road_half_width_m", world.road_half_width},
                  {"sidewalk_width_m", world.sidewalk_width}, {"path_length_m", world.path.length()},
                  {"closed_path", world.path.closed}}},
-      {"ray_drop", {{"rays", D.rays}, {"returns", D.returns}, {"drop_rate", D.drop_rate()},
+      {"beams", opt.lidar.beams},
+      {"ray_drop", {{"image_drop_rate", image_drop}, {"rays", D.rays}, {"returns", D.returns}, {"drop_rate", D.drop_rate()}, {"ego", D.ego},
                     {"no_hit", D.no_hit}, {"out_of_range", D.out_of_range}, {"grazing", D.grazing},
                     {"weak", D.weak}, {"specular", D.specular}, {"random", D.random}}},
       {"per_frame", per_frame}};
-  log::info("simulated ", ns.name, ": ", n, " frames, ", D.rays, " rays, drop rate ", D.drop_rate());
+  log::info("simulated ", ns.name, ": ", n, " frames, ", D.rays, " rays, ray drop rate ", D.drop_rate(),
+            ", range-image drop rate ", image_drop);
   return res;
 }
 
