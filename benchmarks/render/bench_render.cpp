@@ -2,8 +2,6 @@
 // reduction and the range loss, in rays/s, samples/s and GB/s of compulsory traffic (OpenCL
 // event times), against a streaming probe (saxpy, 12 bytes per element) measured first in the
 // same run. Traffic per sample is stated next to each benchmark.
-#include "support/bench_support.hpp"
-
 #include <vector>
 
 #include "core/rng.hpp"
@@ -11,6 +9,7 @@
 #include "render/ray_gradient.hpp"
 #include "render/ray_sampler.hpp"
 #include "render/volume_renderer.hpp"
+#include "support/bench_support.hpp"
 
 using namespace sgnlf;
 
@@ -31,20 +30,21 @@ void make_rays(int n, cl::Buffer& o, cl::Buffer& d) {
   std::vector<float> vo = random_vec(3 * size_t(n), -0.1f, 0.1f, 1), vd(3 * size_t(n));
   for (int r = 0; r < n; ++r) {
     const float a = 0.001f * r;
-    vd[3 * r] = std::cos(a) * 0.9950f, vd[3 * r + 1] = std::sin(a) * 0.9950f, vd[3 * r + 2] = 0.0998f;
+    vd[3 * r] = std::cos(a) * 0.9950f, vd[3 * r + 1] = std::sin(a) * 0.9950f,
+           vd[3 * r + 2] = 0.0998f;
   }
   o = cl::Buffer::from(rt, vo);
   d = cl::Buffer::from(rt, vd);
 }
 
 // Adds rays/s, samples/s, GB/s and % of the streaming probe from the summed event times.
-void report(benchmark::State& state, double total_ms, size_t rays, size_t samples,
-            double bytes) {
+void report(benchmark::State& state, double total_ms, size_t rays, size_t samples, double bytes) {
   const double s = total_ms * 1e-3, it = double(state.iterations());
   state.counters["Mrays_per_s"] = it * rays / s * 1e-6;
   state.counters["Msamples_per_s"] = it * samples / s * 1e-6;
   state.counters["GB_per_s"] = it * bytes / s * 1e-9;
-  if (g_stream_gbps > 0) state.counters["pct_stream"] = 100.0 * it * bytes / s * 1e-9 / g_stream_gbps;
+  if (g_stream_gbps > 0)
+    state.counters["pct_stream"] = 100.0 * it * bytes / s * 1e-9 / g_stream_gbps;
 }
 
 render::RenderConfig config(int samples, int importance = 0) {
@@ -59,7 +59,8 @@ static void BM_StreamProbe(benchmark::State& state) {
   bench::add_device_context();
   auto& rt = bench::runtime();
   const int n = 1 << 24;
-  auto x = cl::Buffer::from(rt, std::vector<float>(n, 1.f)), y = cl::Buffer::from(rt, std::vector<float>(n, 1.f));
+  auto x = cl::Buffer::from(rt, std::vector<float>(n, 1.f)),
+       y = cl::Buffer::from(rt, std::vector<float>(n, 1.f));
   auto k = rt.kernel("common/smoke.cl", "common_saxpy_fwd");
   k.set_args(n, 1.0f, x, y);
   k.launch({size_t(n)}).wait();
@@ -93,7 +94,11 @@ static void BM_SampleUniform(benchmark::State& state) {
   }
   report(state, ms, n_rays, n, 16.0 * n);
 }
-BENCHMARK(BM_SampleUniform)->Args({4096, 64})->Args({4096, 192})->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SampleUniform)
+    ->Args({4096, 64})
+    ->Args({4096, 192})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 
 // Importance sampling: reads coarse t, w (8 B/coarse sample), writes t, x (16 B/output).
 static void BM_SampleImportance(benchmark::State& state) {
@@ -109,13 +114,17 @@ static void BM_SampleImportance(benchmark::State& state) {
   double ms = 0;
   uint32_t step = 0;
   for (auto _ : state) {
-    const double e = sampler.importance(o, d, n_rays, Sc, tc, w, true, 1, ++step, t, x).elapsed_ms();
+    const double e =
+        sampler.importance(o, d, n_rays, Sc, tc, w, true, 1, ++step, t, x).elapsed_ms();
     ms += e;
     state.SetIterationTime(e * 1e-3);
   }
   report(state, ms, n_rays, no, 8.0 * nc + 16.0 * no);
 }
-BENCHMARK(BM_SampleImportance)->Args({4096, 64, 32})->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SampleImportance)
+    ->Args({4096, 64, 32})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 
 struct VolumeInputs {
   cl::Buffer t, h0, head, out, w, grad_out, gh0, ghead;
@@ -153,7 +162,11 @@ static void BM_VolumeForward(benchmark::State& state) {
   const size_t n = size_t(n_rays) * S;
   report(state, ms, n_rays, n, 20.0 * n);
 }
-BENCHMARK(BM_VolumeForward)->Args({4096, 64})->Args({4096, 192})->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_VolumeForward)
+    ->Args({4096, 64})
+    ->Args({4096, 192})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 
 // Backward: reads t, h0 twice, head, weights (28 B/sample), writes grad_h0, grad_head (12 B).
 static void BM_VolumeBackward(benchmark::State& state) {
@@ -173,7 +186,11 @@ static void BM_VolumeBackward(benchmark::State& state) {
   const size_t n = size_t(n_rays) * S;
   report(state, ms, n_rays, n, 40.0 * n);
 }
-BENCHMARK(BM_VolumeBackward)->Args({4096, 64})->Args({4096, 192})->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_VolumeBackward)
+    ->Args({4096, 64})
+    ->Args({4096, 192})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 
 // Ray-gradient reduction: reads t and dL/dx (16 B/sample).
 static void BM_RayGradReduce(benchmark::State& state) {
@@ -193,7 +210,11 @@ static void BM_RayGradReduce(benchmark::State& state) {
   }
   report(state, ms, n_rays, n, 16.0 * n);
 }
-BENCHMARK(BM_RayGradReduce)->Args({4096, 64})->Args({4096, 192})->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RayGradReduce)
+    ->Args({4096, 64})
+    ->Args({4096, 192})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 
 // Range loss + patch gradient loss + 4 reductions (6 launches), wall time to completion.
 static void BM_RangeLoss(benchmark::State& state) {

@@ -14,8 +14,8 @@ inline float render_sign(float v) { return v > 0.0f ? 1.0f : (v < 0.0f ? -1.0f :
 //   depth  a_d |m (D - R)|,  return  a_r (P - m)^2,  intensity  a_i (m (I - I*))^2.
 // terms (n x 3) gets the three weighted terms; grad_out = inv_n * their derivatives
 // (gradient of the batch mean; inv_n = 1 / n_rays).
-__kernel void render_loss_range(const int n_rays, const float a_d, const float a_r,
-                                const float a_i, const float inv_n, __global const float* out,
+__kernel void render_loss_range(const int n_rays, const float a_d, const float a_r, const float a_i,
+                                const float inv_n, __global const float* out,
                                 __global const float* target, __global float* terms,
                                 __global float* grad_out) {
   const int r = get_global_id(0);
@@ -48,10 +48,9 @@ inline float render_pair_error(__global const float* out, __global const float* 
 // pairs (inv_pairs). terms[r] = the weighted errors of the pairs that start at r (right and
 // down); grad_out[3r] += inv_pairs * dL/dD_r (accumulates onto the range loss's gradient).
 __kernel void render_loss_patchgrad(const int n_rays, const int patch, const float a_g,
-                                    const float inv_scale, const float clip,
-                                    const float inv_pairs, __global const float* out,
-                                    __global const float* target, __global float* terms,
-                                    __global float* grad_out) {
+                                    const float inv_scale, const float clip, const float inv_pairs,
+                                    __global const float* out, __global const float* target,
+                                    __global float* terms, __global float* grad_out) {
   const int r = get_global_id(0);
   if (r >= n_rays) return;
   const int pp = patch * patch;
@@ -81,9 +80,9 @@ __kernel void render_loss_patchgrad(const int n_rays, const int patch, const flo
 
 // out[out_index] = scale * sum_{i<n} in[offset + i*stride], with one work-group of
 // RENDER_REDUCE_WG items: each sums a strided slice in index order, then a fixed tree.
-__kernel void render_loss_reduce(const int n, const int stride, const int offset,
-                                 const float scale, __global const float* in,
-                                 __global float* out, const int out_index) {
+__kernel void render_loss_reduce(const int n, const int stride, const int offset, const float scale,
+                                 __global const float* in, __global float* out,
+                                 const int out_index) {
   __local float partial[RENDER_REDUCE_WG];
   const int lid = get_local_id(0);
   float acc = 0.0f;

@@ -3,9 +3,9 @@
 // (t does not depend on the ray). The pose-free methods push these into the poses
 // (runtime/render/pose_gradient.hpp). One work-item per ray: deterministic, no atomics.
 
-__kernel void render_raygrad_reduce(const int n_rays, const int n_samples,
-                                    __global const float* t, __global const float* grad_x,
-                                    __global float* grad_o, __global float* grad_d) {
+__kernel void render_raygrad_reduce(const int n_rays, const int n_samples, __global const float* t,
+                                    __global const float* grad_x, __global float* grad_o,
+                                    __global float* grad_d) {
   const int r = get_global_id(0);
   if (r >= n_rays) return;
   float3 go = (float3)(0.0f), gd = (float3)(0.0f);

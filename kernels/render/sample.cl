@@ -14,37 +14,57 @@ inline float render_jitter(uint seed_lo, uint seed_hi, uint stream, uint step, u
   return philox_unit(philox_block(seed_lo, seed_hi, stream, index).x);
 }
 
-inline void render_store_point(__global const float* o, __global const float* d, int r,
-                               float t, int s, __global float* x) {
+inline void render_store_point(__global const float* o, __global const float* d, int r, float t,
+                               int s, __global float* x) {
   x[3 * s + 0] = o[3 * r + 0] + t * d[3 * r + 0];
   x[3 * s + 1] = o[3 * r + 1] + t * d[3 * r + 1];
   x[3 * s + 2] = o[3 * r + 2] + t * d[3 * r + 2];
 }
 
 // t = near + (i + xi) * (far - near) / S, xi from Philox when jitter != 0, else 0.5 (bin
-// midpoints, used for evaluation). One work-item per 4 consecutive samples s = 4q .. 4q+3:
-// sample s uses word s % 4 of Philox block (step << 32 | s / 4) of RENDER_STREAM_UNIFORM.
+// midpoints, used for evaluation). One work-item g per quad of samples i = 4k .. 4k+3 of ray
+// r, g = r * ceil(S / 4) + k; sample i uses word i % 4 of Philox block (step << 32 | g) of
+// RENDER_STREAM_UNIFORM. Loop- and array-free float4 code (PoCL vectorises it), one integer
+// division per quad.
+inline void render_uniform_one(int r, int i, int s, float near, float bin, uint bits,
+                               __global const float* o, __global const float* d,
+                               __global float* t_out, __global float* x_out) {
+  const float t = near + ((float)i + philox_unit(bits)) * bin;
+  t_out[s] = t;
+  render_store_point(o, d, r, t, s, x_out);
+}
+
 __kernel void render_sample_uniform(const int n_rays, const int n_samples, const float near,
                                     const float far, const int jitter, const uint seed_lo,
-                                    const uint seed_hi, const uint step,
-                                    __global const float* o, __global const float* d,
-                                    __global float* t_out, __global float* x_out) {
-  const int q = get_global_id(0);
-  const int n = n_rays * n_samples;
-  if (4 * q >= n) return;
-  const ulong index = ((ulong)step << 32) | (ulong)q;
-  const uint4 bits = jitter ? philox_block(seed_lo, seed_hi, RENDER_STREAM_UNIFORM, index)
-                            : (uint4)(0x80000000u);  // philox_unit -> 0.5
-  const uint words[4] = {bits.x, bits.y, bits.z, bits.w};
+                                    const uint seed_hi, const uint step, __global const float* o,
+                                    __global const float* d, __global float* t_out,
+                                    __global float* x_out) {
+  const int g = get_global_id(0);
+  const int n_quads = (n_samples + 3) / 4;
+  if (g >= n_rays * n_quads) return;
+  const int r = g / n_quads, i = 4 * (g - r * n_quads), s = r * n_samples + i;
+  const uint4 bits =
+      jitter ? philox_block(seed_lo, seed_hi, RENDER_STREAM_UNIFORM, ((ulong)step << 32) | (ulong)g)
+             : (uint4)(0x80000000u);  // philox_unit -> 0.5
   const float bin = (far - near) / (float)n_samples;
-  for (int lane = 0; lane < 4; ++lane) {
-    const int s = 4 * q + lane;
-    if (s >= n) break;
-    const int r = s / n_samples, i = s - r * n_samples;
-    const float t = near + ((float)i + philox_unit(words[lane])) * bin;
-    t_out[s] = t;
-    render_store_point(o, d, r, t, s, x_out);
+  if (i + 3 >= n_samples) {  // the ray's last, partial quad
+    render_uniform_one(r, i, s, near, bin, bits.x, o, d, t_out, x_out);
+    if (i + 1 < n_samples)
+      render_uniform_one(r, i + 1, s + 1, near, bin, bits.y, o, d, t_out, x_out);
+    if (i + 2 < n_samples)
+      render_uniform_one(r, i + 2, s + 2, near, bin, bits.z, o, d, t_out, x_out);
+    return;
   }
+  const float4 t4 =
+      near +
+      ((float4)(i, i + 1, i + 2, i + 3) + convert_float4(bits >> 8) * (1.0f / 16777216.0f)) * bin;
+  vstore4(t4, 0, t_out + s);
+  const float3 o3 = vload3(r, o), d3 = vload3(r, d);
+  const float3 x0 = o3 + t4.x * d3, x1 = o3 + t4.y * d3, x2 = o3 + t4.z * d3, x3 = o3 + t4.w * d3;
+  __global float* x = x_out + 3 * s;
+  vstore4((float4)(x0, x1.x), 0, x);
+  vstore4((float4)(x1.y, x1.z, x2.x, x2.y), 0, x + 4);
+  vstore4((float4)(x2.z, x3), 0, x + 8);
 }
 
 // One work-item per ray. The coarse samples t_c (S_c, sorted) define bins with edges

@@ -8,9 +8,7 @@
 
 namespace sgnlf::render {
 
-Pose corrected_pose(const Pose& T_init, const Vec6& xi) {
-  return T_init * exp_se3_decoupled(xi);
-}
+Pose corrected_pose(const Pose& T_init, const Vec6& xi) { return T_init * exp_se3_decoupled(xi); }
 
 Mat3 right_jacobian_so3(const Vec3& w) {
   const double th2 = w.squaredNorm();

@@ -52,9 +52,8 @@ cl::Event RangeLoss::range(const cl::Buffer& out, const cl::Buffer& target, int 
   return reduce(terms, n_rays, 3, 2, inv_n, loss, 2);
 }
 
-cl::Event RangeLoss::patch_gradient(const cl::Buffer& out, const cl::Buffer& target,
-                                    int n_patches, cl::Buffer& grad_out, cl::Buffer& terms,
-                                    cl::Buffer& loss) {
+cl::Event RangeLoss::patch_gradient(const cl::Buffer& out, const cl::Buffer& target, int n_patches,
+                                    cl::Buffer& grad_out, cl::Buffer& terms, cl::Buffer& loss) {
   const int p = cfg_.patch_size;
   require(n_patches > 0, "RangeLoss::patch_gradient: n_patches must be positive, got " +
                              std::to_string(n_patches));
@@ -65,8 +64,8 @@ cl::Event RangeLoss::patch_gradient(const cl::Buffer& out, const cl::Buffer& tar
   check_floats(terms, n, "RangeLoss::patch_gradient terms");
   check_floats(loss, kLossFloats, "RangeLoss::patch_gradient loss");
   const float inv_pairs = 1.0f / (float(n_patches) * 2.0f * float(p) * float(p - 1));
-  patch_k_.set_args(int(n), p, cfg_.weights.grad, 1.0f / scene_scale_, cfg_.grad_clip_m,
-                    inv_pairs, out, target, terms, grad_out);
+  patch_k_.set_args(int(n), p, cfg_.weights.grad, 1.0f / scene_scale_, cfg_.grad_clip_m, inv_pairs,
+                    out, target, terms, grad_out);
   launch_1d(patch_k_, n);
   return reduce(terms, int(n), 1, 0, inv_pairs, loss, 3);
 }

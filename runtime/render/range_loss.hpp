@@ -22,8 +22,8 @@ class RangeLoss {
   RangeLoss(cl::Runtime& rt, const RenderConfig& cfg, float scene_scale);
 
   // Writes grad_out (n_rays x 3) = d(mean loss)/d out, terms (n_rays x 3) and loss[0..2].
-  cl::Event range(const cl::Buffer& out, const cl::Buffer& target, int n_rays,
-                  cl::Buffer& grad_out, cl::Buffer& terms, cl::Buffer& loss);
+  cl::Event range(const cl::Buffer& out, const cl::Buffer& target, int n_rays, cl::Buffer& grad_out,
+                  cl::Buffer& terms, cl::Buffer& loss);
   // Gradient loss over n_patches patch-major P×P patches (n_rays = n_patches·P²): ADDS its
   // gradient to grad_out[:, 0] (enqueue after range()), writes terms (n_rays) and loss[3].
   // Pairs count when both pixels have a GT return and |GT step| < grad_clip_m; differences

@@ -26,7 +26,7 @@ cl::Event RaySampler::uniform(const cl::Buffer& origins, const cl::Buffer& dirs,
   check_floats(x, n * 3, "RaySampler::uniform x");
   uniform_k_.set_args(n_rays, cfg_.n_samples, near_, far_, int(jitter), uint32_t(seed),
                       uint32_t(seed >> 32), step, origins, dirs, t, x);
-  return launch_1d(uniform_k_, (n + 3) / 4);
+  return launch_1d(uniform_k_, size_t(n_rays) * ((cfg_.n_samples + 3) / 4));  // one per quad
 }
 
 cl::Event RaySampler::importance(const cl::Buffer& origins, const cl::Buffer& dirs, int n_rays,

@@ -20,8 +20,8 @@ void RenderConfig::validate(const std::string& where) const {
   check_range(where, "near_m", near_m, 0.0f, 1e4f);
   check_range(where, "far_m", far_m, 0.0f, 1e5f);
   if (!(far_m > near_m))
-    throw ConfigError(where + ": 'far_m' = " + std::to_string(far_m) + " must exceed 'near_m' = " +
-                      std::to_string(near_m));
+    throw ConfigError(where + ": 'far_m' = " + std::to_string(far_m) +
+                      " must exceed 'near_m' = " + std::to_string(near_m));
   check_range(where, "n_samples", n_samples, 1, 1 << 16);
   check_range(where, "n_importance", n_importance, 0, 1 << 16);
   check_range(where, "weights.depth", weights.depth, 0.0f, 1e9f);
@@ -32,8 +32,7 @@ void RenderConfig::validate(const std::string& where) const {
   check_range(where, "grad_clip_m", grad_clip_m, 0.0f, 1e5f);
 }
 
-RenderConfig RenderConfig::from_json(const Json& j, const std::string& where,
-                                     RenderConfig c) {
+RenderConfig RenderConfig::from_json(const Json& j, const std::string& where, RenderConfig c) {
   ConfigReader r(j, where);
   r.get("near_m", c.near_m).get("far_m", c.far_m).get("n_samples", c.n_samples);
   r.get("n_importance", c.n_importance).get("jitter", c.jitter);

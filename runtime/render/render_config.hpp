@@ -19,11 +19,11 @@ struct RangeLossWeights {
 struct RenderConfig {
   float near_m = 1.0f;
   float far_m = 81.0f;
-  int n_samples = 64;       // uniform samples per ray (paper: 768)
-  int n_importance = 0;     // extra importance samples (LiDAR-NeRF: 64); 0 = off
-  bool jitter = true;       // stratified jitter in training; midpoints when false
+  int n_samples = 64;    // uniform samples per ray (paper: 768)
+  int n_importance = 0;  // extra importance samples (LiDAR-NeRF: 64); 0 = off
+  bool jitter = true;    // stratified jitter in training; midpoints when false
   RangeLossWeights weights;
-  int patch_size = 8;       // P of the P×P patches of the gradient loss
+  int patch_size = 8;         // P of the P×P patches of the gradient loss
   float grad_clip_m = 0.01f;  // pairs whose GT depth step is ≥ this are ignored (LiDAR-NeRF)
 
   // Dataset presets of the loss weights: "kitti360" (1000, 1, 10), "nuscenes" (1000, 4.5, 100).

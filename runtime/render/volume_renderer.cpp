@@ -16,8 +16,8 @@ VolumeRenderer::VolumeRenderer(cl::Runtime& rt, const RenderConfig& cfg, float s
   require(scene_scale > 0.0f, "VolumeRenderer: scene_scale must be positive");
 }
 
-void VolumeRenderer::check(const char* what, const cl::Buffer& t, const cl::Buffer& h0,
-                           int n_rays, int n_samples) const {
+void VolumeRenderer::check(const char* what, const cl::Buffer& t, const cl::Buffer& h0, int n_rays,
+                           int n_samples) const {
   const std::string w = std::string("VolumeRenderer::") + what;
   require(n_rays >= 0 && n_samples > 0 && size_t(n_rays) * n_samples < (size_t(1) << 31),
           w + ": bad shape n_rays = " + std::to_string(n_rays) +
@@ -27,9 +27,8 @@ void VolumeRenderer::check(const char* what, const cl::Buffer& t, const cl::Buff
   check_floats(h0, n, w + " h0");
 }
 
-cl::Event VolumeRenderer::forward(const cl::Buffer& t, const cl::Buffer& h0,
-                                  const cl::Buffer& head, int n_rays, int n_samples,
-                                  cl::Buffer& out, cl::Buffer& weights) {
+cl::Event VolumeRenderer::forward(const cl::Buffer& t, const cl::Buffer& h0, const cl::Buffer& head,
+                                  int n_rays, int n_samples, cl::Buffer& out, cl::Buffer& weights) {
   check("forward", t, h0, n_rays, n_samples);
   const size_t n = size_t(n_rays) * n_samples;
   check_floats(head, 2 * n, "VolumeRenderer::forward head");

@@ -17,8 +17,8 @@ class VolumeRenderer {
   float last_delta() const { return last_delta_; }
 
   // out: n_rays x 3; weights: N (needed by backward(); also for importance sampling).
-  cl::Event forward(const cl::Buffer& t, const cl::Buffer& h0, const cl::Buffer& head,
-                    int n_rays, int n_samples, cl::Buffer& out, cl::Buffer& weights);
+  cl::Event forward(const cl::Buffer& t, const cl::Buffer& h0, const cl::Buffer& head, int n_rays,
+                    int n_samples, cl::Buffer& out, cl::Buffer& weights);
   // Weights only, from densities alone (coarse pass of importance sampling).
   cl::Event weights(const cl::Buffer& t, const cl::Buffer& h0, int n_rays, int n_samples,
                     cl::Buffer& weights);

@@ -22,28 +22,27 @@ inline float ref_jitter(uint64_t seed, uint32_t stream, uint32_t step, uint32_t 
 }
 
 // render_sample_uniform
-inline void ref_sample_uniform(int n_rays, int S, float near, float far, bool jitter,
-                               uint64_t seed, uint32_t step, const Vec<float>& o,
-                               const Vec<float>& d, Vec<float>& t, Vec<float>& x) {
+inline void ref_sample_uniform(int n_rays, int S, float near, float far, bool jitter, uint64_t seed,
+                               uint32_t step, const Vec<float>& o, const Vec<float>& d,
+                               Vec<float>& t, Vec<float>& x) {
   t.assign(size_t(n_rays) * S, 0.f);
   x.assign(t.size() * 3, 0.f);
   for (int s = 0; s < n_rays * S; ++s) {
     const int r = s / S, i = s % S;
-    const float xi =
-        jitter ? u32_to_unit_float(philox_block(seed, kStreamUniform,
-                                                (uint64_t(step) << 32) | uint32_t(s / 4))[s % 4])
-               : 0.5f;
+    const uint32_t quad = uint32_t(r * ((S + 3) / 4) + i / 4);
+    const float xi = jitter ? u32_to_unit_float(philox_block(seed, kStreamUniform,
+                                                             (uint64_t(step) << 32) | quad)[i % 4])
+                            : 0.5f;
     t[s] = near + (float(i) + xi) * ((far - near) / float(S));
     for (int c = 0; c < 3; ++c) x[3 * s + c] = o[3 * r + c] + t[s] * d[3 * r + c];
   }
 }
 
 // render_sample_importance: inverse CDF over bins between coarse midpoints, merged sorted.
-inline void ref_sample_importance(int n_rays, int Sc, int Sf, float near, float far,
-                                  bool jitter, uint64_t seed, uint32_t step,
-                                  const Vec<float>& o, const Vec<float>& d,
-                                  const Vec<float>& tc, const Vec<float>& wc, Vec<float>& t,
-                                  Vec<float>& x) {
+inline void ref_sample_importance(int n_rays, int Sc, int Sf, float near, float far, bool jitter,
+                                  uint64_t seed, uint32_t step, const Vec<float>& o,
+                                  const Vec<float>& d, const Vec<float>& tc, const Vec<float>& wc,
+                                  Vec<float>& t, Vec<float>& x) {
   const int So = Sc + Sf;
   t.assign(size_t(n_rays) * So, 0.f);
   x.assign(t.size() * 3, 0.f);
@@ -155,8 +154,8 @@ void ref_raygrad(int n_rays, int S, const Vec<T>& t, const Vec<T>& grad_x, Vec<T
 
 // render_loss_range: returns the batch-mean terms (depth, ret, intensity) and its gradient.
 template <typename T>
-std::array<T, 3> ref_range_loss(int n, T a_d, T a_r, T a_i, const Vec<T>& out,
-                                const Vec<T>& target, Vec<T>& grad_out) {
+std::array<T, 3> ref_range_loss(int n, T a_d, T a_r, T a_i, const Vec<T>& out, const Vec<T>& target,
+                                Vec<T>& grad_out) {
   std::array<T, 3> L{0, 0, 0};
   grad_out.assign(size_t(n) * 3, T(0));
   const T inv_n = T(1) / T(n);

@@ -50,7 +50,8 @@ TEST_CASE("Pose gradient matches finite differences in the decoupled parameteris
   T_init.translation() = Vec3(0.2, -0.4, 0.05);
 
   for (bool with_origins : {false, true})
-    for (const Vec6& xi : {Vec6::Zero().eval(), (Vec6() << 0.4, -0.9, 0.6, 0.1, -0.2, 0.3).finished()}) {
+    for (const Vec6& xi :
+         {Vec6::Zero().eval(), (Vec6() << 0.4, -0.9, 0.6, 0.1, -0.2, 0.3).finished()}) {
       const std::vector<float> origins = with_origins ? p : std::vector<float>{};
       std::vector<Vec3> o, d;
       world_rays(render::corrected_pose(T_init, xi), origins, v, o, d);

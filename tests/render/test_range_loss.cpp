@@ -98,8 +98,7 @@ TEST_CASE("Range loss gradient matches finite differences", "[render][loss]") {
   CHECK(test::max_sym_rel_err(dev, fd, 1e-6) < 1e-4);
 }
 
-TEST_CASE("Patch gradient loss equals the reference and finite differences",
-          "[render][loss]") {
+TEST_CASE("Patch gradient loss equals the reference and finite differences", "[render][loss]") {
   auto& rt = test::runtime();
   auto cfg = render::RenderConfig::preset("kitti360");
   cfg.patch_size = 4;
@@ -128,8 +127,8 @@ TEST_CASE("Patch gradient loss equals the reference and finite differences",
 
   std::vector<float> ref_grad;
   test::ref_range_loss<float>(n, 1000.f, 1.f, 10.f, out, target, ref_grad);
-  const float ref_loss = test::ref_patch_grad_loss<float>(n_patches, P, 100.f, 1.f / kScale,
-                                                          0.5f, out, target, ref_grad);
+  const float ref_loss = test::ref_patch_grad_loss<float>(n_patches, P, 100.f, 1.f / kScale, 0.5f,
+                                                          out, target, ref_grad);
   REQUIRE(ref_loss > 0.f);
   CHECK(values.grad == Approx(ref_loss).epsilon(1e-5));
   CHECK(test::max_sym_rel_err(dev, ref_grad, 1e-9) < 1e-4);

@@ -1,8 +1,7 @@
 // Ray sampling kernels vs the host reference: uniform stratified (jitter, midpoints,
 // determinism) and importance sampling (inverse CDF, merged sorted).
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 
 #include "render/ray_sampler.hpp"
 #include "render_reference.hpp"
@@ -19,9 +18,8 @@ struct Sampled {
   std::vector<float> t, x;
 };
 
-Sampled run_uniform(render::RaySampler& s, const std::vector<float>& o,
-                    const std::vector<float>& d, int n_rays, bool jitter, uint64_t seed,
-                    uint32_t step) {
+Sampled run_uniform(render::RaySampler& s, const std::vector<float>& o, const std::vector<float>& d,
+                    int n_rays, bool jitter, uint64_t seed, uint32_t step) {
   auto& rt = test::runtime();
   auto bo = cl::Buffer::from(rt, o), bd = cl::Buffer::from(rt, d);
   const size_t n = size_t(n_rays) * s.uniform_samples();
@@ -42,8 +40,8 @@ TEST_CASE("Uniform jittered samples equal the reference and stay in their bins",
   const uint64_t seed = 0xabcdef0123ull;
   const auto dev = run_uniform(sampler, o, d, n_rays, true, seed, 7);
   std::vector<float> t_ref, x_ref;
-  test::ref_sample_uniform(n_rays, cfg.n_samples, sampler.near(), sampler.far(), true, seed, 7,
-                           o, d, t_ref, x_ref);
+  test::ref_sample_uniform(n_rays, cfg.n_samples, sampler.near(), sampler.far(), true, seed, 7, o,
+                           d, t_ref, x_ref);
   CHECK(test::max_abs_err(dev.t, t_ref) < 1e-6);
   CHECK(test::max_abs_err(dev.x, x_ref) < 1e-6);
 
@@ -67,18 +65,24 @@ TEST_CASE("Uniform jittered samples equal the reference and stay in their bins",
   CHECK(other.t != dev.t);
 }
 
-TEST_CASE("Uniform samples without jitter are the bin midpoints", "[render][sample]") {
+TEST_CASE("Uniform samples without jitter are the bin midpoints; partial quads match",
+          "[render][sample]") {
   render::RenderConfig cfg;
-  cfg.n_samples = 16;
+  cfg.n_samples = 15;  // not a multiple of 4: every ray ends in a partial quad
   render::RaySampler sampler(test::runtime(), cfg, kScale);
   std::vector<float> o, d;
   test::make_rays(5, 2, o, d);
   const auto dev = run_uniform(sampler, o, d, 5, false, 1, 0);
   const float bin = (sampler.far() - sampler.near()) / cfg.n_samples;
   for (size_t s = 0; s < dev.t.size(); ++s)
-    REQUIRE(dev.t[s] == Approx(sampler.near() + (s % 16 + 0.5f) * bin).epsilon(1e-6));
+    REQUIRE(dev.t[s] == Approx(sampler.near() + (s % 15 + 0.5f) * bin).epsilon(1e-6));
   CHECK(sampler.near() == Approx(1.0f * kScale));
   CHECK(sampler.far() == Approx(81.0f * kScale));
+  const auto jit = run_uniform(sampler, o, d, 5, true, 3, 2);
+  std::vector<float> t_ref, x_ref;
+  test::ref_sample_uniform(5, 15, sampler.near(), sampler.far(), true, 3, 2, o, d, t_ref, x_ref);
+  CHECK(test::max_abs_err(jit.t, t_ref) < 1e-6);
+  CHECK(test::max_abs_err(jit.x, x_ref) < 1e-6);
 }
 
 TEST_CASE("Importance samples equal the reference, are sorted and follow the weights",
@@ -103,8 +107,8 @@ TEST_CASE("Importance samples equal the reference, are sorted and follow the wei
     const auto t = bt.read_vec<float>(size_t(n_rays) * So);
     const auto x = bx.read_vec<float>(size_t(n_rays) * So * 3);
     std::vector<float> t_ref, x_ref;
-    test::ref_sample_importance(n_rays, Sc, Sf, sampler.near(), sampler.far(), jitter, 99, 3, o,
-                                d, coarse.t, w, t_ref, x_ref);
+    test::ref_sample_importance(n_rays, Sc, Sf, sampler.near(), sampler.far(), jitter, 99, 3, o, d,
+                                coarse.t, w, t_ref, x_ref);
     CHECK(test::max_abs_err(t, t_ref) < 1e-5);
     CHECK(test::max_abs_err(x, x_ref) < 1e-5);
     size_t unsorted = 0, in_peak = 0, fine_total = 0;
