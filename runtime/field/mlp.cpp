@@ -11,7 +11,7 @@
 namespace sgnlf::field {
 namespace {
 constexpr int kPts = 8;          // points per work-item in the GEMM kernels
-constexpr int kRows = 8;         // weight rows per work-item in the weight gradient
+constexpr int kRows = 16;        // weight rows per work-item in the weight gradient
 constexpr int kMaxChunks = 64;   // weight-gradient partial sums (fixed for a given N)
 constexpr int kMinChunk = 256;   // points per chunk at least
 constexpr size_t kLocal = 16;    // work-group size along the point dimension
