@@ -222,7 +222,7 @@ static void BM_RangeLoss(benchmark::State& state) {
   const int n_rays = int(state.range(0));
   render::RenderConfig cfg = config(64);
   render::RangeLoss rl(rt, cfg, kScale);
-  const int n_patches = n_rays / (cfg.patch_size * cfg.patch_size);
+  const int n_patches = n_rays / (cfg.patch_rows * cfg.patch_cols);
   std::vector<float> target = random_vec(3 * size_t(n_rays), 0.f, 1.f, 8);
   for (int r = 0; r < n_rays; ++r) target[3 * r + 2] = target[3 * r + 2] < 0.8f ? 1.f : 0.f;
   auto out = cl::Buffer::from(rt, random_vec(3 * size_t(n_rays), 0.f, 1.f, 9));

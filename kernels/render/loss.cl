@@ -43,39 +43,44 @@ inline float render_pair_error(__global const float* out, __global const float* 
   return *mask * (dp - dg);
 }
 
-// Rays are patch-major: patch p's pixel (row, col) is ray p*P*P + row*P + col. The loss is
-// a_g * sum over horizontal and vertical pairs of e^2, averaged over all n_patches*2P(P-1)
-// pairs (inv_pairs). terms[r] = the weighted errors of the pairs that start at r (right and
-// down); grad_out[3r] += inv_pairs * dL/dD_r (accumulates onto the range loss's gradient).
-__kernel void render_loss_patchgrad(const int n_rays, const int patch, const float a_g,
-                                    const float inv_scale, const float clip, const float inv_pairs,
-                                    __global const float* out, __global const float* target,
-                                    __global float* terms, __global float* grad_out) {
+// Per-pair penalty rho(e) = |e| (l1 != 0, LiDAR-NeRF's default) or e^2, and rho'(e).
+inline float render_rho(float e, int l1) { return l1 ? fabs(e) : e * e; }
+inline float render_drho(float e, int l1) { return l1 ? render_sign(e) : 2.0f * e; }
+
+// Rays are patch-major: patch p's pixel (row, col) is ray p*R*C + row*C + col for patches of
+// R rows x C columns. The loss is a_g * mean over all horizontal and vertical pairs of
+// rho(e) (inv_pairs = 1 / (n_patches (R (C-1) + (R-1) C)); masked pairs count as zero).
+// terms[r] = a_g * rho of the pairs that start at r (right and down); grad_out[3r] +=
+// inv_pairs * dL/dD_r (accumulates onto the range loss's gradient).
+__kernel void render_loss_patchgrad(const int n_rays, const int rows, const int cols, const int l1,
+                                    const float a_g, const float inv_scale, const float clip,
+                                    const float inv_pairs, __global const float* out,
+                                    __global const float* target, __global float* terms,
+                                    __global float* grad_out) {
   const int r = get_global_id(0);
   if (r >= n_rays) return;
-  const int pp = patch * patch;
-  const int q = r % pp, row = q / patch, col = q % patch;
+  const int q = r % (rows * cols), row = q / cols, col = q % cols;
   float m, e, loss = 0.0f, g = 0.0f;
-  if (col + 1 < patch) {
+  if (col + 1 < cols) {
     e = render_pair_error(out, target, r, r + 1, inv_scale, clip, &m);
-    loss += e * e;
-    g -= e * m;
+    loss += render_rho(e, l1);
+    g -= render_drho(e, l1) * m;
   }
-  if (row + 1 < patch) {
-    e = render_pair_error(out, target, r, r + patch, inv_scale, clip, &m);
-    loss += e * e;
-    g -= e * m;
+  if (row + 1 < rows) {
+    e = render_pair_error(out, target, r, r + cols, inv_scale, clip, &m);
+    loss += render_rho(e, l1);
+    g -= render_drho(e, l1) * m;
   }
   if (col > 0) {
     e = render_pair_error(out, target, r - 1, r, inv_scale, clip, &m);
-    g += e * m;
+    g += render_drho(e, l1) * m;
   }
   if (row > 0) {
-    e = render_pair_error(out, target, r - patch, r, inv_scale, clip, &m);
-    g += e * m;
+    e = render_pair_error(out, target, r - cols, r, inv_scale, clip, &m);
+    g += render_drho(e, l1) * m;
   }
   terms[r] = a_g * loss;
-  grad_out[3 * r] += inv_pairs * 2.0f * a_g * inv_scale * g;
+  grad_out[3 * r] += inv_pairs * a_g * inv_scale * g;
 }
 
 // out[out_index] = scale * sum_{i<n} in[offset + i*stride], with one work-group of

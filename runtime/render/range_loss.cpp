@@ -54,18 +54,19 @@ cl::Event RangeLoss::range(const cl::Buffer& out, const cl::Buffer& target, int 
 
 cl::Event RangeLoss::patch_gradient(const cl::Buffer& out, const cl::Buffer& target, int n_patches,
                                     cl::Buffer& grad_out, cl::Buffer& terms, cl::Buffer& loss) {
-  const int p = cfg_.patch_size;
+  const int rows = cfg_.patch_rows, cols = cfg_.patch_cols;
   require(n_patches > 0, "RangeLoss::patch_gradient: n_patches must be positive, got " +
                              std::to_string(n_patches));
-  const size_t n = size_t(n_patches) * p * p;
+  const size_t n = size_t(n_patches) * rows * cols;
   check_floats(out, 3 * n, "RangeLoss::patch_gradient out");
   check_floats(target, 3 * n, "RangeLoss::patch_gradient target");
   check_floats(grad_out, 3 * n, "RangeLoss::patch_gradient grad_out");
   check_floats(terms, n, "RangeLoss::patch_gradient terms");
   check_floats(loss, kLossFloats, "RangeLoss::patch_gradient loss");
-  const float inv_pairs = 1.0f / (float(n_patches) * 2.0f * float(p) * float(p - 1));
-  patch_k_.set_args(int(n), p, cfg_.weights.grad, 1.0f / scene_scale_, cfg_.grad_clip_m, inv_pairs,
-                    out, target, terms, grad_out);
+  const double pairs = double(n_patches) * (rows * (cols - 1) + (rows - 1) * cols);
+  const float inv_pairs = float(1.0 / pairs);
+  patch_k_.set_args(int(n), rows, cols, int(cfg_.grad_l1), cfg_.weights.grad, 1.0f / scene_scale_,
+                    cfg_.grad_clip_m, inv_pairs, out, target, terms, grad_out);
   launch_1d(patch_k_, n);
   return reduce(terms, int(n), 1, 0, inv_pairs, loss, 3);
 }

@@ -24,11 +24,13 @@ class RangeLoss {
   // Writes grad_out (n_rays x 3) = d(mean loss)/d out, terms (n_rays x 3) and loss[0..2].
   cl::Event range(const cl::Buffer& out, const cl::Buffer& target, int n_rays, cl::Buffer& grad_out,
                   cl::Buffer& terms, cl::Buffer& loss);
-  // Gradient loss over n_patches patch-major P×P patches (n_rays = n_patches·P²): ADDS its
-  // gradient to grad_out[:, 0] (enqueue after range()), writes terms (n_rays) and loss[3].
-  // Pairs count when both pixels have a GT return and |GT step| < grad_clip_m; differences
-  // are in metres (LiDAR-NeRF divides by the scale); the mean runs over all 2P(P−1) pairs
-  // per patch (masked pairs count as zero).
+  // Gradient loss over n_patches patch-major patches of patch_rows × patch_cols rays: ADDS
+  // its gradient to grad_out[:, 0] (enqueue after range()), writes terms (n_rays), loss[3].
+  // Pairs of horizontal and vertical neighbours count when both have a GT return and
+  // |GT step| < grad_clip_m; differences are in metres (LiDAR-NeRF divides by the scale);
+  // the mean runs over all pairs (masked ones count as zero). LiDAR-NeRF's code differs in
+  // three details kept out here: it uses column pairs only, compares |Δpred| with the signed
+  // Δgt, and masks by the left pixel's return only.
   cl::Event patch_gradient(const cl::Buffer& out, const cl::Buffer& target, int n_patches,
                            cl::Buffer& grad_out, cl::Buffer& terms, cl::Buffer& loss);
 

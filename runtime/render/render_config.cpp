@@ -28,7 +28,10 @@ void RenderConfig::validate(const std::string& where) const {
   check_range(where, "weights.ret", weights.ret, 0.0f, 1e9f);
   check_range(where, "weights.intensity", weights.intensity, 0.0f, 1e9f);
   check_range(where, "weights.grad", weights.grad, 0.0f, 1e9f);
-  check_range(where, "patch_size", patch_size, 2, 256);
+  check_range(where, "patch_rows", patch_rows, 1, 256);
+  check_range(where, "patch_cols", patch_cols, 1, 256);
+  if (patch_rows * patch_cols < 2)
+    throw ConfigError(where + ": a patch of 'patch_rows' x 'patch_cols' = 1 x 1 has no pairs");
   check_range(where, "grad_clip_m", grad_clip_m, 0.0f, 1e5f);
 }
 
@@ -36,7 +39,8 @@ RenderConfig RenderConfig::from_json(const Json& j, const std::string& where, Re
   ConfigReader r(j, where);
   r.get("near_m", c.near_m).get("far_m", c.far_m).get("n_samples", c.n_samples);
   r.get("n_importance", c.n_importance).get("jitter", c.jitter);
-  r.get("patch_size", c.patch_size).get("grad_clip_m", c.grad_clip_m);
+  r.get("patch_rows", c.patch_rows).get("patch_cols", c.patch_cols);
+  r.get("grad_l1", c.grad_l1).get("grad_clip_m", c.grad_clip_m);
   if (r.has("weights")) {
     auto w = r.child("weights");
     w.get("depth", c.weights.depth).get("ret", c.weights.ret);
@@ -58,7 +62,9 @@ Json RenderConfig::to_json() const {
               {"n_samples", n_samples},
               {"n_importance", n_importance},
               {"jitter", jitter},
-              {"patch_size", patch_size},
+              {"patch_rows", patch_rows},
+              {"patch_cols", patch_cols},
+              {"grad_l1", grad_l1},
               {"grad_clip_m", grad_clip_m},
               {"weights",
                {{"depth", weights.depth},

@@ -23,8 +23,11 @@ struct RenderConfig {
   int n_importance = 0;  // extra importance samples (LiDAR-NeRF: 64); 0 = off
   bool jitter = true;    // stratified jitter in training; midpoints when false
   RangeLossWeights weights;
-  int patch_size = 8;         // P of the P×P patches of the gradient loss
-  float grad_clip_m = 0.01f;  // pairs whose GT depth step is ≥ this are ignored (LiDAR-NeRF)
+  // Gradient loss on patch batches (LiDAR-NeRF: 2 × 8 patches, L1, GT steps ≥ 1 cm ignored).
+  int patch_rows = 2;
+  int patch_cols = 8;
+  bool grad_l1 = true;        // L1 of the difference error; false: squared error
+  float grad_clip_m = 0.01f;  // pairs whose GT depth step is ≥ this are ignored
 
   // Dataset presets of the loss weights: "kitti360" (1000, 1, 10), "nuscenes" (1000, 4.5, 100).
   static RenderConfig preset(const std::string& dataset);

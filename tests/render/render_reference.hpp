@@ -176,26 +176,27 @@ std::array<T, 3> ref_range_loss(int n, T a_d, T a_r, T a_i, const Vec<T>& out, c
 
 // render_loss_patchgrad: loss and its depth gradient ADDED to grad_out[3r] (pair by pair).
 template <typename T>
-T ref_patch_grad_loss(int n_patches, int P, T a_g, T inv_scale, T clip, const Vec<T>& out,
-                      const Vec<T>& target, Vec<T>& grad_out) {
-  const T inv_pairs = T(1) / (T(n_patches) * 2 * P * (P - 1));
+T ref_patch_grad_loss(int n_patches, int R, int C, bool l1, T a_g, T inv_scale, T clip,
+                      const Vec<T>& out, const Vec<T>& target, Vec<T>& grad_out) {
+  const T inv_pairs = T(1) / (T(n_patches) * (R * (C - 1) + (R - 1) * C));
   T loss = 0;
   auto pair = [&](size_t a, size_t b) {
     const T dg = (target[3 * b] - target[3 * a]) * inv_scale;
     const T dp = (out[3 * b] - out[3 * a]) * inv_scale;
     const T m = target[3 * a + 2] * target[3 * b + 2] * (std::abs(dg) < clip ? T(1) : T(0));
     const T e = m * (dp - dg);
-    loss += a_g * e * e * inv_pairs;
-    const T g = inv_pairs * 2 * a_g * e * m * inv_scale;
+    loss += a_g * (l1 ? std::abs(e) : e * e) * inv_pairs;
+    const T drho = l1 ? T((e > 0) - (e < 0)) : 2 * e;
+    const T g = inv_pairs * a_g * drho * m * inv_scale;
     grad_out[3 * b] += g;
     grad_out[3 * a] -= g;
   };
   for (int p = 0; p < n_patches; ++p)
-    for (int row = 0; row < P; ++row)
-      for (int col = 0; col < P; ++col) {
-        const size_t r = size_t(p) * P * P + row * P + col;
-        if (col + 1 < P) pair(r, r + 1);
-        if (row + 1 < P) pair(r, r + P);
+    for (int row = 0; row < R; ++row)
+      for (int col = 0; col < C; ++col) {
+        const size_t r = size_t(p) * R * C + row * C + col;
+        if (col + 1 < C) pair(r, r + 1);
+        if (row + 1 < R) pair(r, r + C);
       }
   return loss;
 }

@@ -98,58 +98,66 @@ TEST_CASE("Range loss gradient matches finite differences", "[render][loss]") {
   CHECK(test::max_sym_rel_err(dev, fd, 1e-6) < 1e-4);
 }
 
-TEST_CASE("Patch gradient loss equals the reference and finite differences", "[render][loss]") {
+TEST_CASE(
+    "Patch gradient loss (L1 and L2, rectangular patches) equals the reference and "
+    "finite differences",
+    "[render][loss]") {
   auto& rt = test::runtime();
-  auto cfg = render::RenderConfig::preset("kitti360");
-  cfg.patch_size = 4;
-  cfg.grad_clip_m = 0.5f;  // metres: some pairs are masked by the clip, most are kept
-  render::RangeLoss rl(rt, cfg, kScale);
-  const int n_patches = 5, P = 4, n = n_patches * P * P;
-  // A smooth GT ramp per patch (steps 0..0.8 m) with drops; predictions near it.
-  std::vector<float> target(3 * n), out(3 * n);
-  const auto u = test::make_uniform(4 * size_t(n), 0.f, 1.f, 7);
-  for (int r = 0; r < n; ++r) {
-    const int q = r % (P * P), row = q / P, col = q % P;
-    const float label = u[4 * r] < 0.85f ? 1.f : 0.f;
-    target[3 * r] = label * (10.f + 0.3f * col + 0.2f * row + 0.1f * u[4 * r + 1]) * kScale;
-    target[3 * r + 1] = label * 0.5f;
-    target[3 * r + 2] = label;
-    out[3 * r] = (10.f + 0.3f * col + 0.2f * row + 0.4f * (u[4 * r + 2] - 0.5f)) * kScale;
-    out[3 * r + 1] = u[4 * r + 3];
-    out[3 * r + 2] = 0.4f;
-  }
-  auto bout = cl::Buffer::from(rt, out), btar = cl::Buffer::from(rt, target);
-  cl::Buffer grad(rt, 3 * n * 4), terms3(rt, 3 * n * 4), terms(rt, n * 4), loss(rt, 16);
-  rl.range(bout, btar, n, grad, terms3, loss);
-  rl.patch_gradient(bout, btar, n_patches, grad, terms, loss).wait();
-  const auto values = render::RangeLoss::read_losses(loss);
-  const auto dev = grad.read_vec<float>(3 * n);
+  for (const bool l1 : {true, false}) {
+    auto cfg = render::RenderConfig::preset("kitti360");
+    cfg.patch_rows = l1 ? 2 : 3;
+    cfg.patch_cols = l1 ? 8 : 5;
+    cfg.grad_l1 = l1;
+    cfg.grad_clip_m = 0.5f;  // metres: some pairs are masked by the clip, most are kept
+    render::RangeLoss rl(rt, cfg, kScale);
+    const int R = cfg.patch_rows, C = cfg.patch_cols, n_patches = 5, n = n_patches * R * C;
+    // A smooth GT ramp per patch (steps of 0.2-0.4 m) with drops; predictions near it.
+    std::vector<float> target(3 * n), out(3 * n);
+    const auto u = test::make_uniform(4 * size_t(n), 0.f, 1.f, l1 ? 7 : 8);
+    for (int r = 0; r < n; ++r) {
+      const int q = r % (R * C), row = q / C, col = q % C;
+      const float label = u[4 * r] < 0.85f ? 1.f : 0.f;
+      target[3 * r] = label * (10.f + 0.3f * col + 0.2f * row + 0.1f * u[4 * r + 1]) * kScale;
+      target[3 * r + 1] = label * 0.5f;
+      target[3 * r + 2] = label;
+      out[3 * r] = (10.f + 0.3f * col + 0.2f * row + 0.4f * (u[4 * r + 2] - 0.5f)) * kScale;
+      out[3 * r + 1] = u[4 * r + 3];
+      out[3 * r + 2] = 0.4f;
+    }
+    auto bout = cl::Buffer::from(rt, out), btar = cl::Buffer::from(rt, target);
+    cl::Buffer grad(rt, 3 * n * 4), terms3(rt, 3 * n * 4), terms(rt, n * 4), loss(rt, 16);
+    rl.range(bout, btar, n, grad, terms3, loss);
+    rl.patch_gradient(bout, btar, n_patches, grad, terms, loss).wait();
+    const auto values = render::RangeLoss::read_losses(loss);
+    const auto dev = grad.read_vec<float>(3 * n);
 
-  std::vector<float> ref_grad;
-  test::ref_range_loss<float>(n, 1000.f, 1.f, 10.f, out, target, ref_grad);
-  const float ref_loss = test::ref_patch_grad_loss<float>(n_patches, P, 100.f, 1.f / kScale, 0.5f,
-                                                          out, target, ref_grad);
-  REQUIRE(ref_loss > 0.f);
-  CHECK(values.grad == Approx(ref_loss).epsilon(1e-5));
-  CHECK(test::max_sym_rel_err(dev, ref_grad, 1e-9) < 1e-4);
+    std::vector<float> range_only;
+    test::ref_range_loss<float>(n, 1000.f, 1.f, 10.f, out, target, range_only);
+    std::vector<float> ref_grad = range_only;
+    const float ref_loss = test::ref_patch_grad_loss<float>(
+        n_patches, R, C, l1, 100.f, 1.f / kScale, 0.5f, out, target, ref_grad);
+    INFO("l1 = " << l1);
+    REQUIRE(ref_loss > 0.f);
+    CHECK(values.grad == Approx(ref_loss).epsilon(1e-5));
+    CHECK(test::max_sym_rel_err(dev, ref_grad, 1e-9) < 1e-4);
 
-  // Finite differences of the patch term alone (the range term's gradient subtracted).
-  std::vector<float> range_only;
-  test::ref_range_loss<float>(n, 1000.f, 1.f, 10.f, out, target, range_only);
-  std::vector<float> dev_patch(n), fd_patch(n);
-  std::vector<double> od(out.begin(), out.end());
-  const std::vector<double> td(target.begin(), target.end());
-  const auto fd = central_diff(od, [&]() {
-    std::vector<double> g(3 * size_t(n), 0.0);
-    return test::ref_patch_grad_loss<double>(n_patches, P, 100, 1.0 / kScale, 0.5, od, td, g);
-  });
-  for (int r = 0; r < n; ++r) {
-    dev_patch[r] = dev[3 * r] - range_only[3 * r];
-    fd_patch[r] = fd[3 * r];
+    // Finite differences of the patch term alone (the range term's gradient subtracted).
+    std::vector<float> dev_patch(n), fd_patch(n);
+    std::vector<double> od(out.begin(), out.end());
+    const std::vector<double> td(target.begin(), target.end());
+    const auto fd = central_diff(od, [&]() {
+      std::vector<double> g(3 * size_t(n), 0.0);
+      return test::ref_patch_grad_loss<double>(n_patches, R, C, l1, 100, 1.0 / kScale, 0.5, od, td,
+                                               g);
+    });
+    for (int r = 0; r < n; ++r) {
+      dev_patch[r] = dev[3 * r] - range_only[3 * r];
+      fd_patch[r] = fd[3 * r];
+    }
+    CHECK(test::max_sym_rel_err(dev_patch, fd_patch, 1e-3) < 2e-3);
+    // Masked pairs exist (the clip and the drops): some rays get no patch gradient at all.
+    size_t zero = 0;
+    for (float g : fd_patch) zero += g == 0.f;
+    CHECK(zero > 0);
   }
-  CHECK(test::max_sym_rel_err(dev_patch, fd_patch, 1e-3) < 2e-3);
-  // Masked pairs exist (the clip and the drops), and some rays get no patch gradient at all.
-  size_t zero = 0;
-  for (float g : fd_patch) zero += g == 0.f;
-  CHECK(zero > 0);
 }

@@ -28,6 +28,12 @@ TEST_CASE("Render config presets, JSON round trip and rejection of bad values",
                   ConfigError);
   CHECK_THROWS_AS(render::RenderConfig::from_json(Json{{"far_m", 0.5}}, "test"), ConfigError);
   CHECK_THROWS_AS(render::RenderConfig::from_json(Json{{"n_samples", 0}}, "test"), ConfigError);
+  CHECK_THROWS_AS(
+      render::RenderConfig::from_json(Json{{"patch_rows", 1}, {"patch_cols", 1}}, "test"),
+      ConfigError);
+  CHECK(k.patch_rows == 2);
+  CHECK(k.patch_cols == 8);
+  CHECK(k.grad_l1);
   CHECK(render::RenderConfig::from_json(Json::object(), "test").to_json() ==
         render::RenderConfig().to_json());
   CHECK(k.bin_width(0.5f) == Approx(80.0 * 0.5 / 64));

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "render/ray_sampler.hpp"
+#include "render/volume_renderer.hpp"
 #include "render_reference.hpp"
 #include "render_test_data.hpp"
 #include "support/test_device.hpp"
@@ -129,4 +130,39 @@ TEST_CASE("Importance samples equal the reference, are sorted and follow the wei
     CHECK(double(in_peak) / fine_total > 0.88);
     CHECK(double(in_peak) / fine_total < 0.99);
   }
+}
+
+TEST_CASE("Coarse weights of an opaque wall draw the importance samples to the wall",
+          "[render][sample]") {
+  auto& rt = test::runtime();
+  render::RenderConfig cfg;
+  cfg.n_samples = 32;
+  cfg.n_importance = 32;
+  render::RaySampler sampler(rt, cfg, kScale);
+  render::VolumeRenderer vr(rt, cfg, kScale);
+  const int n_rays = 20, Sc = 32, So = 64;
+  std::vector<float> o, d;
+  test::make_rays(n_rays, 4, o, d);
+  const auto coarse = run_uniform(sampler, o, d, n_rays, true, 8, 0);
+  std::vector<float> h0(coarse.t.size()), wall(n_rays);
+  for (int r = 0; r < n_rays; ++r) {
+    wall[r] = (8.f + 3.f * r) * kScale;
+    for (int i = 0; i < Sc; ++i) h0[r * Sc + i] = coarse.t[r * Sc + i] < wall[r] ? -10.f : 10.f;
+  }
+  auto bo = cl::Buffer::from(rt, o), bd = cl::Buffer::from(rt, d);
+  auto btc = cl::Buffer::from(rt, coarse.t), bh = cl::Buffer::from(rt, h0);
+  cl::Buffer w(rt, coarse.t.size() * 4), bt(rt, size_t(n_rays) * So * 4),
+      bx(rt, size_t(n_rays) * So * 12);
+  vr.weights(btc, bh, n_rays, Sc, w);
+  sampler.importance(bo, bd, n_rays, Sc, btc, w, true, 8, 1, bt, bx).wait();
+  const auto t = bt.read_vec<float>(size_t(n_rays) * So);
+  const float bin = (sampler.far() - sampler.near()) / Sc;
+  size_t near_wall = 0;
+  for (int r = 0; r < n_rays; ++r) {
+    // The first coarse sample behind the wall takes the weight; its bin spans at most one
+    // bin width on either side of it, hence 2 bins from the wall.
+    for (int i = 0; i < So; ++i) near_wall += std::abs(t[r * So + i] - wall[r]) < 2.f * bin;
+  }
+  // 32 fine samples per ray, nearly all near the wall, plus 1-4 coarse ones there.
+  CHECK(double(near_wall) / (n_rays * 32) > 0.95);
 }
