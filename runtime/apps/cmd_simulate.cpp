@@ -17,6 +17,8 @@ const Registrar reg("simulate", "Generate a synthetic LiDAR sequence (urban stre
   auto list = std::make_shared<bool>(false);
   auto no_noise = std::make_shared<bool>(false);
   sub.add_flag("--list", *list, "Print the named sequences and exit");
+  auto list_json = std::make_shared<bool>(false);
+  sub.add_flag("--json", *list_json, "With --list: print JSON (the content of datasets/sequences.json)");
   sub.add_option("--sequence", o->sequence, "Named sequence (see --list)");
   sub.add_option("--preset", o->preset, "Sensor preset: kitti360 | nuscenes (default: the sequence's)");
   sub.add_option("--sensor", o->sensor_json, "User-defined sensor JSON (overrides the preset)");
@@ -31,6 +33,10 @@ const Registrar reg("simulate", "Generate a synthetic LiDAR sequence (urban stre
   sub.add_flag("--no-noise", *no_noise, "Exact ranges and intensities, no random drop");
   sub.add_option("--beams", o->lidar.beams, "native (the sensor's lasers and azimuth steps) | grid (one ray per pixel)");
   return std::function<int()>([=] {
+    if (*list && *list_json) {
+      std::cout << named_sequences_json().dump(2) << "\n";
+      return 0;
+    }
     if (*list) {
       std::printf("%-18s %-9s %-9s %-6s %6s %7s  %s\n", "name", "preset", "frequency", "layout", "frames", "movers", "description");
       for (const auto& s : named_sequences())

@@ -45,6 +45,14 @@ const NamedSequence& find_sequence(const std::string& name) {
   throw ConfigError("unknown synthetic sequence '" + name + "' (known: " + known + ")");
 }
 
+Json named_sequences_json() {
+  Json a = Json::array();
+  for (const auto& s : named_sequences())
+    a.push_back(Json{{"name", s.name}, {"preset", s.preset}, {"frequency", s.frequency}, {"layout", s.layout},
+                     {"frames", s.frames}, {"moving_vehicles", s.moving_vehicles}, {"description", s.description}});
+  return a;
+}
+
 void SimOptions::validate() const {
   find_sequence(sequence);
   if (!frequency.empty() && frequency != "standard" && frequency != "low")

@@ -21,6 +21,7 @@ struct NamedSequence {
 
 const std::vector<NamedSequence>& named_sequences();
 const NamedSequence& find_sequence(const std::string& name);  // ConfigError listing known names
+Json named_sequences_json();  // what datasets/sequences.json holds
 
 struct SimOptions {
   std::string sequence = "kitti360-low-a";

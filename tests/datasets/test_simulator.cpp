@@ -165,3 +165,22 @@ TEST_CASE("loop sequence comes back to a place it passed; ego keeps moving", "[s
   }
   CHECK_THROWS_AS([] { SimOptions b; b.sequence = "nope"; simulate(b); }(), ConfigError);
 }
+
+TEST_CASE("datasets/sequences.json lists the named sequences; sensor JSON presets match", "[sim]") {
+  CHECK(load_json_file(test::source_dir() + "/datasets/sequences.json") == named_sequences_json());
+  for (const char* p : {"kitti360", "nuscenes"}) {
+    const std::string f = test::source_dir() + "/datasets/sensors/" + p + ".json";
+    CHECK(sensor_to_json(sensor_from_json(load_json_file(f), f)) == sensor_to_json(sensor_preset(p)));
+  }
+  int standard = 0, low = 0, loops = 0, moving = 0;
+  for (const auto& s : named_sequences()) {
+    standard += s.preset == "kitti360" && s.frequency == "standard" && s.frames == 64 && s.moving_vehicles == 0;
+    low += s.frequency == "low" && s.frames == 36;
+    loops += s.layout == "loop";
+    moving += s.moving_vehicles > 0;
+  }
+  CHECK(standard == 4);
+  CHECK(low >= 6);
+  CHECK(loops >= 1);
+  CHECK(moving >= 1);
+}
