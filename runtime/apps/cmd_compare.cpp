@@ -1,0 +1,36 @@
+// `sgnlf compare NEW BASELINE`: compares a results JSON with a baseline (runtime/harness/
+// compare.hpp); prints a readable report and exits with 4 when it finds a regression.
+#include <iostream>
+#include <memory>
+
+#include "apps/command.hpp"
+#include "harness/compare.hpp"
+
+namespace sgnlf::app {
+namespace {
+
+const Registrar reg("compare", "Compare a results JSON with a baseline (exit 4 on regression)",
+                    [](CLI::App& sub) {
+  auto fresh = std::make_shared<std::string>();
+  auto base = std::make_shared<std::string>();
+  auto opt = std::make_shared<harness::CompareOptions>();
+  auto no_timings = std::make_shared<bool>(false);
+  sub.add_option("NEW", *fresh, "New results.json")->required();
+  sub.add_option("BASELINE", *base, "Baseline results JSON")->required();
+  sub.add_option("--mode", opt->mode, "auto | tight | loose")->capture_default_str();
+  sub.add_flag("--strict", opt->strict, "Improvements beyond tolerance fail too");
+  sub.add_flag("--no-timings", *no_timings, "Do not compare timings");
+  sub.add_option("--min-repetitions", opt->min_repetitions, "Timing repetitions needed");
+  sub.add_option("--max-ratio", opt->max_median_ratio, "Allowed median timing ratio");
+  return std::function<int()>([=] {
+    opt->timings = !*no_timings;
+    const auto report =
+        harness::compare_results(load_json_file(*fresh), load_json_file(*base), *opt);
+    std::cout << "new:      " << *fresh << "\nbaseline: " << *base << "\n"
+              << harness::format_report(report);
+    return report.regression() ? 4 : 0;
+  });
+});
+
+}  // namespace
+}  // namespace sgnlf::app

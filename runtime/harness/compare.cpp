@@ -1,0 +1,227 @@
+#include "harness/compare.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "harness/schema.hpp"
+#include "harness/stats.hpp"
+#include "harness/tables.hpp"
+
+namespace sgnlf::harness {
+namespace {
+
+const Json& at(const Json& j, const std::string& k) {
+  static const Json null_json;
+  return j.is_object() && j.contains(k) ? j[k] : null_json;
+}
+
+std::string fmt(double v) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+const Json* find_by(const Json& arr, const std::string& key, const std::string& value) {
+  if (!arr.is_array()) return nullptr;
+  for (const auto& x : arr)
+    if (x.value(key, "") == value) return &x;
+  return nullptr;
+}
+
+Json merged_metrics(const Json& seq) {
+  Json m = seq.value("metrics", Json::object());
+  const Json& p = at(seq, "pose_metrics");
+  if (p.is_object())
+    for (auto it = p.begin(); it != p.end(); ++it) m[it.key()] = it.value();
+  return m;
+}
+
+struct Comparer {
+  const CompareOptions& opt;
+  CompareReport& rep;
+
+  void add(const std::string& kind, bool fails, const std::string& where, const std::string& msg) {
+    rep.findings.push_back({kind, fails, where, msg});
+  }
+
+  void metrics(const std::string& where, const Json& fresh, const Json& base) {
+    if (!base.is_object()) return;
+    for (auto it = base.begin(); it != base.end(); ++it) {
+      const std::string& k = it.key();
+      if (!it.value().is_number()) continue;  // null in the baseline: nothing to hold
+      const std::string w = where + " / " + k;
+      const Json& nv = at(fresh, k);
+      if (!nv.is_number()) {
+        add("missing", true, w, "metric missing or null in the new result (baseline " +
+                                    fmt(it.value().get<double>()) + ")");
+        continue;
+      }
+      const double b = it.value().get<double>(), n = nv.get<double>();
+      ++rep.metrics_compared;
+      if (!std::isfinite(n)) {
+        add("regression", true, w, "not finite: " + fmt(n));
+        continue;
+      }
+      const double tol = metric_tolerance(k, rep.mode, b);
+      const MetricInfo* info = metric_info(k);
+      const double worse = info ? (info->lower_better ? n - b : b - n) : std::fabs(n - b);
+      const std::string detail = "new " + fmt(n) + " vs baseline " + fmt(b) + " (diff " +
+                                 fmt(n - b) + ", tolerance " + fmt(tol) + ")";
+      if (worse > tol)
+        add("regression", true, w, "worse: " + detail);
+      else if (-worse > tol)
+        add("improved", opt.strict, w, "better beyond tolerance: " + detail);
+    }
+    if (fresh.is_object())
+      for (auto it = fresh.begin(); it != fresh.end(); ++it)
+        if (!base.contains(it.key()) && it.value().is_number())
+          add("note", false, where + " / " + it.key(), "new metric, not in the baseline");
+  }
+
+  void timings(const std::string& where, const Json& fresh, const Json& base, bool same_device,
+               int min_reps, double max_ratio) {
+    if (!opt.timings || !base.is_object()) return;
+    for (auto it = base.begin(); it != base.end(); ++it) {
+      const auto rb = repetitions(it.value());
+      const auto rn = repetitions(at(fresh, it.key()));
+      if (!same_device || int(rb.size()) < min_reps || int(rn.size()) < min_reps ||
+          rb.empty() || rn.empty()) {
+        ++rep.timings_skipped;
+        continue;
+      }
+      ++rep.timings_compared;
+      const double mb = median(rb), mn = median(rn);
+      if (mb > 0 && mn / mb > max_ratio)
+        add("timing", true, where + " / " + it.key(),
+            "median " + fmt(mn) + " s vs baseline " + fmt(mb) + " s: ratio " + fmt(mn / mb) +
+                " > " + fmt(max_ratio) + " over " + std::to_string(rn.size()) + "/" +
+                std::to_string(rb.size()) + " repetitions");
+    }
+  }
+};
+
+bool same_run_configs(const Json& fresh, const Json& base) {
+  for (const auto& brow : base.value("rows", Json::array())) {
+    const Json* nrow = find_by(at(fresh, "rows"), "method", brow.value("method", ""));
+    if (!nrow) return false;
+    for (const auto& bs : brow.value("sequences", Json::array())) {
+      const Json* ns = find_by(at(*nrow, "sequences"), "sequence", bs.value("sequence", ""));
+      if (!ns || at(*ns, "config_hash") != at(bs, "config_hash")) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+void CompareOptions::validate() const {
+  if (mode != "auto" && mode != "tight" && mode != "loose")
+    throw ConfigError("compare: mode '" + mode + "' is not auto|tight|loose");
+}
+
+bool CompareReport::regression() const {
+  for (const auto& f : findings)
+    if (f.fails) return true;
+  return false;
+}
+
+double metric_tolerance(const std::string& metric, const std::string& mode, double base) {
+  const Json& tab = tolerance_table().at(mode);
+  const Json& t = tab.contains(metric) ? tab[metric] : tab["default"];
+  return t.value("abs", 0.0) + t.value("rel", 0.0) * std::fabs(base);
+}
+
+CompareReport compare_results(const Json& fresh, const Json& base, const CompareOptions& opt) {
+  opt.validate();
+  CompareReport rep;
+  Comparer c{opt, rep};
+  for (const auto* j : {&fresh, &base}) {
+    if (j->value("schema", "") != kSchemaName || at(*j, "schema_version") != Json(kSchemaVersion)) {
+      c.add("regression", true, j == &fresh ? "new" : "baseline",
+            "not a " + std::string(kSchemaName) + " v" + std::to_string(kSchemaVersion) +
+                " result (schema " + at(*j, "schema").dump() + " version " +
+                at(*j, "schema_version").dump() + ")");
+      return rep;
+    }
+  }
+  for (const char* k : {"table", "scale", "data"})
+    if (at(fresh, k) != at(base, k)) {
+      c.add("regression", true, k, "not comparable: new " + at(fresh, k).dump() +
+                                       " vs baseline " + at(base, k).dump());
+      return rep;
+    }
+
+  const Json& cn = at(at(fresh, "context"), "opencl");
+  const Json& cb = at(at(base, "context"), "opencl");
+  const bool same_device = cn.is_object() && cb.is_object() && at(cn, "device") == at(cb, "device") &&
+                           at(cn, "driver_version") == at(cb, "driver_version");
+  const bool same_cfg = at(fresh, "config_hash") == at(base, "config_hash") &&
+                        same_run_configs(fresh, base);
+  if (opt.mode == "auto") {
+    rep.mode = same_device && same_cfg ? "tight" : "loose";
+    rep.mode_reason = !same_device ? "different OpenCL device or driver"
+                      : !same_cfg  ? "different harness or run configs"
+                                   : "same device, driver and configs: deterministic twins";
+  } else {
+    rep.mode = opt.mode;
+    rep.mode_reason = "chosen on the command line";
+  }
+  const Json& tt = tolerance_table().at("timing");
+  const int min_reps = opt.min_repetitions > 0 ? opt.min_repetitions : tt.value("min_repetitions", 5);
+  const double max_ratio = opt.max_median_ratio > 0 ? opt.max_median_ratio
+                                                     : tt.value("max_median_ratio", 2.5);
+
+  for (const auto& brow : base.value("rows", Json::array())) {
+    const std::string m = brow.value("method", "");
+    const Json* nrow = find_by(at(fresh, "rows"), "method", m);
+    if (!nrow) {
+      c.add("missing", true, m, "row missing from the new result");
+      continue;
+    }
+    const std::string bs = brow.value("status", ""), ns = nrow->value("status", "");
+    if (bs == "ok" && ns != "ok") {
+      c.add("regression", true, m, "row was ok in the baseline, now " + ns +
+                                       (at(*nrow, "error").is_string() ? ": " + (*nrow)["error"].get<std::string>() : ""));
+      continue;
+    }
+    if (bs != "ok") {
+      if (ns == "ok") c.add("note", false, m, "row now runs (baseline: " + bs + "); update the baseline");
+      continue;
+    }
+    c.metrics(m + " / mean", at(*nrow, "mean"), at(brow, "mean"));
+    for (const auto& bseq : brow.value("sequences", Json::array())) {
+      const std::string s = bseq.value("sequence", "");
+      const Json* nseq = find_by(at(*nrow, "sequences"), "sequence", s);
+      if (!nseq) {
+        c.add("missing", true, m + " / " + s, "sequence missing from the new result");
+        continue;
+      }
+      c.metrics(m + " / " + s, merged_metrics(*nseq), merged_metrics(bseq));
+    }
+    c.timings(m + " / timings", at(*nrow, "timings"), at(brow, "timings"), same_device, min_reps,
+              max_ratio);
+  }
+  for (const auto& nrow : fresh.value("rows", Json::array()))
+    if (!find_by(at(base, "rows"), "method", nrow.value("method", "")))
+      c.add("note", false, nrow.value("method", ""), "row not in the baseline");
+  if (!same_device)
+    c.add("note", false, "timings", "not compared: different OpenCL device or driver");
+  return rep;
+}
+
+std::string format_report(const CompareReport& r) {
+  std::ostringstream o;
+  int fails = 0;
+  for (const auto& f : r.findings) fails += f.fails;
+  o << "compare: " << r.mode << " tolerances (" << r.mode_reason << "); " << r.metrics_compared
+    << " metrics and " << r.timings_compared << " timings compared, " << r.timings_skipped
+    << " timings skipped (too few repetitions or another device)\n";
+  for (const auto& f : r.findings)
+    o << (f.fails ? "  FAIL " : "  ok   ") << f.kind << ": " << f.where << ": " << f.message << "\n";
+  o << (fails ? "REGRESSION: " + std::to_string(fails) + " finding(s) fail\n"
+              : std::string("PASS: no regression\n"));
+  return o.str();
+}
+
+}  // namespace sgnlf::harness

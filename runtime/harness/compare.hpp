@@ -1,0 +1,47 @@
+// `sgnlf compare NEW BASELINE`: checks a results JSON against a committed baseline. Quality
+// metrics must agree within the tolerances of tables.json ("tolerances", documented in
+// results/schema.md): tight when both runs are deterministic twins (same device, driver and
+// run configs), loose otherwise. A metric worse than its tolerance, a missing row, sequence
+// or metric, or a timing whose median grew by more than the allowed ratio over enough
+// repetitions on the same device is a regression. The library returns a report; the app
+// prints it and exits with 4 on regression.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/config.hpp"
+
+namespace sgnlf::harness {
+
+struct CompareOptions {
+  std::string mode = "auto";  // auto | tight | loose
+  bool strict = false;        // improvements beyond tolerance fail too (baseline is stale)
+  bool timings = true;        // compare timings at all
+  int min_repetitions = -1;   // -1: tables.json tolerances.timing
+  double max_median_ratio = -1;
+  void validate() const;
+};
+
+struct Finding {
+  std::string kind;   // regression | improved | missing | timing | note
+  bool fails = false; // counts as a regression
+  std::string where;  // "lidar-nerf / kitti360-1538 / cd"
+  std::string message;
+};
+
+struct CompareReport {
+  std::string mode;  // tight | loose (resolved)
+  std::string mode_reason;
+  int metrics_compared = 0, timings_compared = 0, timings_skipped = 0;
+  std::vector<Finding> findings;
+  bool regression() const;
+};
+
+CompareReport compare_results(const Json& fresh, const Json& baseline,
+                              const CompareOptions& opt = {});
+std::string format_report(const CompareReport& r);
+
+// Allowed difference for `metric` in `mode` at baseline value `base`: abs + rel·|base|.
+double metric_tolerance(const std::string& metric, const std::string& mode, double base);
+
+}  // namespace sgnlf::harness

@@ -1,0 +1,195 @@
+#include "harness/markdown.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+#include "harness/tables.hpp"
+
+namespace sgnlf::harness {
+namespace {
+
+std::string header(const std::string& key) {
+  const MetricInfo* m = metric_info(key);
+  if (!m) return key;
+  std::string h = m->label;
+  if (!m->unit.empty()) h += " (" + m->unit + ")";
+  return h + (m->lower_better ? " ↓" : " ↑");
+}
+
+std::string signed_fmt(const std::string& key, double v) {
+  const MetricInfo* m = metric_info(key);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%+.*f", m ? m->digits : 4, v);
+  return buf;
+}
+
+std::string status_cell(const Json& row) {
+  const std::string s = row.value("status", "");
+  if (s == "not_implemented") return "not implemented";
+  if (s == "failed") return "failed";
+  return "—";
+}
+
+const Json& get_or_null(const Json& j, const std::string& k) {
+  static const Json null_json;
+  return j.is_object() && j.contains(k) ? j[k] : null_json;
+}
+
+std::vector<std::string> str_list(const Json& j) {
+  std::vector<std::string> v;
+  if (j.is_array())
+    for (const auto& x : j) v.push_back(x.get<std::string>());
+  return v;
+}
+
+}  // namespace
+
+std::string format_metric(const std::string& key, const Json& v) {
+  if (!v.is_number()) return "—";
+  const MetricInfo* m = metric_info(key);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", m ? m->digits : 4, v.get<double>());
+  return buf;
+}
+
+std::string render_markdown(const Json& r) {
+  std::ostringstream o;
+  const auto cols = str_list(r.value("columns", Json::array()));
+  const auto extra = str_list(r.value("extra_columns", Json::array()));
+  const Json& ctx = r.value("context", Json::object());
+  o << "# " << r.value("title", r.value("table", "")) << "\n\n";
+  o << "Table `" << r.value("table", "") << "`, scale `" << r.value("scale", "") << "`, "
+    << r.value("data", "") << " data, seed " << get_or_null(r["config"], "seed").dump()
+    << ", " << r.value("created_utc", "") << ".\n";
+  if (!r.value("command", "").empty()) o << "Command: `" << r.value("command", "") << "`\n";
+  o << "\n";
+
+  // Main table: ours | paper | Δ for each of the paper's columns, then ours-only columns.
+  bool any_unverified = false;
+  o << "| method |";
+  for (const auto& c : cols) o << " " << header(c) << " ours | paper | Δ |";
+  for (const auto& c : extra) o << " " << header(c) << " |";
+  o << "\n|---|";
+  for (size_t i = 0; i < cols.size(); ++i) o << "---:|---:|---:|";
+  for (size_t i = 0; i < extra.size(); ++i) o << "---:|";
+  o << "\n";
+  for (const auto& row : r.value("rows", Json::array())) {
+    const bool ok = row.value("status", "") == "ok";
+    const Json& mean = row["mean"];
+    o << "| " << row.value("label", row.value("method", "")) << " |";
+    for (const auto& c : cols) {
+      Json paper = get_or_null(row["paper"], c);
+      std::string mark;
+      if (paper.is_null() && !get_or_null(row["paper_unverified"], c).is_null()) {
+        paper = row["paper_unverified"][c];
+        mark = "†";
+        any_unverified = true;
+      }
+      const Json& ours = ok ? get_or_null(mean, c) : Json();
+      o << " " << (ok ? format_metric(c, ours) : status_cell(row)) << " | "
+        << format_metric(c, paper) << mark << " | "
+        << (ours.is_number() && paper.is_number()
+                ? signed_fmt(c, ours.get<double>() - paper.get<double>())
+                : "—")
+        << " |";
+    }
+    for (const auto& c : extra)
+      o << " " << (ok ? format_metric(c, get_or_null(mean, c)) : status_cell(row)) << " |";
+    o << "\n";
+  }
+  o << "\nΔ = ours − paper. Paper numbers: protocol §5 (results/paper_tables.json).";
+  if (any_unverified) o << " † from third-party notes, not verified.";
+  o << " F-score compares squared distances with 0.05, i.e. a √0.05 ≈ 0.224 m threshold "
+       "(protocol §4).";
+  if (r.value("data", "") == "synthetic")
+    o << " Ours are on the built-in synthetic twins, not on the real sequences: compare "
+         "orderings and gaps, not digits.";
+  o << "\n";
+  for (const auto& row : r.value("rows", Json::array()))
+    if (row.value("status", "") == "failed")
+      o << "\n**" << row.value("method", "") << " failed:** " << row.value("error", "") << "\n";
+
+  // Per-sequence tables.
+  const std::vector<std::string> all = [&] {
+    auto v = cols;
+    v.insert(v.end(), extra.begin(), extra.end());
+    return v;
+  }();
+  for (const auto& seq : r.value("sequences", Json::array())) {
+    const std::string name = seq.value("name", "");
+    o << "\n## Sequence " << name;
+    const Json& ds = get_or_null(seq, "dataset");
+    if (ds.is_object() && ds.contains("frames"))
+      o << " (" << ds["frames"].dump() << " frames"
+        << (ds.contains("test") ? ", test " + ds["test"].dump() : std::string()) << ")";
+    o << "\n\n| method |";
+    for (const auto& c : all) o << " " << header(c) << " |";
+    o << "\n|---|";
+    for (size_t i = 0; i < all.size(); ++i) o << "---:|";
+    o << "\n";
+    for (const auto& row : r.value("rows", Json::array())) {
+      Json m;
+      for (const auto& s : row.value("sequences", Json::array()))
+        if (s.value("sequence", "") == name) {
+          m = s.value("metrics", Json::object());
+          const Json pose = s.value("pose_metrics", Json());
+          if (pose.is_object())
+            for (auto it = pose.begin(); it != pose.end(); ++it) m[it.key()] = it.value();
+        }
+      o << "| " << row.value("label", "") << " |";
+      for (const auto& c : all)
+        o << " " << (m.is_object() ? format_metric(c, get_or_null(m, c)) : status_cell(row))
+          << " |";
+      o << "\n";
+    }
+  }
+
+  // Timings (seconds, median over repetitions).
+  o << "\n## Timings (s, median [min–max] over n repetitions)\n\n";
+  for (const auto& row : r.value("rows", Json::array())) {
+    const Json& t = row.value("timings", Json::object());
+    if (t.empty()) continue;
+    o << "- " << row.value("label", "") << ":";
+    for (auto it = t.begin(); it != t.end(); ++it) {
+      if (!it.value().contains("median")) continue;
+      char buf[160];
+      std::snprintf(buf, sizeof buf, " %s %.3g [%.3g–%.3g] n=%d;", it.key().c_str(),
+                    it.value()["median"].get<double>(), it.value()["min"].get<double>(),
+                    it.value()["max"].get<double>(), it.value()["n"].get<int>());
+      o << buf;
+    }
+    o << "\n";
+  }
+
+  // Context.
+  o << "\n## Context\n\n";
+  const Json& git = get_or_null(ctx, "git");
+  if (git.is_object())
+    o << "- git " << git.value("sha", "?").substr(0, 12)
+      << (git.value("dirty", Json(false)) == Json(true) ? " (dirty)" : "") << "\n";
+  const Json& cl = get_or_null(ctx, "opencl");
+  if (cl.is_object())
+    o << "- OpenCL: " << cl.value("platform", "") << " / " << cl.value("device", "")
+      << ", driver " << cl.value("driver_version", "") << "\n";
+  const Json& m = get_or_null(ctx, "machine");
+  if (m.is_object())
+    o << "- machine: " << m.value("cpu_model", "") << ", " << get_or_null(m, "logical_cores").dump()
+      << " logical cores, " << m.value("os", "") << "\n";
+  const Json& rf = get_or_null(ctx, "roofline");
+  if (rf.is_object() && rf.contains("peak_gflops")) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "- roofline (measured, best of %d): %.1f GFLOP/s fp32, %.1f GB/s triad, "
+                  "%.1f GB/s copy (medians %.1f, %.1f, %.1f)\n",
+                  rf["peak_gflops"].value("n", 0), rf.value("peak_gflops_best", 0.0),
+                  rf.value("triad_gbs_best", 0.0), rf.value("copy_gbs_best", 0.0),
+                  rf["peak_gflops"].value("median", 0.0), rf["triad_gbs"].value("median", 0.0),
+                  rf["copy_gbs"].value("median", 0.0));
+    o << buf;
+  }
+  if (r.contains("peak_rss_kib"))
+    o << "- peak host memory: " << r["peak_rss_kib"].get<long>() / 1024 << " MiB\n";
+  return o.str();
+}
+
+}  // namespace sgnlf::harness

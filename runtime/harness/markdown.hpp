@@ -1,0 +1,15 @@
+// Markdown rendering of a results JSON (results/schema.md): the table with our numbers beside
+// the paper's and the differences, "not implemented" / "failed" rows kept in place,
+// per-sequence tables, timings and the run's context.
+#pragma once
+#include <string>
+
+#include "core/config.hpp"
+
+namespace sgnlf::harness {
+
+// Formats a metric value with the table file's digits ("—" for null/missing).
+std::string format_metric(const std::string& key, const Json& v);
+std::string render_markdown(const Json& results);
+
+}  // namespace sgnlf::harness

@@ -1,0 +1,34 @@
+// Assembling the results JSON (results/schema.md): one entry per (row, sequence) run, rows
+// averaged over sequences, the paper's numbers and our differences, timing summaries.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/config.hpp"
+#include "harness/tables.hpp"
+#include "pipeline/method.hpp"
+
+namespace sgnlf::harness {
+
+// Hash of a resolved config: FNV-1a 64 of its compact dump (keys sorted), as 16 hex digits.
+std::string config_hash(const Json& config);
+
+// One run's entry in rows[].sequences[].
+Json sequence_entry(const std::string& sequence, uint64_t seed, const Json& dataset,
+                    const pipeline::MethodResult& r, const std::string& run_dir, double wall_s);
+
+// Mean over sequences of every metric (metrics and pose_metrics); a metric that is null or
+// missing in any sequence is null. Keys are the union over sequences.
+Json mean_over_sequences(const std::vector<Json>& sequences);
+
+// {metric: {ours, paper, diff, rel_diff, better}} for every metric the paper reports.
+Json diff_vs_paper(const Json& ours, const Json& paper);
+
+// {phase: summary} where each phase's repetitions are gathered over the sequences.
+Json row_timings(const std::vector<Json>& sequences);
+
+// A complete row: status "ok" | "not_implemented" | "failed".
+Json make_row(const std::string& table, const RowDef& row, const std::string& status,
+              const std::vector<Json>& sequences, const std::string& error = "");
+
+}  // namespace sgnlf::harness

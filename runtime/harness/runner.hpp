@@ -1,0 +1,52 @@
+// The table runner behind `sgnlf bench`: every row (method) of a table on every sequence of
+// the chosen scale, with fixed seeds, producing the results JSON of results/schema.md.
+// Training and data are injected (BenchHooks), so the runner is testable without them; the
+// app passes default_hooks() (wiring.hpp), which calls pipeline::run_method.
+#pragma once
+#include <functional>
+#include <string>
+
+#include "core/config.hpp"
+#include "harness/tables.hpp"
+#include "pipeline/method.hpp"
+
+namespace sgnlf::harness {
+
+struct BenchOptions {
+  std::string table;
+  std::string scale = "smoke";
+  std::string data_root;  // "" = built-in synthetic twins
+  std::string out_dir;
+  std::string device;     // OpenCL device spec ("" = default)
+  uint64_t seed = 1;
+  bool roofline = true;   // measure and record the device's roofline
+  std::string command;    // the command line, recorded verbatim
+  void validate() const;
+  Json to_json() const;   // the resolved harness config (without `command` and `out_dir`)
+};
+
+// A sequence ready on disk: the folder the pipeline reads and a description of it
+// (name, source, frames, split, sensor, seed... see results/schema.md "dataset").
+struct PreparedSequence {
+  std::string dataset_dir;
+  Json dataset = Json::object();
+  Json overrides = Json::object();  // merged into MethodRequest::overrides (e.g. window)
+  double seconds = 0.0;             // time spent preparing (simulation / loading)
+};
+
+struct BenchHooks {
+  std::function<bool(const std::string& method)> implemented;
+  std::function<pipeline::MethodResult(const pipeline::MethodRequest&)> run;
+  std::function<PreparedSequence(const SequenceDef&, const BenchOptions&,
+                                 const std::string& dir)> prepare;
+};
+
+// Runs the table; `context` is the context block (context_block() + roofline), copied into
+// the result. Failures of single runs are recorded in their row (status "failed") and the
+// table goes on. Writes nothing itself; see write_outputs().
+Json run_table(const BenchOptions& opt, const BenchHooks& hooks, Json context);
+
+// Writes <out>/results.json and <out>/table.md; returns their paths.
+std::pair<std::string, std::string> write_outputs(const Json& results, const std::string& out_dir);
+
+}  // namespace sgnlf::harness

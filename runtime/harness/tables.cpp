@@ -1,0 +1,150 @@
+#include "harness/tables.hpp"
+
+#include <algorithm>
+
+namespace sgnlf::harness {
+namespace {
+
+const Json& tables_root() {
+  static const Json j = [] {
+    try {
+      return Json::parse(tables_json());
+    } catch (const std::exception& e) {
+      throw ConfigError(std::string("runtime/harness/tables.json (embedded): ") + e.what());
+    }
+  }();
+  return j;
+}
+
+const Json& paper_root() {
+  static const Json j = [] {
+    try {
+      return Json::parse(paper_tables_json());
+    } catch (const std::exception& e) {
+      throw ConfigError(std::string("results/paper_tables.json (embedded): ") + e.what());
+    }
+  }();
+  return j;
+}
+
+SequenceDef parse_sequence(const Json& j, const std::string& where) {
+  SequenceDef s;
+  ConfigReader r(j, where);
+  r.require("name", s.name).require("preset", s.preset).require("frequency", s.frequency);
+  r.get("frames", s.frames).get("width", s.width).get("sequence", s.sequence);
+  r.get("start", s.start).get("stride", s.stride);
+  r.finish();
+  if (s.frequency != "standard" && s.frequency != "low")
+    throw ConfigError(where + ": frequency '" + s.frequency + "' is not standard|low");
+  return s;
+}
+
+std::vector<SequenceDef> parse_list(const Json& j, const std::string& where) {
+  std::vector<SequenceDef> out;
+  for (size_t i = 0; i < j.size(); ++i)
+    out.push_back(parse_sequence(j[i], where + "[" + std::to_string(i) + "]"));
+  return out;
+}
+
+const Json& lookup(const Json& root, const std::string& a, const std::string& b,
+                   const std::string& c) {
+  static const Json empty = Json::object();
+  if (!root.contains(a) || !root[a].contains(b) || !root[a][b].contains(c)) return empty;
+  return root[a][b][c];
+}
+
+}  // namespace
+
+Json SequenceDef::to_json() const {
+  Json j{{"name", name}, {"preset", preset}, {"frequency", frequency}};
+  if (frames) j["frames"] = frames;
+  if (width) j["width"] = width;
+  if (!sequence.empty()) j["sequence"] = sequence;
+  if (start >= 0) j["start"] = start;
+  if (stride) j["stride"] = stride;
+  return j;
+}
+
+std::vector<std::string> table_names() {
+  std::vector<std::string> names;
+  for (auto it = tables_root()["tables"].begin(); it != tables_root()["tables"].end(); ++it)
+    names.push_back(it.key());
+  return names;
+}
+
+std::vector<std::string> scale_names() { return {"smoke", "quick", "paper"}; }
+
+TableDef table_def(const std::string& name) {
+  const Json& tables = tables_root()["tables"];
+  if (!tables.contains(name)) {
+    std::string known;
+    for (const auto& n : table_names()) known += (known.empty() ? "" : ", ") + n;
+    throw ConfigError("unknown table '" + name + "' (known: " + known + ")");
+  }
+  const std::string where = "tables.json: tables." + name;
+  TableDef t;
+  t.name = name;
+  ConfigReader r(tables[name], where);
+  Json rows, scales, real;
+  r.require("title", t.title).require("rows", rows).require("columns", t.columns);
+  r.get("extra_columns", t.extra_columns).require("scales", scales).get("real", real);
+  r.finish();
+  for (size_t i = 0; i < rows.size(); ++i) {
+    RowDef row;
+    ConfigReader rr(rows[i], where + ".rows[" + std::to_string(i) + "]");
+    rr.require("method", row.method).require("label", row.label);
+    rr.finish();
+    t.rows.push_back(row);
+  }
+  for (auto it = scales.begin(); it != scales.end(); ++it)
+    t.scales[it.key()] = parse_list(it.value(), where + ".scales." + it.key());
+  if (!real.is_null()) t.real = parse_list(real, where + ".real");
+  return t;
+}
+
+std::vector<SequenceDef> table_sequences(const TableDef& t, const std::string& scale, bool real) {
+  const auto names = scale_names();
+  if (std::find(names.begin(), names.end(), scale) == names.end())
+    throw ConfigError("unknown scale '" + scale + "' (known: smoke, quick, paper)");
+  if (real) {
+    if (t.real.empty()) throw ConfigError("table '" + t.name + "' has no real-data sequences");
+    return t.real;
+  }
+  const auto it = t.scales.find(scale);
+  if (it == t.scales.end() || it->second.empty())
+    throw ConfigError("table '" + t.name + "' has no sequences for scale '" + scale + "'");
+  return it->second;
+}
+
+const MetricInfo* metric_info(const std::string& key) {
+  static const std::map<std::string, MetricInfo> infos = [] {
+    std::map<std::string, MetricInfo> m;
+    const Json& metrics = tables_root()["metrics"];
+    for (auto it = metrics.begin(); it != metrics.end(); ++it) {
+      MetricInfo info;
+      info.key = it.key();
+      std::string better;
+      ConfigReader r(it.value(), "tables.json: metrics." + it.key());
+      r.require("label", info.label).get("unit", info.unit).require("better", better);
+      r.get("digits", info.digits);
+      r.finish();
+      info.lower_better = better == "lower";
+      m[it.key()] = info;
+    }
+    return m;
+  }();
+  const auto it = infos.find(key);
+  return it == infos.end() ? nullptr : &it->second;
+}
+
+Json paper_numbers(const std::string& table, const std::string& method) {
+  return lookup(paper_root(), "tables", table, method);
+}
+
+Json unverified_numbers(const std::string& table, const std::string& method) {
+  return lookup(paper_root(), "unverified", table, method);
+}
+
+const Json& tolerance_table() { return tables_root()["tolerances"]; }
+
+}  // namespace sgnlf::harness

@@ -1,0 +1,63 @@
+// Table definitions as data: which rows (methods), sequences per scale, and metric columns
+// each table has (runtime/harness/tables.json), and the paper's numbers beside them
+// (results/paper_tables.json, protocol §5). Both files are embedded at configure time.
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/config.hpp"
+
+namespace sgnlf::harness {
+
+const std::string& tables_json();        // embedded runtime/harness/tables.json
+const std::string& paper_tables_json();  // embedded results/paper_tables.json
+
+struct MetricInfo {
+  std::string key, label, unit;
+  bool lower_better = true;
+  int digits = 4;
+};
+
+struct RowDef {
+  std::string method;  // pipeline method name (MethodRequest::method)
+  std::string label;   // as printed in the table
+};
+
+// One sequence of a table. Synthetic twins: `name` is a named sequence of the simulator,
+// `frames`/`width` (0 = the sequence's own) shrink it for the smoke scale. Real data: the
+// source sequence, first frame, frame count and stride in the dataset's own layout.
+struct SequenceDef {
+  std::string name, preset, frequency;
+  int frames = 0, width = 0;
+  std::string sequence;
+  int start = -1, stride = 0;
+  Json to_json() const;
+};
+
+struct TableDef {
+  std::string name, title;
+  std::vector<RowDef> rows;
+  std::vector<std::string> columns;        // the paper's columns (ours beside theirs)
+  std::vector<std::string> extra_columns;  // ours only
+  std::map<std::string, std::vector<SequenceDef>> scales;  // smoke, quick, paper
+  std::vector<SequenceDef> real;           // with --data-root
+};
+
+std::vector<std::string> table_names();
+std::vector<std::string> scale_names();  // smoke, quick, paper
+// Throws ConfigError naming the table and listing the known ones.
+TableDef table_def(const std::string& name);
+// The sequences a run uses: the scale's synthetic twins, or the real windows.
+std::vector<SequenceDef> table_sequences(const TableDef& t, const std::string& scale, bool real);
+
+// Metric metadata; nullptr for a metric the table file does not describe.
+const MetricInfo* metric_info(const std::string& key);
+// The paper's numbers for one row: {metric: value}; empty object when the paper has none.
+Json paper_numbers(const std::string& table, const std::string& method);
+// Numbers from third-party notes (protocol §5, "not verified"): {metric: value}.
+Json unverified_numbers(const std::string& table, const std::string& method);
+// The "tolerances" block of tables.json (documented in results/schema.md).
+const Json& tolerance_table();
+
+}  // namespace sgnlf::harness

@@ -1,0 +1,43 @@
+#include "harness/wiring.hpp"
+
+#include "core/error.hpp"
+
+#ifdef SGNLF_HARNESS_WIRED
+#include "harness/prepare.hpp"
+#endif
+
+namespace sgnlf::harness {
+
+#ifdef SGNLF_HARNESS_WIRED
+bool hooks_wired() { return true; }
+
+BenchHooks default_hooks() {
+  BenchHooks h;
+  h.implemented = [](const std::string& m) { return pipeline::method_implemented(m); };
+  h.run = [](const pipeline::MethodRequest& r) { return pipeline::run_method(r); };
+  h.prepare = [](const SequenceDef& s, const BenchOptions& o, const std::string& dir) {
+    return prepare_sequence(s, o, dir);
+  };
+  return h;
+}
+#else
+bool hooks_wired() { return false; }
+
+BenchHooks default_hooks() {
+  BenchHooks h;
+  h.implemented = [](const std::string&) { return false; };
+  h.run = [](const pipeline::MethodRequest& r) -> pipeline::MethodResult {
+    pipeline::MethodResult res;
+    res.implemented = false;
+    (void)r;
+    return res;
+  };
+  h.prepare = [](const SequenceDef& s, const BenchOptions&, const std::string&) -> PreparedSequence {
+    throw Error("bench: sequence '" + s.name +
+                "' cannot be prepared: this build has no datasets/pipeline modules");
+  };
+  return h;
+}
+#endif
+
+}  // namespace sgnlf::harness

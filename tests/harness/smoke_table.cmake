@@ -1,0 +1,11 @@
+# CTest script: runs the smoke kitti360-standard table and compares it with the committed
+# baseline (exit 4 from `sgnlf compare` = regression → test fails).
+execute_process(COMMAND ${SGNLF} bench --table kitti360-standard --scale smoke --seed 1 --out ${OUT}
+                RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "sgnlf bench failed (exit ${rc})")
+endif()
+execute_process(COMMAND ${SGNLF} compare ${OUT}/results.json ${BASELINE} RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "sgnlf compare found a regression against ${BASELINE} (exit ${rc})")
+endif()

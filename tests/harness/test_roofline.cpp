@@ -1,0 +1,99 @@
+// Roofline probe kernels against host references (the runtime never calls these), and the
+// context block's fields.
+#include <cmath>
+
+#include "harness/context.hpp"
+#include "harness/roofline.hpp"
+#include "support/test_device.hpp"
+
+SGNLF_DEVICE_TESTS;
+
+using namespace sgnlf;
+
+namespace {
+// Host reference of roofline_fma_peak for one work-item (same chains, same summation order).
+float fma_reference(int gid, int iters) {
+  float lane[16];
+  for (int l = 0; l < 16; ++l) lane[l] = float(l) * 0.0625f;
+  const float base = float(gid & 1023) * (1.0f / 1024.0f);
+  float x[8][16];
+  for (int l = 0; l < 16; ++l) {
+    x[0][l] = lane[l] + base;
+    x[1][l] = lane[l] - base;
+    x[2][l] = lane[l] * 0.5f + base;
+    x[3][l] = lane[l] * 0.25f - base;
+    x[4][l] = base - lane[l];
+    x[5][l] = lane[l] + 2.0f * base;
+    x[6][l] = lane[l] * 0.75f;
+    x[7][l] = lane[l] + 0.5f;
+  }
+  for (int i = 0; i < iters; ++i)
+    for (auto& c : x)
+      for (float& v : c) v = std::fma(v, harness::kFmaA, harness::kFmaB);
+  float s[16];
+  for (int l = 0; l < 16; ++l)
+    s[l] = ((x[0][l] + x[1][l]) + (x[2][l] + x[3][l])) + ((x[4][l] + x[5][l]) + (x[6][l] + x[7][l]));
+  float h8[8], h4[4], h2[2];
+  for (int l = 0; l < 8; ++l) h8[l] = s[l] + s[l + 8];
+  for (int l = 0; l < 4; ++l) h4[l] = h8[l] + h8[l + 4];
+  for (int l = 0; l < 2; ++l) h2[l] = h4[l] + h4[l + 2];
+  return h2[0] + h2[1];
+}
+}  // namespace
+
+TEST_CASE("roofline_fma_peak matches the host reference", "[harness][device]") {
+  harness::RooflineProbe probe(test::runtime());
+  for (int iters : {1, 7, 300}) {
+    const size_t n = 2048;
+    probe.run_fma(n, iters);
+    const auto out = probe.fma_output(n);
+    std::vector<float> ref(n);
+    for (size_t i = 0; i < n; ++i) ref[i] = fma_reference(int(i), iters);
+    INFO("iters " << iters);
+    CHECK(test::max_sym_rel_err(out, ref) < 1e-6);
+  }
+  CHECK(harness::fma_flops(10, 3) == 2.0 * 8 * 16 * 3 * 10);
+}
+
+TEST_CASE("roofline copy and triad match the host reference", "[harness][device]") {
+  harness::RooflineProbe probe(test::runtime());
+  const size_t n = 1 << 16;
+  probe.alloc_stream(n);
+  probe.run_copy();
+  CHECK(test::max_abs_err(probe.stream_output(), std::vector<float>(n, 1.0f)) == 0.0);
+  probe.run_triad(3.0f);  // a = b + 3 c = 1 + 6
+  CHECK(test::max_abs_err(probe.stream_output(), std::vector<float>(n, 7.0f)) == 0.0);
+  CHECK(harness::triad_bytes(n) == 12.0 * n);
+  CHECK_THROWS_AS(probe.alloc_stream(6), Error);
+}
+
+TEST_CASE("measure_roofline returns positive summaries", "[harness][device]") {
+  harness::RooflineOptions o;
+  o.target_launch_ms = 5;
+  o.repetitions = 3;
+  o.stream_floats = 1 << 20;
+  const Json r = harness::measure_roofline(test::runtime(), o);
+  CHECK(r["peak_gflops"]["n"] == 3);
+  CHECK(r["peak_gflops_best"].get<double>() > 0);
+  CHECK(r["triad_gbs"]["median"].get<double>() > 0);
+  CHECK(r["peak_gflops_best"].get<double>() >= r["peak_gflops"]["median"].get<double>());
+}
+
+TEST_CASE("context block: git, build, machine, OpenCL", "[harness]") {
+  const auto dev = test::runtime().device();
+  const Json c = harness::context_block(&dev);
+  const std::string sha = c["git"]["sha"];
+  CHECK(sha.size() == 40);
+  CHECK(c["git"]["dirty"].is_boolean());
+  CHECK(c["build"]["compiler"] != "");
+  CHECK(c["build"]["libraries"]["eigen"] != "");
+  CHECK(c["machine"]["logical_cores"].get<int>() > 0);
+  CHECK(c["machine"]["mem_total_kib"].get<long long>() > 0);
+  CHECK(c["opencl"]["device"] == dev.name);
+  CHECK(c["pocl_env"].is_object());
+  CHECK(harness::peak_rss_kib() > 0);
+  const auto flat = harness::flatten(Json{{"a", {{"b", 1}, {"c", "x"}}}});
+  REQUIRE(flat.size() == 2);
+  CHECK(flat[0] == std::make_pair(std::string("a.b"), std::string("1")));
+  CHECK(flat[1] == std::make_pair(std::string("a.c"), std::string("x")));
+}
