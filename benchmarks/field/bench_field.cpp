@@ -2,7 +2,6 @@
 // batch sizes. Each reports points/s and GFLOP/s or GB/s with its fraction of the roofline
 // measured by the probe kernels in the same run (counters peak_gflops / peak_gbs).
 // Time per iteration = enqueue of the whole pass + clFinish (includes launch overheads).
-#include <chrono>
 #include <vector>
 
 #include "core/rng.hpp"
@@ -10,48 +9,15 @@
 #include "field/dir_encoding.hpp"
 #include "field/hash_grid.hpp"
 #include "field/mlp.hpp"
-#include "probe.hpp"
+#include "bench_common.hpp"
 #include "support/bench_support.hpp"
 
 using namespace sgnlf;
+using bench::run_timed;
+using bench::set_counters;
+using bench::uniform;
 using field::Activation;
 
-namespace {
-std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
-  Rng r(seed);
-  std::vector<float> v(n);
-  for (auto& x : v) x = r.uniform(lo, hi);
-  return v;
-}
-template <typename F>
-void run_timed(benchmark::State& state, F&& pass) {
-  auto& rt = bench::runtime();
-  bench::add_device_context();
-  pass();  // warm-up: program builds, first-touch of buffers
-  rt.finish();
-  for (auto _ : state) {
-    const auto t0 = std::chrono::steady_clock::now();
-    pass();
-    rt.finish();
-    state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-}
-// points/s plus either FLOP or byte rate with the roofline fraction.
-void set_counters(benchmark::State& state, double points, double flops, double bytes) {
-  using benchmark::Counter;
-  const auto& roof = bench::roofline();
-  const double it = double(state.iterations());
-  state.counters["points_per_s"] = Counter(points * it, Counter::kIsRate);
-  if (flops > 0) {
-    state.counters["GFLOP/s"] = Counter(flops * it * 1e-9, Counter::kIsRate);
-    state.counters["peak_gflops"] = roof.gflops;
-  }
-  if (bytes > 0) {
-    state.counters["GB/s"] = Counter(bytes * it * 1e-9, Counter::kIsRate);
-    state.counters["peak_gbs"] = roof.gbs;
-  }
-}
-}  // namespace
 
 static void hash_fwd(benchmark::State& state, bool half) {
   auto& rt = bench::runtime();
@@ -63,10 +29,10 @@ static void hash_fwd(benchmark::State& state, bool half) {
   grid.init_params(params, 0, 1);
   auto b_p = cl::Buffer::from(rt, params), b_x = cl::Buffer::from(rt, uniform(size_t(n) * 3, -1, 1, 2));
   cl::Buffer b_enc(rt, size_t(n) * grid.n_output() * 4);
-  run_timed(state, [&] { grid.forward(b_p, 0, b_x, n, b_enc); });
+  const double secs = run_timed(state, [&] { grid.forward(b_p, 0, b_x, n, b_enc); });
   // Bytes: 8 corner gathers of F values per level, x read, encoding written.
   const double bytes = double(n) * (16 * 8 * 2 * (half ? 2 : 4) + 12 + grid.n_output() * 4);
-  set_counters(state, n, 0, bytes);
+  set_counters(state, secs, n, 0, bytes);
 }
 static void BM_HashGridFwd(benchmark::State& s) { hash_fwd(s, false); }
 static void BM_HashGridFwdHalfTable(benchmark::State& s) { hash_fwd(s, true); }
@@ -83,11 +49,11 @@ static void BM_HashGridHalfRefresh(benchmark::State& state) {
   grid.init_params(params, 0, 1);
   auto b_p = cl::Buffer::from(rt, params), b_x = cl::Buffer::from(rt, uniform(3, -1, 1, 2));
   cl::Buffer b_enc(rt, size_t(grid.n_output()) * 4);
-  run_timed(state, [&] {
+  const double secs = run_timed(state, [&] {
     grid.params_changed();
     grid.forward(b_p, 0, b_x, 1, b_enc);  // one point: the time is the refresh
   });
-  set_counters(state, double(params.size()), 0, double(params.size()) * 6);
+  set_counters(state, secs, double(params.size()), 0, double(params.size()) * 6);
 }
 BENCHMARK(BM_HashGridHalfRefresh)->UseManualTime()->Unit(benchmark::kMillisecond);
 
@@ -102,9 +68,10 @@ static void hash_bwd(benchmark::State& state, bool deterministic, bool with_dx) 
   auto b_p = cl::Buffer::from(rt, params), b_x = cl::Buffer::from(rt, uniform(size_t(n) * 3, -1, 1, 2));
   auto b_d = cl::Buffer::from(rt, uniform(size_t(n) * grid.n_output(), -1, 1, 3));
   cl::Buffer b_g(rt, params.size() * 4), b_dx(rt, size_t(n) * 12);
-  run_timed(state, [&] { grid.backward(b_p, 0, b_x, n, b_d, b_g, 0, with_dx ? &b_dx : nullptr); });
+  const double secs = run_timed(
+      state, [&] { grid.backward(b_p, 0, b_x, n, b_d, b_g, 0, with_dx ? &b_dx : nullptr); });
   const double bytes = double(n) * (16 * 8 * 2 * 4 * (with_dx ? 3 : 2)) + double(params.size()) * 4;
-  set_counters(state, n, 0, bytes);
+  set_counters(state, secs, n, 0, bytes);
 }
 static void BM_HashGridBwdDeterministic(benchmark::State& s) { hash_bwd(s, true, false); }
 static void BM_HashGridBwdAtomic(benchmark::State& s) { hash_bwd(s, false, false); }
@@ -126,12 +93,11 @@ static void mlp_bench(benchmark::State& state, const field::MlpSpec& spec, bool 
       b_din(rt, size_t(n) * spec.n_in * 4);
   field::MlpContext ctx;
   mlp.forward(b_p, 0, b_in, n, b_out, ctx);
-  if (backward)
-    run_timed(state, [&] { mlp.backward(b_p, 0, ctx, b_out, b_dout, b_g, 0, &b_din); });
-  else
-    run_timed(state, [&] { mlp.forward(b_p, 0, b_in, n, b_out, ctx); });
+  const double secs =
+      backward ? run_timed(state, [&] { mlp.backward(b_p, 0, ctx, b_out, b_dout, b_g, 0, &b_din); })
+               : run_timed(state, [&] { mlp.forward(b_p, 0, b_in, n, b_out, ctx); });
   // Useful FLOPs (unpadded): forward 2·MACs, backward 4·MACs (weights + inputs).
-  set_counters(state, n, double(n) * spec.macs_per_point() * (backward ? 4 : 2), 0);
+  set_counters(state, secs, n, double(n) * spec.macs_per_point() * (backward ? 4 : 2), 0);
 }
 static field::MlpSpec density_spec() { return field::make_mlp_spec(32, 64, 1, 16, Activation::Relu); }
 static field::MlpSpec head_spec() { return field::make_mlp_spec(87, 64, 3, 2, Activation::Relu); }
@@ -151,11 +117,11 @@ static void BM_DirEncodingAndHeadInput(benchmark::State& state) {
   auto b_dir = cl::Buffer::from(rt, uniform(size_t(rays) * 3, -0.5f, 0.5f, 1));
   auto b_dens = cl::Buffer::from(rt, uniform(size_t(n) * 16, -1, 1, 2));
   cl::Buffer b_enc(rt, size_t(rays) * 72 * 4), b_head(rt, size_t(n) * 87 * 4);
-  run_timed(state, [&] {
+  const double secs = run_timed(state, [&] {
     de.forward(b_dir, rays, b_enc);
     de.head_input_forward(b_dens, b_enc, rays, samples, b_head);
   });
-  set_counters(state, n, 0, double(n) * (64 + 87 * 4));
+  set_counters(state, secs, n, 0, double(n) * (64 + 87 * 4));
 }
 BENCHMARK(BM_DirEncodingAndHeadInput)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 
@@ -166,11 +132,11 @@ static void BM_HeadInputBwd(benchmark::State& state) {
   auto b_dir = cl::Buffer::from(rt, uniform(size_t(rays) * 3, -0.5f, 0.5f, 1));
   auto b_dh = cl::Buffer::from(rt, uniform(size_t(n) * 87, -1, 1, 2));
   cl::Buffer b_ddens(rt, size_t(n) * 64), b_denc(rt, size_t(rays) * 72 * 4), b_ddir(rt, size_t(rays) * 12);
-  run_timed(state, [&] {
+  const double secs = run_timed(state, [&] {
     de.head_input_backward(b_dh, rays, samples, b_ddens, b_denc);
     de.backward(b_dir, rays, b_denc, b_ddir);
   });
-  set_counters(state, n, 0, double(n) * (87 * 4 + 60));
+  set_counters(state, secs, n, 0, double(n) * (87 * 4 + 60));
 }
 BENCHMARK(BM_HeadInputBwd)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 
@@ -179,10 +145,10 @@ static void BM_Adam(benchmark::State& state) {
   const size_t n = size_t(state.range(0));
   field::Adam adam(rt, n);
   auto b_p = cl::Buffer::from(rt, uniform(n, -1, 1, 1)), b_g = cl::Buffer::from(rt, uniform(n, -1, 1, 2));
-  run_timed(state, [&] {
+  const double secs = run_timed(state, [&] {
     adam.begin_step();
     adam.update(b_p, b_g, 0, n, 1e-3f);
   });
-  set_counters(state, double(n), 0, double(n) * 28);  // read p, g, m, v; write p, m, v
+  set_counters(state, secs, double(n), 0, double(n) * 28);  // read p, g, m, v; write p, m, v
 }
 BENCHMARK(BM_Adam)->Arg(16 << 20)->UseManualTime()->Unit(benchmark::kMillisecond);

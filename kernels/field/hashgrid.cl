@@ -178,19 +178,21 @@ __kernel void field_hashgrid_bwd_atomic(const int n, __global const float* x,
   }
 }
 
-// Input-position gradient: d_x[i] = Σ_l Σ_f d_enc[i,l,f] · w_l · ∂interp/∂pos · scale_l · 0.5,
-// from the derivatives of the trilinear weights (piecewise smooth inside each cell).
+// Input-position gradient, level-major like the forward: one work-item per (point, level)
+// writes its level's contribution w_l · scale_l · 0.5 · Σ_f d_enc[i,l,f] · ∂interp/∂pos (from
+// the derivatives of the trilinear weights, smooth inside each cell) to part[l][i] (3 floats);
+// field_hashgrid_dx_reduce then sums the levels in order.
 __kernel void field_hashgrid_bwd_dx(const int n, __global const table_t* params,
                                     const uint param_offset, __global const float* x,
                                     __global const float* scale, __global const uint4* meta,
                                     __global const float* level_weight,
-                                    __global const float* d_enc, __global float* d_x) {
+                                    __global const float* d_enc, __global float* part) {
   const int i = get_global_id(0);
+  const int l = get_global_id(1);
   if (i >= n) return;
-  float3 dx = (float3)(0.0f);
-  for (int l = 0; l < LEVELS; ++l) {
-    const float w = level_weight[l];
-    if (w == 0.0f) continue;
+  const float w = level_weight[l];
+  float3 dp = (float3)(0.0f);
+  if (w != 0.0f) {
     const uint4 m = meta[l];
     const float s = scale[l];
     uint3 g;
@@ -198,7 +200,6 @@ __kernel void field_hashgrid_bwd_dx(const int n, __global const table_t* params,
     const float3 om = (float3)(1.0f) - fr;
     __global const table_t* t = params + param_offset + (size_t)m.y * FEATURES;
     const featv de = LOADF(d_enc + (size_t)i * LF + l * FEATURES);
-    float3 dp = (float3)(0.0f);
     // v = Σ_f d_enc · feature of the corner; ∂w/∂pos_d = ±(product of the other two factors).
 #define DX_CORNER(cx, cy, cz)                                                              \
   {                                                                                        \
@@ -212,9 +213,19 @@ __kernel void field_hashgrid_bwd_dx(const int n, __global const table_t* params,
     DX_CORNER(0, 0, 0) DX_CORNER(1, 0, 0) DX_CORNER(0, 1, 0) DX_CORNER(1, 1, 0)
     DX_CORNER(0, 0, 1) DX_CORNER(1, 0, 1) DX_CORNER(0, 1, 1) DX_CORNER(1, 1, 1)
 #undef DX_CORNER
-    dx = fma((float3)(w * s * 0.5f), dp, dx);
+    dp *= w * s * 0.5f;
   }
-  vstore3(dx, i, d_x);
+  vstore3(dp, (size_t)l * n + i, part);
+}
+
+// d_x[i] = Σ_l part[l][i], levels in order (deterministic).
+__kernel void field_hashgrid_dx_reduce(const int n, __global const float* part,
+                                       __global float* d_x) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  float3 acc = vload3(i, part);
+  for (int l = 1; l < LEVELS; ++l) acc += vload3((size_t)l * n + i, part);
+  vstore3(acc, i, d_x);
 }
 
 // Zeroes count floats of buf from offset (the atomic path accumulates into a zeroed slice).

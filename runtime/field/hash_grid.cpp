@@ -89,6 +89,7 @@ HashGrid::HashGrid(cl::Runtime& rt, const HashGridConfig& cfg)
   bwd_ = rt_.kernel(file, "field_hashgrid_bwd", opt);
   bwd_atomic_ = rt_.kernel(file, "field_hashgrid_bwd_atomic", opt);
   bwd_dx_ = rt_.kernel(file, "field_hashgrid_bwd_dx", table_opt);
+  dx_reduce_ = rt_.kernel(file, "field_hashgrid_dx_reduce", opt);
   zero_ = rt_.kernel(file, "field_hashgrid_zero", opt);
   if (cfg_.half_table) {
     to_half_ = rt_.kernel(file, "field_hashgrid_to_half", opt);
@@ -152,13 +153,19 @@ void HashGrid::backward(const cl::Buffer& params, size_t offset, const cl::Buffe
   if (d_x && n > 0) {
     check_bytes(params, offset + n_params_, "params");
     check_bytes(*d_x, size_t(n) * 3, "d_x");
+    if (dx_part_points_ < size_t(n)) {
+      dx_part_ = cl::Buffer(rt_, size_t(n) * size_t(cfg_.levels) * 3 * sizeof(float));
+      dx_part_points_ = size_t(n);
+    }
     if (cfg_.half_table) {
       refresh_half(params, offset);
-      bwd_dx_.set_args(n, half_, uint32_t(0), x, scale_, meta_, weights_, d_enc, *d_x);
+      bwd_dx_.set_args(n, half_, uint32_t(0), x, scale_, meta_, weights_, d_enc, dx_part_);
     } else {
-      bwd_dx_.set_args(n, params, uint32_t(offset), x, scale_, meta_, weights_, d_enc, *d_x);
+      bwd_dx_.set_args(n, params, uint32_t(offset), x, scale_, meta_, weights_, d_enc, dx_part_);
     }
-    bwd_dx_.launch({cl::round_up(size_t(n), 64)}, {64});
+    bwd_dx_.launch({cl::round_up(size_t(n), 64), size_t(cfg_.levels)}, {64, 1});
+    dx_reduce_.set_args(n, dx_part_, *d_x);
+    dx_reduce_.launch({cl::round_up(size_t(n), 64)}, {64});
   }
 }
 

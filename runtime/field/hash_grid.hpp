@@ -87,7 +87,9 @@ class HashGrid {
   size_t n_params_ = 0;
   std::vector<float> weights_host_;
   cl::Buffer scale_, meta_, weights_;
-  cl::Kernel fwd_, bwd_, bwd_atomic_, bwd_dx_, zero_, to_half_;
+  cl::Kernel fwd_, bwd_, bwd_atomic_, bwd_dx_, dx_reduce_, zero_, to_half_;
+  cl::Buffer dx_part_;  // L × N × 3 per-level d_x contributions
+  size_t dx_part_points_ = 0;
   cl::Buffer half_;  // fp16 table when half_table
   bool half_dirty_ = true;
   cl_mem half_src_ = nullptr;

@@ -1,0 +1,64 @@
+// Helpers shared by the field benchmarks: random inputs, wall-clock timing of enqueued passes
+// (enqueue + clFinish, so launch overheads count) and the points/s, GFLOP/s, GB/s counters with
+// their fraction of the roofline probes measured in the same run.
+#pragma once
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+#include "core/rng.hpp"
+#include "probe.hpp"
+#include "support/bench_support.hpp"
+
+namespace sgnlf::bench {
+
+inline std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
+  Rng r(seed);
+  std::vector<float> v(n);
+  for (auto& x : v) x = r.uniform(lo, hi);
+  return v;
+}
+
+// Runs `pass` once to warm up, then once per iteration; returns the summed seconds.
+template <typename F>
+double run_timed(benchmark::State& state, F&& pass) {
+  auto& rt = runtime();
+  add_device_context();
+  roofline();  // probes run before the timed passes, not in the middle of them
+  pass();
+  rt.finish();
+  double total = 0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    pass();
+    rt.finish();
+    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    state.SetIterationTime(dt);
+    total += dt;
+  }
+  return total;
+}
+
+// Per-iteration work: points, FLOPs, bytes (0 = not reported); `secs` from run_timed.
+inline void set_counters(benchmark::State& state, double secs, double points, double flops,
+                         double bytes) {
+  using benchmark::Counter;
+  const auto& roof = roofline();
+  const double it = double(state.iterations());
+  secs = std::max(secs, 1e-12);
+  state.counters["points_per_s"] = Counter(points * it / secs);
+  if (flops > 0) {
+    const double g = flops * it / secs * 1e-9;
+    state.counters["GFLOP/s"] = g;
+    state.counters["peak_GFLOP/s"] = roof.gflops;
+    state.counters["frac_peak"] = g / roof.gflops;
+  }
+  if (bytes > 0) {
+    const double g = bytes * it / secs * 1e-9;
+    state.counters["GB/s"] = g;
+    state.counters["peak_GB/s"] = roof.gbs;
+    state.counters["frac_peak"] = g / roof.gbs;
+  }
+}
+
+}  // namespace sgnlf::bench
