@@ -95,35 +95,38 @@ Sensor resolve_sensor(const LoadOptions& opt, const Sensor& layout_default) {
   return sensor_preset(opt.sensor);
 }
 
-void load_frame_scan(Frame& f, const std::string& scan_path, const Sensor& s, bool load_points) {
+void load_frame_scan(Frame& f, const std::string& scan_path, const Sensor& s, bool load_points,
+                     ProjectionStats& dropped) {
   io::ScanReadStats rs;
   auto pts = io::read_scan(scan_path, &rs);
   ProjectionStats ps;
   f.image = project_points(s, pts, &ps);
-  if (ps.beyond_range + ps.below_min_range + ps.out_of_fov + ps.non_finite > 0)
-    log::debug(scan_path, ": ", rs.records, " points; not projected: ", ps.beyond_range,
-               " beyond ", s.max_range_m, " m, ", ps.below_min_range, " within min range, ",
-               ps.out_of_fov, " outside the field of view; ", ps.occluded,
-               " behind a nearer return in their pixel");
+  log::debug(scan_path, ": ", rs.records, " points; not projected: ", rs.non_finite, " NaN/Inf, ",
+             ps.beyond_range, " at >= ", s.max_range_m, " m, ", ps.below_min_range, " within ",
+             s.min_range_m, " m, ", ps.out_of_fov, " outside the field of view; ", ps.occluded,
+             " behind a nearer return in their pixel");
+  dropped.non_finite += rs.non_finite;
+  dropped.beyond_range += ps.beyond_range;
+  dropped.below_min_range += ps.below_min_range;
+  dropped.out_of_fov += ps.out_of_fov;
+  dropped.occluded += ps.occluded;
+  dropped.projected += ps.projected;
   if (load_points) f.points = std::move(pts);
 }
 
-void finish_dataset(Dataset& d) {
+void finish_dataset(Dataset& d, const ProjectionStats& dropped) {
   if (d.frames.empty()) throw IoError(d.path + ": no frames loaded");
   const double t0 = d.frames.front().timestamp_s;
   for (auto& f : d.frames) f.timestamp_s -= t0;
   d.split = protocol_split(int(d.frames.size()), d.frequency);
-  size_t pts = 0, beyond = 0, returns = 0;
-  for (const auto& f : d.frames) {
-    pts += f.points.size();
-    for (float r : f.image.range) returns += r > 0.f;
-    for (const auto& p : f.points)
-      beyond += double(p.x) * p.x + double(p.y) * p.y + double(p.z) * p.z >=
-                d.sensor.max_range_m * d.sensor.max_range_m;
-  }
+  size_t pts = 0;
+  for (const auto& f : d.frames) pts += f.points.size();
   log::info(d.path, ": ", d.frames.size(), " frames (", d.source, ", ", d.frequency, "), ", pts,
-            " points, ", returns, " range-image returns; ", beyond, " points at >= ",
-            d.sensor.max_range_m, " m not projected");
+            " points kept, ", dropped.projected, " range-image returns; dropped from the range images: ",
+            dropped.non_finite, " NaN/Inf (also dropped from the points), ", dropped.beyond_range,
+            " at >= ", d.sensor.max_range_m, " m, ", dropped.below_min_range, " within min range, ",
+            dropped.out_of_fov, " outside the field of view, ", dropped.occluded,
+            " behind a nearer return");
 }
 
 }  // namespace detail

@@ -18,10 +18,13 @@ int default_count(const LoadOptions& opt, const std::string& frequency);
 std::string resolve_frequency(const LoadOptions& opt, const std::string& fallback);
 Sensor resolve_sensor(const LoadOptions& opt, const Sensor& layout_default);
 
-// Reads the scan into `f.points` and projects it into `f.image`, logging dropped points.
-void load_frame_scan(Frame& f, const std::string& scan_path, const Sensor& s, bool load_points);
-// Fills timestamps relative to the first frame, the split and logs a summary.
-void finish_dataset(Dataset& d);
+// Reads the scan into `f.points` and projects it into `f.image`; the points the projection
+// drops (and NaN/Inf records) are added to `dropped` and logged per frame at debug level.
+void load_frame_scan(Frame& f, const std::string& scan_path, const Sensor& s, bool load_points,
+                     ProjectionStats& dropped);
+// Fills timestamps relative to the first frame and the split; logs a summary with the totals
+// of dropped points.
+void finish_dataset(Dataset& d, const ProjectionStats& dropped);
 
 Dataset load_kitti360(const std::string& root, const LoadOptions& opt, bool synthetic);
 Dataset load_kitti_odometry(const std::string& root, const LoadOptions& opt);

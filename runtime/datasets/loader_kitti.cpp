@@ -128,15 +128,16 @@ Dataset load_kitti360(const std::string& root_s, const LoadOptions& opt, bool sy
   d.path = root_s;
   d.frequency = freq;
   d.sensor = sensor;
+  ProjectionStats dropped;
   for (int id : ids) {
     Frame f;
     f.id = id;
     f.timestamp_s = stamps.count(id) ? stamps.at(id) : id / sensor.rate_hz;
     f.T_world_lidar = poses.at(id) * T_imu_lidar;
-    load_frame_scan(f, frame_file(scan_dir, id, 10, ".bin"), sensor, opt.load_points);
+    load_frame_scan(f, frame_file(scan_dir, id, 10, ".bin"), sensor, opt.load_points, dropped);
     d.frames.push_back(std::move(f));
   }
-  finish_dataset(d);
+  finish_dataset(d, dropped);
   return d;
 }
 
@@ -181,16 +182,17 @@ Dataset load_kitti_odometry(const std::string& root_s, const LoadOptions& opt) {
   d.path = root_s;
   d.frequency = freq;
   d.sensor = sensor;
+  ProjectionStats dropped;
   const Pose Tr_inv = Tr.inverse();
   for (int id : ids) {
     Frame f;
     f.id = id;
     f.timestamp_s = size_t(id) < times.size() ? times[size_t(id)] : id / sensor.rate_hz;
     f.T_world_lidar = Tr_inv * cam_poses[size_t(id)] * Tr;  // inv(Tr) · P_cam0(k) · Tr
-    load_frame_scan(f, frame_file(sdir / "velodyne", id, 6, ".bin"), sensor, opt.load_points);
+    load_frame_scan(f, frame_file(sdir / "velodyne", id, 6, ".bin"), sensor, opt.load_points, dropped);
     d.frames.push_back(std::move(f));
   }
-  finish_dataset(d);
+  finish_dataset(d, dropped);
   return d;
 }
 

@@ -101,6 +101,7 @@ Dataset load_nuscenes(const std::string& root_s, const LoadOptions& opt) {
   d.path = root_s;
   d.frequency = freq;
   d.sensor = sensor;
+  ProjectionStats dropped;
   for (int id : ids) {
     const Json& r = *recs[size_t(id)].j;
     Frame f;
@@ -108,10 +109,10 @@ Dataset load_nuscenes(const std::string& root_s, const LoadOptions& opt) {
     f.timestamp_s = recs[size_t(id)].ts * 1e-6;
     f.T_world_lidar = pose_of(lookup(ego, r, "ego_pose_token"), ego.file) *
                       pose_of(lookup(cal, r, "calibrated_sensor_token"), cal.file);
-    load_frame_scan(f, (root / r.value("filename", "")).string(), sensor, opt.load_points);
+    load_frame_scan(f, (root / r.value("filename", "")).string(), sensor, opt.load_points, dropped);
     d.frames.push_back(std::move(f));
   }
-  finish_dataset(d);
+  finish_dataset(d, dropped);
   return d;
 }
 
@@ -132,17 +133,18 @@ Dataset load_scans(const std::string& path, const LoadOptions& opt) {
   d.path = path;
   d.frequency = resolve_frequency(opt, "standard");
   d.sensor = sensor;
+  ProjectionStats dropped;
   const size_t first = size_t(std::max(0, opt.start));
   const size_t stride = size_t(opt.stride > 0 ? opt.stride : 1);
   for (size_t i = first; i < files.size() && (opt.frames < 0 || int(d.frames.size()) < opt.frames); i += stride) {
     Frame f;
     f.id = int(i);
     f.timestamp_s = double(i) / sensor.rate_hz;  // no pose and no clock: identity poses
-    load_frame_scan(f, files[i], sensor, opt.load_points);
+    load_frame_scan(f, files[i], sensor, opt.load_points, dropped);
     d.frames.push_back(std::move(f));
   }
   log::warn(path, ": plain scans carry no poses; ground-truth poses are the identity");
-  finish_dataset(d);
+  finish_dataset(d, dropped);
   return d;
 }
 

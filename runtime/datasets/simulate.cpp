@@ -147,6 +147,8 @@ SimResult simulate(const SimOptions& opt) {
   return res;
 }
 
+Dataset simulate_dataset(const SimOptions& opt) { return simulate(opt).dataset; }
+
 namespace {
 // Fixed extrinsics of the synthetic car, shaped like KITTI-360's (camera axes: x right,
 // y down, z forward; LiDAR and IMU: x forward, y left, z up).

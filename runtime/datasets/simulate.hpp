@@ -47,6 +47,8 @@ struct SimResult {
 };
 
 SimResult simulate(const SimOptions& opt);
+// simulate(opt).dataset
+Dataset simulate_dataset(const SimOptions& opt);
 // Writes the KITTI-360-like layout (scans, poses, calibration, sensor, metadata, GT).
 void write_synthetic(const SimResult& r, const std::string& dir);
 

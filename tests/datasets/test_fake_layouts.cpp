@@ -174,3 +174,24 @@ TEST_CASE("nuScenes layout: missing table or record", "[layout][bad-input]") {
   write_json_file(r2 + "/v1.0-mini/ego_pose.json", Json::array({quat_pose("e0", 0, Vec3(0, 0, 0))}));
   CHECK_THROWS_WITH(load_dataset(r2), Catch::Contains("ego_pose.json") && Catch::Contains("no record with token"));
 }
+
+TEST_CASE("KITTI odometry layout: too few pose rows, missing Tr", "[layout][bad-input]") {
+  const std::string root = test::temp_dir("fake_odometry");
+  fs::create_directories(root + "/poses");
+  fs::create_directories(root + "/sequences/07");
+  write_text_file(root + "/sequences/07/calib.txt", "P0: 1 0 0 0 0 1 0 0 0 0 1 0\nTr: " + pose12(make_pose(-1.5, 0.01, Vec3(0.1, 0, -0.1))) + "\n");
+  write_text_file(root + "/poses/07.txt", pose12(Pose::Identity()) + "\n" + pose12(make_pose(0, 0, Vec3(0, 0, 1))) + "\n");
+  for (int id = 0; id < 2; ++id) {
+    char n[32];
+    std::snprintf(n, sizeof(n), "/%06d.bin", id);
+    io::write_kitti_bin(root + "/sequences/07/velodyne" + n, scan(float(id)));
+  }
+  CHECK(detect_layout(root) == "kitti-odometry");
+  const Dataset d = load_dataset(root);
+  REQUIRE(d.frames.size() == 2);
+  CHECK((d.frames[1].T_world_lidar.translation() - d.frames[0].T_world_lidar.translation()).norm() == Approx(1.0));
+  io::write_kitti_bin(root + "/sequences/07/velodyne/000002.bin", scan(2.f));  // a scan without a pose row
+  CHECK_THROWS_WITH(load_dataset(root), Catch::Contains("07.txt") && Catch::Contains("2 pose rows"));
+  write_text_file(root + "/sequences/07/calib.txt", "P0: 1 0 0 0 0 1 0 0 0 0 1 0\n");
+  CHECK_THROWS_WITH(load_dataset(root), Catch::Contains("calib.txt") && Catch::Contains("'Tr'"));
+}
