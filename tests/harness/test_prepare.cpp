@@ -1,0 +1,66 @@
+// Sequence preparation for `sgnlf bench`: a synthetic twin is simulated into the folder the
+// pipeline reads; a real KITTI-360 window (--data-root) is copied out in the same layout with
+// exactly the protocol window. The "real" tree is a simulated one with its sgnlf metadata
+// removed, which is KITTI-360's raw layout.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include "datasets/loader.hpp"
+#include "harness/prepare.hpp"
+#include "support/test_device.hpp"
+
+using namespace sgnlf;
+namespace fs = std::filesystem;
+
+TEST_CASE("prepare a synthetic smoke sequence", "[harness][data]") {
+  const std::string dir = test::temp_dir("harness-prepare-syn");
+  harness::SequenceDef s;
+  s.name = "kitti360-1538";
+  s.preset = "kitti360";
+  s.frequency = "standard";
+  s.frames = 14;
+  s.width = 128;
+  harness::BenchOptions o;
+  const auto p = harness::prepare_sequence(s, o, dir + "/seq");
+  CHECK(p.dataset["frames"] == 14);
+  CHECK(p.dataset["sensor"]["width"] == 128);
+  CHECK(p.dataset["test"] == Json::array({13}));  // protocol §3: every 13th from 13
+  CHECK(p.dataset["seed"] == harness::kSyntheticDataSeed);
+  const Dataset d = load_dataset(p.dataset_dir);
+  CHECK(d.frames.size() == 14);
+  CHECK(d.source == "synthetic");
+}
+
+TEST_CASE("prepare a real KITTI-360 window", "[harness][data]") {
+  const std::string root = test::temp_dir("harness-prepare-real");
+  // A KITTI-360-like tree: simulate 20 frames, then drop the synthetic metadata.
+  harness::SequenceDef sim;
+  sim.name = "kitti360-1728";
+  sim.preset = "kitti360";
+  sim.frequency = "standard";
+  sim.frames = 20;
+  sim.width = 128;
+  harness::prepare_sequence(sim, harness::BenchOptions{}, root + "/kitti360");
+  fs::remove(root + "/kitti360/sgnlf_dataset.json");
+  fs::remove(root + "/kitti360/sensor.json");
+
+  harness::SequenceDef win;
+  win.name = "window";
+  win.preset = "kitti360";
+  win.frequency = "low";
+  win.sequence = "kitti360-1728_sync";
+  win.start = 2;
+  win.frames = 4;
+  win.stride = 5;
+  harness::BenchOptions o;
+  o.data_root = root + "/kitti360";
+  const auto p = harness::prepare_sequence(win, o, root + "/prepared");
+  CHECK(p.dataset["frame_ids"] == Json::array({2, 7, 12, 17}));
+  CHECK(p.dataset["frequency"] == "low");
+  CHECK(p.dataset["seed"].is_null());
+  const Dataset d = load_dataset(p.dataset_dir);
+  REQUIRE(d.frames.size() == 4);
+  CHECK(d.frames[1].id == 7);
+  CHECK(d.sensor.width == 1030);  // the real layout's sensor (KITTI-360 preset)
+}
