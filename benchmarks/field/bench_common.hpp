@@ -4,6 +4,7 @@
 #pragma once
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <vector>
 
 #include "core/rng.hpp"
@@ -19,7 +20,12 @@ inline std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
   return v;
 }
 
-// Runs `pass` once to warm up, then once per iteration; returns the summed seconds.
+// Process CPU seconds (all threads, including the OpenCL device's worker threads).
+inline double process_cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
+
+// Runs `pass` once to warm up, then once per iteration; returns the summed wall seconds and
+// sets the counter cpu_s (process CPU seconds per iteration: robust to other load on a shared
+// machine, where wall time is not).
 template <typename F>
 double run_timed(benchmark::State& state, F&& pass) {
   auto& rt = runtime();
@@ -28,6 +34,7 @@ double run_timed(benchmark::State& state, F&& pass) {
   pass();
   rt.finish();
   double total = 0;
+  const double cpu0 = process_cpu_seconds();
   for (auto _ : state) {
     const auto t0 = std::chrono::steady_clock::now();
     pass();
@@ -36,6 +43,8 @@ double run_timed(benchmark::State& state, F&& pass) {
     state.SetIterationTime(dt);
     total += dt;
   }
+  state.counters["cpu_s"] =
+      (process_cpu_seconds() - cpu0) / std::max<double>(1, double(state.iterations()));
   return total;
 }
 
@@ -47,6 +56,8 @@ inline void set_counters(benchmark::State& state, double secs, double points, do
   const double it = double(state.iterations());
   secs = std::max(secs, 1e-12);
   state.counters["points_per_s"] = Counter(points * it / secs);
+  if (state.counters.count("cpu_s") && state.counters["cpu_s"].value > 0)
+    state.counters["points_per_cpu_s"] = points / state.counters["cpu_s"].value;
   if (flops > 0) {
     const double g = flops * it / secs * 1e-9;
     state.counters["GFLOP/s"] = g;

@@ -41,11 +41,30 @@
 // The table the forward and d_x read: the fp32 parameters, or with HALF_TABLE a packed fp16
 // copy (one 32-bit word per entry at F = 2: 4-byte gathers, performance.md).
 #if HALF_TABLE
-#define table_t half
+// fp16 → fp32 by integer ops (vload_half is a slow software path on PoCL CPU): normals by
+// exponent re-bias, subnormals as mantissa · 2^-24 (never producing fp32 denormals).
+inline float half_bits_to_float(uint h) {
+  const uint sign = (h & 0x8000u) << 16, mag = h & 0x7fffu;
+  const float normal = as_float(sign | ((mag + 0x1c000u) << 13));
+  const float sub = as_float(sign | as_uint((float)mag * 5.9604644775390625e-8f));
+  return mag >= 0x400u ? normal : sub;
+}
+#define table_t ushort
 #if FEATURES == 1
-#define LOADT(p) vload_half(0, p)
+#define LOADT(p) half_bits_to_float(*(p))
+#elif FEATURES == 2
+inline float2 load_half2_bits(__global const ushort* p) {
+  const uint w = *(__global const uint*)p;  // one 4-byte gather per entry
+  return (float2)(half_bits_to_float(w & 0xffffu), half_bits_to_float(w >> 16));
+}
+#define LOADT(p) load_half2_bits(p)
 #else
-#define LOADT(p) CONCAT(vload_half, FEATURES)(0, p)
+inline featv load_halfn_bits(__global const ushort* p) {
+  float v[FEATURES];
+  for (int f = 0; f < FEATURES; ++f) v[f] = half_bits_to_float(p[f]);
+  return LOADF(v);
+}
+#define LOADT(p) load_halfn_bits(p)
 #endif
 #else
 #define table_t float
@@ -92,27 +111,32 @@ inline float3 hg_locate(__global const float* x, int i, float s, uint3* g) {
 #define CORNER_E(cx, cy, cz, g, m) hg_index((g).x + (cx), (g).y + (cy), (g).z + (cz), m)
 
 // One work-item per (point, level); the level is the slow dimension (level-major scheduling).
+// Straight-line scalar body without early exits, so the work-group loop vectorises across
+// work-items (tail work-items read point n − 1 and skip the store).
 __kernel void field_hashgrid_fwd(const int n, __global const table_t* params, const uint param_offset,
                                  __global const float* x, __global const float* scale,
                                  __global const uint4* meta, __global const float* level_weight,
                                  __global float* enc) {
   const int i = get_global_id(0);
   const int l = get_global_id(1);
-  if (i >= n) return;
+  const int ii = min(i, n - 1);
   const float w = level_weight[l];
+  const uint4 m = meta[l];
+  const float s = scale[l];
+  const float px = fma(fma(x[3 * ii + 0], 0.5f, 0.5f), s, 0.5f);
+  const float py = fma(fma(x[3 * ii + 1], 0.5f, 0.5f), s, 0.5f);
+  const float pz = fma(fma(x[3 * ii + 2], 0.5f, 0.5f), s, 0.5f);
+  const float flx = floor(px), fly = floor(py), flz = floor(pz);
+  const float3 fr = (float3)(px - flx, py - fly, pz - flz);
+  const uint3 g = (uint3)((uint)(int)flx, (uint)(int)fly, (uint)(int)flz);
+  __global const table_t* t = params + param_offset + (size_t)m.y * FEATURES;
   featv acc = (featv)(0.0f);
-  if (w != 0.0f) {
-    const uint4 m = meta[l];
-    uint3 g;
-    const float3 fr = hg_locate(x, i, scale[l], &g);
-    __global const table_t* t = params + param_offset + (size_t)m.y * FEATURES;
 #define FWD_CORNER(cx, cy, cz) \
-  acc = fma((featv)(CORNER_W(cx, cy, cz, fr)), LOADT(t + (size_t)CORNER_E(cx, cy, cz, g, m) * FEATURES), acc)
-    FWD_CORNER(0, 0, 0); FWD_CORNER(1, 0, 0); FWD_CORNER(0, 1, 0); FWD_CORNER(1, 1, 0);
-    FWD_CORNER(0, 0, 1); FWD_CORNER(1, 0, 1); FWD_CORNER(0, 1, 1); FWD_CORNER(1, 1, 1);
+  acc = fma((featv)(CORNER_W(cx, cy, cz, fr)), LOADT(t + (int)(CORNER_E(cx, cy, cz, g, m) * FEATURES)), acc)
+  FWD_CORNER(0, 0, 0); FWD_CORNER(1, 0, 0); FWD_CORNER(0, 1, 0); FWD_CORNER(1, 1, 0);
+  FWD_CORNER(0, 0, 1); FWD_CORNER(1, 0, 1); FWD_CORNER(0, 1, 1); FWD_CORNER(1, 1, 1);
 #undef FWD_CORNER
-  }
-  STOREF(w * acc, enc + (size_t)i * LF + l * FEATURES);
+  if (i < n) STOREF(w * acc, enc + (size_t)i * LF + l * FEATURES);
 }
 
 // Deterministic parameter gradient: one work-item per level owns its slice of the gradient
@@ -234,7 +258,8 @@ __kernel void field_hashgrid_zero(__global float* buf, const uint offset, const 
   if (i < count) buf[offset + i] = 0.0f;
 }
 
-// fp16 copy of the table for HALF_TABLE forward/d_x: half_table[i] = params[offset + i] (RTE).
+// fp16 copy of the table for HALF_TABLE forward/d_x: half_table[i] = params[offset + i] (RTE;
+// inf/NaN are not expected in a trained table and are not special-cased by the decoder).
 __kernel void field_hashgrid_to_half(__global const float* params, const uint offset,
                                      const uint count, __global half* half_table) {
   const uint i = get_global_id(0);
