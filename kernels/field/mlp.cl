@@ -118,34 +118,39 @@ __kernel void field_mlp_bwd_out(const int n, __global const float* d_out, __glob
 }
 
 // Weight gradient, phase 1: partial[c] = Σ_{points of chunk c, in order} [in, 1]ᵀ · d_pre.
-// Work-item = chunk × ROWS rows of the (N_IN + 1) × OUT_PAD block × 16 outputs.
+// Work-item = chunk × ROWS input rows × 16 outputs; the last row block (id ceil(N_IN/ROWS))
+// computes the bias row Σ d_pre alone, so the main loop is plain loads and FMAs.
+#define ROW_BLOCKS ((N_IN + ROWS - 1) / ROWS)
 __kernel void field_mlp_bwd_wgt(const int n, const int chunk, __global const float* in,
                                 __global const float* d_pre, __global float* partial) {
   const int c = get_global_id(0);
-  const int r0 = get_global_id(1) * ROWS;
+  const int rb = get_global_id(1);
   const int o0 = get_global_id(2) * 16;
-  if (r0 > N_IN) return;
+  const int begin = c * chunk, end = min(n, begin + chunk);
+  __global float* dst = partial + (size_t)c * (N_IN + 1) * OUT_PAD;
+  if (rb == ROW_BLOCKS) {
+    float16 acc = (float16)(0.0f);
+    for (int i = begin; i < end; ++i) acc += vload16(0, d_pre + (size_t)i * OUT_PAD + o0);
+    vstore16(acc, 0, dst + (size_t)N_IN * OUT_PAD + o0);
+    return;
+  }
+  const int r0 = rb * ROWS;
   float16 acc[ROWS];
   int col[ROWS];
 #pragma unroll
   for (int r = 0; r < ROWS; ++r) {
     acc[r] = (float16)(0.0f);
-    col[r] = min(r0 + r, N_IN - 1);
+    col[r] = min(r0 + r, N_IN - 1);  // rows past N_IN repeat the last one; not stored
   }
-  const int begin = c * chunk, end = min(n, begin + chunk);
   for (int i = begin; i < end; ++i) {
     const float16 d = vload16(0, d_pre + (size_t)i * OUT_PAD + o0);
     __global const float* row = in + (size_t)i * IN_STRIDE;
 #pragma unroll
-    for (int r = 0; r < ROWS; ++r) {
-      const float v = (r0 + r < N_IN) ? row[col[r]] : 1.0f;  // row N_IN is the bias
-      acc[r] = fma((float16)(v), d, acc[r]);
-    }
+    for (int r = 0; r < ROWS; ++r) acc[r] = fma((float16)(row[col[r]]), d, acc[r]);
   }
-  __global float* dst = partial + (size_t)c * (N_IN + 1) * OUT_PAD;
 #pragma unroll
   for (int r = 0; r < ROWS; ++r)
-    if (r0 + r <= N_IN) vstore16(acc[r], 0, dst + (size_t)(r0 + r) * OUT_PAD + o0);
+    if (r0 + r < N_IN) vstore16(acc[r], 0, dst + (size_t)(r0 + r) * OUT_PAD + o0);
 }
 
 // Weight gradient, phase 2: grad[w_off + k] = Σ_c partial[c][k] in chunk order (overwrites).

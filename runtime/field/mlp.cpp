@@ -202,7 +202,7 @@ void Mlp::backward(const cl::Buffer& params, size_t offset, const MlpContext& ct
     Layer& L = layers_[size_t(l)];
     const cl::Buffer& src = l == 0 ? *ctx.in : ctx.post[size_t(l - 1)];
     L.wgt.set_args(n, chunk, src, d_pre_[cur], partial_);
-    L.wgt.launch({chunks, ceil_div(size_t(L.n_in + 1), kRows), size_t(L.out_pad / 16)},
+    L.wgt.launch({chunks, ceil_div(size_t(L.n_in), kRows) + 1, size_t(L.out_pad / 16)},
                  {1, 1, size_t(L.out_pad / 16)});
     const size_t count = size_t(L.n_in + 1) * L.out_pad;
     L.reduce.set_args(int(chunks), partial_, grad, uint32_t(grad_offset + layer_off_[size_t(l)]));
