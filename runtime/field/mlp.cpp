@@ -12,8 +12,8 @@ namespace sgnlf::field {
 namespace {
 constexpr int kPts = 8;          // points per work-item in the GEMM kernels
 constexpr int kRows = 16;        // weight rows per work-item in the weight gradient
-constexpr int kMaxChunks = 64;   // weight-gradient partial sums (fixed for a given N)
-constexpr int kMinChunk = 256;   // points per chunk at least
+constexpr int kMaxChunks = 32;   // weight-gradient partial sums (fixed for a given N)
+constexpr int kMinChunk = 2048;  // points per chunk at least
 constexpr size_t kLocal = 16;    // work-group size along the point dimension
 
 void check_bytes(const cl::Buffer& b, size_t floats, const char* what) {
