@@ -95,7 +95,7 @@ class Cylinder final : public Shape {
   }
   std::vector<SurfacePoint> lattice(size_t n) const override {
     const size_t nz = std::max<size_t>(2, size_t(std::sqrt(double(n) * L_ / (2 * kPi * R_))));
-    const size_t nphi = std::max<size_t>(2, n / nz);
+    const size_t nphi = std::max<size_t>(2, (n + nz - 1) / nz);  // at least n points
     std::vector<SurfacePoint> pts;
     pts.reserve(nz * nphi);
     for (size_t i = 0; i < nz; ++i)
@@ -150,7 +150,7 @@ class Torus final : public Shape {
   }
   std::vector<SurfacePoint> lattice(size_t n) const override {
     const size_t nth = std::max<size_t>(4, size_t(std::sqrt(double(n) * r_ / R_)));
-    const size_t nphi = std::max<size_t>(4, n / nth);
+    const size_t nphi = std::max<size_t>(4, (n + nth - 1) / nth);  // at least n points
     std::vector<SurfacePoint> pts;
     pts.reserve(nth * nphi);
     double total = 0;
@@ -199,7 +199,7 @@ class Square final : public Shape {
     return pts;
   }
   std::vector<SurfacePoint> lattice(size_t n) const override {
-    const size_t m = std::max<size_t>(2, size_t(std::sqrt(double(n))));
+    const size_t m = std::max<size_t>(2, size_t(std::ceil(std::sqrt(double(n)))));
     std::vector<SurfacePoint> pts;
     pts.reserve(m * m);
     for (size_t i = 0; i < m; ++i)

@@ -54,7 +54,7 @@ class Shape {
   virtual double area() const = 0;
   // n area-uniform random points (weights 1/n).
   virtual std::vector<SurfacePoint> sample(Rng& rng, size_t n) const = 0;
-  // A quasi-uniform lattice of about n_target points with area weights.
+  // A quasi-uniform lattice of at least n_target points (a few more) with area weights.
   virtual std::vector<SurfacePoint> lattice(size_t n_target) const = 0;
   // The smallest non-zero eigenvalue groups of −Δ_S (free/Neumann boundary where there is
   // one), ascending, until at least n_modes eigenvalues are covered.

@@ -56,7 +56,7 @@ std::vector<int> chart_cells(const Shape& shape, const ShapeSpec& spec,
 
 std::vector<size_t> thin_to_uniform_density(const std::vector<Eigen::Vector3d>& pts, double radius,
                                             Rng& rng, double quantile) {
-  require(radius > 0 && quantile > 0 && quantile <= 1, "thin_to_uniform_density: bad radius/quantile");
+  require(radius > 0 && quantile >= 0 && quantile <= 1, "thin_to_uniform_density: bad radius/quantile");
   auto key = [&](const Eigen::Vector3d& x, int dx, int dy, int dz) {
     const int64_t i = int64_t(std::floor(x.x() / radius)) + dx, j = int64_t(std::floor(x.y() / radius)) + dy,
                   k = int64_t(std::floor(x.z() / radius)) + dz;

@@ -24,8 +24,9 @@ std::vector<int> chart_cells(const Shape& shape, const ShapeSpec& spec,
 
 // Indices of a thinned subset with approximately uniform area density: the local density is
 // the neighbour count within `radius` (voxel hash), and point i is kept with probability
-// min(1, c_q / c_i), c_q the `quantile` of the counts.
+// min(1, c_q / c_i), c_q the `quantile` of the counts (0 = the minimum: uniform up to the
+// count noise; a higher quantile keeps more points but under-fills the sparsest regions).
 std::vector<size_t> thin_to_uniform_density(const std::vector<Eigen::Vector3d>& pts, double radius,
-                                            Rng& rng, double quantile = 0.05);
+                                            Rng& rng, double quantile = 0.0);
 
 }  // namespace sgnlf::spectral

@@ -1,0 +1,97 @@
+// Ψ spec and last-layer access (psi.hpp).
+#include "spectral/psi.hpp"
+
+#include "core/error.hpp"
+#include "core/rng.hpp"
+
+namespace sgnlf::spectral {
+
+void PsiSpec::validate() const {
+  check_range("spectral psi", "k", k, 1, 128);
+  check_range("spectral psi", "width", width, 1, 128);
+  check_range("spectral psi", "hidden", hidden, 1, 8);
+  check_range("spectral psi", "bias_init", bias_init, 0.0, 100.0);
+  check_range("spectral psi", "first_layer_scale", first_layer_scale, 1e-3, 1e3);
+  if (activation == field::Activation::Relu || activation == field::Activation::None)
+    throw ConfigError("spectral psi: activation must be smooth (tanh, softplus or sine), got " +
+                      field::to_string(activation));
+}
+
+field::MlpSpec PsiSpec::mlp_spec() const {
+  validate();
+  return field::make_mlp_spec(3, width, hidden, k, activation, field::Activation::None);
+}
+
+PsiSpec PsiSpec::from_json(const Json& j, const std::string& where) {
+  PsiSpec s;
+  ConfigReader r(j, where);
+  std::string act = field::to_string(s.activation);
+  r.get("k", s.k).get("width", s.width).get("hidden", s.hidden).get("activation", act);
+  r.get("bias_init", s.bias_init).get("first_layer_scale", s.first_layer_scale);
+  r.finish();
+  s.activation = field::activation_from_string(act);
+  s.validate();
+  return s;
+}
+
+Json PsiSpec::to_json() const {
+  return Json{{"k", k}, {"width", width}, {"hidden", hidden}, {"activation", field::to_string(activation)},
+              {"bias_init", bias_init}, {"first_layer_scale", first_layer_scale}};
+}
+
+void init_psi_params(const field::Mlp& mlp, const PsiSpec& spec, std::vector<float>& params, size_t offset,
+                     uint64_t seed) {
+  mlp.init_params(params, offset, seed);
+  Rng rng(seed, 0x5bd1u);
+  const auto& layers = mlp.spec().layers;
+  int n_in = mlp.spec().n_in;
+  for (size_t l = 0; l < layers.size(); ++l) {
+    const int pad = field::Mlp::pad16(layers[l].width);
+    const size_t base = offset + mlp.layer_offset(int(l));
+    if (l == 0)
+      for (size_t i = 0; i < size_t(n_in) * pad; ++i) params[base + i] *= float(spec.first_layer_scale);
+    if (l + 1 < layers.size())
+      for (int o = 0; o < layers[l].width; ++o)
+        params[base + size_t(n_in) * pad + o] = float(spec.bias_init * (2 * rng.uniform_double() - 1));
+    n_in = layers[l].width;
+  }
+}
+
+void psi_last_layer(const field::Mlp& mlp, const std::vector<float>& params, size_t offset,
+                    std::vector<float>& W, std::vector<float>& b) {
+  const int last = int(mlp.spec().layers.size()) - 1;
+  const int k = mlp.spec().n_out();
+  const int h = last == 0 ? mlp.spec().n_in : mlp.spec().layers[size_t(last - 1)].width;
+  const int pad = field::Mlp::pad16(k);
+  const size_t base = offset + mlp.layer_offset(last);
+  require(params.size() >= offset + mlp.n_params(), "psi_last_layer: params too short");
+  W.assign(size_t(k) * h, 0.0f);
+  b.assign(size_t(k), 0.0f);
+  for (int i = 0; i < h; ++i)
+    for (int o = 0; o < k; ++o) W[size_t(o) * h + i] = params[base + size_t(i) * pad + o];
+  for (int o = 0; o < k; ++o) b[size_t(o)] = params[base + size_t(h) * pad + o];
+}
+
+void set_psi_last_layer(const field::Mlp& mlp, std::vector<float>& params, size_t offset,
+                        const std::vector<float>& W, const std::vector<float>& b) {
+  const int last = int(mlp.spec().layers.size()) - 1;
+  const int k = mlp.spec().n_out();
+  const int h = last == 0 ? mlp.spec().n_in : mlp.spec().layers[size_t(last - 1)].width;
+  const int pad = field::Mlp::pad16(k);
+  const size_t base = offset + mlp.layer_offset(last);
+  require(W.size() == size_t(k) * h && b.size() == size_t(k), "set_psi_last_layer: bad W/b size");
+  for (int i = 0; i < h; ++i)
+    for (int o = 0; o < k; ++o) params[base + size_t(i) * pad + o] = W[size_t(o) * h + i];
+  for (int o = 0; o < k; ++o) params[base + size_t(h) * pad + o] = b[size_t(o)];
+}
+
+void fold_into_psi(const field::Mlp& mlp, std::vector<float>& params, size_t offset, const RitzResult& ritz) {
+  std::vector<float> W, b;
+  psi_last_layer(mlp, params, offset, W, b);
+  const int last = int(mlp.spec().layers.size()) - 1;
+  const int h = last == 0 ? mlp.spec().n_in : mlp.spec().layers[size_t(last - 1)].width;
+  fold_readout(ritz, W, b, h);
+  set_psi_last_layer(mlp, params, offset, W, b);
+}
+
+}  // namespace sgnlf::spectral
