@@ -4,6 +4,7 @@
 #pragma once
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <vector>
 
@@ -18,6 +19,28 @@ inline std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
   std::vector<float> v(n);
   for (auto& x : v) x = r.uniform(lo, hi);
   return v;
+}
+
+// Ray-coherent sample positions (the renderer's order): `rays` rays from origins near the
+// centre in random directions, `samples` evenly spaced points each, clamped to [−1, 1]³.
+inline std::vector<float> ray_points(int rays, int samples, uint64_t seed) {
+  Rng r(seed);
+  std::vector<float> x;
+  x.reserve(size_t(rays) * samples * 3);
+  for (int k = 0; k < rays; ++k) {
+    float o[3], d[3], len = 0;
+    for (int a = 0; a < 3; ++a) {
+      o[a] = r.uniform(-0.1f, 0.1f);
+      d[a] = r.uniform(-1.0f, 1.0f);
+      len += d[a] * d[a];
+    }
+    len = std::sqrt(len);
+    for (int s = 0; s < samples; ++s) {
+      const float t = 1.5f * float(s) / float(samples);
+      for (int a = 0; a < 3; ++a) x.push_back(std::clamp(o[a] + t * d[a] / len, -1.0f, 1.0f));
+    }
+  }
+  return x;
 }
 
 // Process CPU seconds (all threads, including the OpenCL device's worker threads).

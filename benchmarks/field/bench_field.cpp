@@ -19,7 +19,7 @@ using bench::uniform;
 using field::Activation;
 
 
-static void hash_fwd(benchmark::State& state, bool half) {
+static void hash_fwd(benchmark::State& state, bool half, bool rays = false) {
   auto& rt = bench::runtime();
   field::HashGridConfig cfg;
   cfg.half_table = half;
@@ -27,7 +27,9 @@ static void hash_fwd(benchmark::State& state, bool half) {
   const int n = int(state.range(0));
   std::vector<float> params(grid.n_params());
   grid.init_params(params, 0, 1);
-  auto b_p = cl::Buffer::from(rt, params), b_x = cl::Buffer::from(rt, uniform(size_t(n) * 3, -1, 1, 2));
+  auto b_p = cl::Buffer::from(rt, params);
+  auto b_x = cl::Buffer::from(rt, rays ? bench::ray_points(n / 64, 64, 2)
+                                       : uniform(size_t(n) * 3, -1, 1, 2));
   cl::Buffer b_enc(rt, size_t(n) * grid.n_output() * 4);
   const double secs = run_timed(state, [&] { grid.forward(b_p, 0, b_x, n, b_enc); });
   // Bytes: 8 corner gathers of F values per level, x read, encoding written.
@@ -36,6 +38,11 @@ static void hash_fwd(benchmark::State& state, bool half) {
 }
 static void BM_HashGridFwd(benchmark::State& s) { hash_fwd(s, false); }
 static void BM_HashGridFwdHalfTable(benchmark::State& s) { hash_fwd(s, true); }
+// Ray-coherent points (64 samples per ray) instead of uniform random ones.
+static void BM_HashGridFwdRays(benchmark::State& s) { hash_fwd(s, false, true); }
+static void BM_HashGridFwdRaysHalfTable(benchmark::State& s) { hash_fwd(s, true, true); }
+BENCHMARK(BM_HashGridFwdRays)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HashGridFwdRaysHalfTable)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HashGridFwd)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HashGridFwdHalfTable)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 
@@ -57,7 +64,7 @@ static void BM_HashGridHalfRefresh(benchmark::State& state) {
 }
 BENCHMARK(BM_HashGridHalfRefresh)->UseManualTime()->Unit(benchmark::kMillisecond);
 
-static void hash_bwd(benchmark::State& state, bool deterministic, bool with_dx) {
+static void hash_bwd(benchmark::State& state, bool deterministic, bool with_dx, bool rays = false) {
   auto& rt = bench::runtime();
   field::HashGridConfig cfg;
   cfg.deterministic = deterministic;
@@ -65,7 +72,9 @@ static void hash_bwd(benchmark::State& state, bool deterministic, bool with_dx) 
   const int n = int(state.range(0));
   std::vector<float> params(grid.n_params());
   grid.init_params(params, 0, 1);
-  auto b_p = cl::Buffer::from(rt, params), b_x = cl::Buffer::from(rt, uniform(size_t(n) * 3, -1, 1, 2));
+  auto b_p = cl::Buffer::from(rt, params);
+  auto b_x = cl::Buffer::from(rt, rays ? bench::ray_points(n / 64, 64, 2)
+                                       : uniform(size_t(n) * 3, -1, 1, 2));
   auto b_d = cl::Buffer::from(rt, uniform(size_t(n) * grid.n_output(), -1, 1, 3));
   cl::Buffer b_g(rt, params.size() * 4), b_dx(rt, size_t(n) * 12);
   const double secs = run_timed(
@@ -78,6 +87,10 @@ static void BM_HashGridBwdAtomic(benchmark::State& s) { hash_bwd(s, false, false
 static void BM_HashGridBwdDeterministicWithDx(benchmark::State& s) { hash_bwd(s, true, true); }
 BENCHMARK(BM_HashGridBwdDeterministic)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HashGridBwdAtomic)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
+static void BM_HashGridBwdRaysDeterministic(benchmark::State& s) { hash_bwd(s, true, false, true); }
+static void BM_HashGridBwdRaysAtomic(benchmark::State& s) { hash_bwd(s, false, false, true); }
+BENCHMARK(BM_HashGridBwdRaysDeterministic)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HashGridBwdRaysAtomic)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HashGridBwdDeterministicWithDx)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 static void mlp_bench(benchmark::State& state, const field::MlpSpec& spec, bool backward) {

@@ -15,6 +15,9 @@
 #ifndef HALF_TABLE
 #define HALF_TABLE 0
 #endif
+#ifndef CHUNK
+#define CHUNK 256  // points per work-item of the chunked (CPU) schedule
+#endif
 #define LF (LEVELS * FEATURES)
 
 // Feature vector type of one entry (FEATURES floats) and its load/store.
@@ -139,6 +142,33 @@ __kernel void field_hashgrid_fwd(const int n, __global const table_t* params, co
   if (i < n) STOREF(w * acc, enc + (size_t)i * LF + l * FEATURES);
 }
 
+// Forward, chunked (the CPU schedule): one work-item per (chunk of CHUNK points, level) looping
+// over its points; same arithmetic as field_hashgrid_fwd. On PoCL a plain serial loop per
+// work-item beats the vectorised work-group loop of the per-point kernel for these gathers.
+__kernel void field_hashgrid_fwd_chunk(const int n, __global const table_t* params,
+                                       const uint param_offset, __global const float* x,
+                                       __global const float* scale, __global const uint4* meta,
+                                       __global const float* level_weight, __global float* enc) {
+  const int c = get_global_id(0);
+  const int l = get_global_id(1);
+  const float w = level_weight[l];
+  const uint4 m = meta[l];
+  const float s = scale[l];
+  __global const table_t* t = params + param_offset + (size_t)m.y * FEATURES;
+  const int end = min(n, (c + 1) * CHUNK);
+  for (int i = c * CHUNK; i < end; ++i) {
+    uint3 g;
+    const float3 fr = hg_locate(x, i, s, &g);
+    featv acc = (featv)(0.0f);
+#define FWD_CORNER(cx, cy, cz) \
+  acc = fma((featv)(CORNER_W(cx, cy, cz, fr)), LOADT(t + (int)(CORNER_E(cx, cy, cz, g, m) * FEATURES)), acc)
+    FWD_CORNER(0, 0, 0); FWD_CORNER(1, 0, 0); FWD_CORNER(0, 1, 0); FWD_CORNER(1, 1, 0);
+    FWD_CORNER(0, 0, 1); FWD_CORNER(1, 0, 1); FWD_CORNER(0, 1, 1); FWD_CORNER(1, 1, 1);
+#undef FWD_CORNER
+    STOREF(w * acc, enc + (size_t)i * LF + l * FEATURES);
+  }
+}
+
 // Deterministic parameter gradient: one work-item per level owns its slice of the gradient
 // (overwrites it with zeros, then accumulates over the points in index order). No atomics.
 __kernel void field_hashgrid_bwd(const int n, __global const float* x, __global const float* scale,
@@ -236,10 +266,38 @@ __kernel void field_hashgrid_bwd_dx(const int n, __global const table_t* params,
   }
     DX_CORNER(0, 0, 0) DX_CORNER(1, 0, 0) DX_CORNER(0, 1, 0) DX_CORNER(1, 1, 0)
     DX_CORNER(0, 0, 1) DX_CORNER(1, 0, 1) DX_CORNER(0, 1, 1) DX_CORNER(1, 1, 1)
-#undef DX_CORNER
     dp *= w * s * 0.5f;
   }
   vstore3(dp, (size_t)l * n + i, part);
+}
+
+// d_x contributions, chunked (the CPU schedule): as field_hashgrid_bwd_dx, looping over CHUNK
+// points per work-item.
+__kernel void field_hashgrid_bwd_dx_chunk(const int n, __global const table_t* params,
+                                          const uint param_offset, __global const float* x,
+                                          __global const float* scale, __global const uint4* meta,
+                                          __global const float* level_weight,
+                                          __global const float* d_enc, __global float* part) {
+  const int c = get_global_id(0);
+  const int l = get_global_id(1);
+  const float w = level_weight[l];
+  const uint4 m = meta[l];
+  const float s = scale[l];
+  __global const table_t* t = params + param_offset + (size_t)m.y * FEATURES;
+  const int end = min(n, (c + 1) * CHUNK);
+  for (int i = c * CHUNK; i < end; ++i) {
+    float3 dp = (float3)(0.0f);
+    if (w != 0.0f) {
+      uint3 g;
+      const float3 fr = hg_locate(x, i, s, &g);
+      const float3 om = (float3)(1.0f) - fr;
+      const featv de = LOADF(d_enc + (size_t)i * LF + l * FEATURES);
+      DX_CORNER(0, 0, 0) DX_CORNER(1, 0, 0) DX_CORNER(0, 1, 0) DX_CORNER(1, 1, 0)
+      DX_CORNER(0, 0, 1) DX_CORNER(1, 0, 1) DX_CORNER(0, 1, 1) DX_CORNER(1, 1, 1)
+      dp *= w * s * 0.5f;
+    }
+    vstore3(dp, (size_t)l * n + i, part);
+  }
 }
 
 // d_x[i] = Σ_l part[l][i], levels in order (deterministic).

@@ -10,6 +10,9 @@
 #include "core/rng.hpp"
 
 namespace sgnlf::field {
+namespace {
+constexpr size_t kChunk = 256;  // = CHUNK in kernels/field/hashgrid.cl
+}  // namespace
 
 void HashGridConfig::validate() const {
   const std::string w = "hash_grid";
@@ -19,6 +22,8 @@ void HashGridConfig::validate() const {
   check_range(w, "log2_table_size", log2_table_size, 4, 24);
   check_range(w, "base_resolution", base_resolution, 1.0f, 8192.0f);
   check_range(w, "per_level_scale", per_level_scale, 1.0f, 4.0f);
+  if (schedule != "auto" && schedule != "chunked" && schedule != "per_point")
+    throw ConfigError(w + ": 'schedule' = '" + schedule + "' is not auto, chunked or per_point");
   const double finest = base_resolution * std::pow(double(per_level_scale), levels - 1);
   if (finest > 1.0e6)
     throw ConfigError(w + ": finest resolution " + std::to_string(finest) + " exceeds 1e6");
@@ -32,7 +37,8 @@ HashGridConfig HashGridConfig::from_json(ConfigReader& r) {
       .get("base_resolution", c.base_resolution)
       .get("per_level_scale", c.per_level_scale)
       .get("deterministic", c.deterministic)
-      .get("half_table", c.half_table);
+      .get("half_table", c.half_table)
+      .get("schedule", c.schedule);
   c.validate();
   return c;
 }
@@ -83,12 +89,15 @@ HashGrid::HashGrid(cl::Runtime& rt, const HashGridConfig& cfg)
   set_level_weights(std::vector<float>(size_t(cfg_.levels), 1.0f));
   const std::string opt = "-DLEVELS=" + std::to_string(cfg_.levels) +
                           " -DFEATURES=" + std::to_string(cfg_.features);
-  const std::string table_opt = opt + " -DHALF_TABLE=" + (cfg_.half_table ? "1" : "0");
+  const std::string table_opt = opt + " -DHALF_TABLE=" + (cfg_.half_table ? "1" : "0") +
+                                " -DCHUNK=" + std::to_string(kChunk);
   const std::string file = "field/hashgrid.cl";
-  fwd_ = rt_.kernel(file, "field_hashgrid_fwd", table_opt);
+  chunked_ = cfg_.schedule == "chunked" || (cfg_.schedule == "auto" && rt_.device().type == "CPU");
+  const std::string sfx = chunked_ ? "_chunk" : "";
+  fwd_ = rt_.kernel(file, "field_hashgrid_fwd" + sfx, table_opt);
   bwd_ = rt_.kernel(file, "field_hashgrid_bwd", opt);
   bwd_atomic_ = rt_.kernel(file, "field_hashgrid_bwd_atomic", opt);
-  bwd_dx_ = rt_.kernel(file, "field_hashgrid_bwd_dx", table_opt);
+  bwd_dx_ = rt_.kernel(file, "field_hashgrid_bwd_dx" + sfx, table_opt);
   dx_reduce_ = rt_.kernel(file, "field_hashgrid_dx_reduce", opt);
   zero_ = rt_.kernel(file, "field_hashgrid_zero", opt);
   if (cfg_.half_table) {
@@ -132,7 +141,7 @@ void HashGrid::forward(const cl::Buffer& params, size_t offset, const cl::Buffer
   } else {
     fwd_.set_args(n, params, uint32_t(offset), x, scale_, meta_, weights_, enc);
   }
-  fwd_.launch({cl::round_up(size_t(n), 64), size_t(cfg_.levels)}, {64, 1});
+  launch_levels(fwd_, n);
 }
 
 void HashGrid::backward(const cl::Buffer& params, size_t offset, const cl::Buffer& x, int n,
@@ -163,10 +172,17 @@ void HashGrid::backward(const cl::Buffer& params, size_t offset, const cl::Buffe
     } else {
       bwd_dx_.set_args(n, params, uint32_t(offset), x, scale_, meta_, weights_, d_enc, dx_part_);
     }
-    bwd_dx_.launch({cl::round_up(size_t(n), 64), size_t(cfg_.levels)}, {64, 1});
+    launch_levels(bwd_dx_, n);
     dx_reduce_.set_args(n, dx_part_, *d_x);
     dx_reduce_.launch({cl::round_up(size_t(n), 64)}, {64});
   }
+}
+
+void HashGrid::launch_levels(cl::Kernel& k, int n) {
+  if (chunked_)
+    k.launch({(size_t(n) + kChunk - 1) / kChunk, size_t(cfg_.levels)}, {1, 1});
+  else
+    k.launch({cl::round_up(size_t(n), 64), size_t(cfg_.levels)}, {64, 1});
 }
 
 void HashGrid::refresh_half(const cl::Buffer& params, size_t offset) {

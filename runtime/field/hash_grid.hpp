@@ -10,6 +10,7 @@
 // in [−1, 1]; pos = ((x + 1)/2)·scale_l + 0.5; trilinear over the 8 corners.
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "cl/runtime.hpp"
@@ -30,6 +31,10 @@ struct HashGridConfig {
   // from the fp32 parameters on the first forward after params_changed(). Gradients and Adam
   // stay fp32 (fp32 master copy).
   bool half_table = false;
+  // Forward/d_x scheduling: "per_point" = one work-item per (point, level) (GPU);
+  // "chunked" = one work-item per (256 points, level) with a serial loop (faster on PoCL CPU);
+  // "auto" = chunked on CPU devices, per_point otherwise. Results are identical.
+  std::string schedule = "auto";
 
   void validate() const;  // throws ConfigError
   static HashGridConfig from_json(ConfigReader& r);  // reads known keys; caller calls finish()
@@ -91,10 +96,12 @@ class HashGrid {
   cl::Buffer dx_part_;  // L × N × 3 per-level d_x contributions
   size_t dx_part_points_ = 0;
   cl::Buffer half_;  // fp16 table when half_table
+  bool chunked_ = false;
   bool half_dirty_ = true;
   cl_mem half_src_ = nullptr;
   size_t half_src_offset_ = 0;
   void refresh_half(const cl::Buffer& params, size_t offset);
+  void launch_levels(cl::Kernel& k, int n);
 };
 
 }  // namespace sgnlf::field

@@ -53,13 +53,18 @@ TEST_CASE("hash grid level table", "[field][hashgrid]") {
   field::HashGridConfig bad = small_config();
   bad.features = 3;
   CHECK_THROWS_AS(bad.validate(), ConfigError);
+  bad = small_config();
+  bad.schedule = "fast";
+  CHECK_THROWS_AS(bad.validate(), ConfigError);
 }
 
 TEST_CASE("hash grid forward and backward match the host reference", "[field][hashgrid]") {
   auto& rt = test::runtime();
-  for (bool det : {true, false}) {
+  for (int variant = 0; variant < 4; ++variant) {
     auto cfg = small_config();
-    cfg.deterministic = det;
+    cfg.deterministic = variant % 2 == 0;
+    cfg.schedule = variant < 2 ? "chunked" : "per_point";
+    INFO("deterministic " << cfg.deterministic << ", schedule " << cfg.schedule);
     field::HashGrid grid(rt, cfg);
     const int n = 3000, lf = grid.n_output();
     const size_t off = 32;  // the module slice sits at an offset in the flat buffer
@@ -170,36 +175,40 @@ TEST_CASE("hash grid gradients agree with finite differences of the device forwa
 TEST_CASE("hash grid fp16 table: forward and d_x on fp16-exact tables match the reference",
           "[field][hashgrid][half]") {
   auto& rt = test::runtime();
-  auto cfg = small_config();
-  cfg.half_table = true;
-  field::HashGrid grid(rt, cfg);
-  const int n = 2000, lf = grid.n_output();
-  const auto x = uniform(size_t(n) * 3, -1.0f, 1.0f, 31);
-  const auto d_enc = uniform(size_t(n) * lf, -1.0f, 1.0f, 32);
-  const std::vector<float> weights(4, 1.0f);
-  auto b_x = cl::Buffer::from(rt, x), b_denc = cl::Buffer::from(rt, d_enc);
-  cl::Buffer b_enc(rt, size_t(n) * lf * 4), b_dx(rt, size_t(n) * 12),
-      b_grad(rt, grid.n_params() * 4), b_params(rt, grid.n_params() * 4);
-  for (uint64_t seed : {33u, 34u}) {  // second round: parameters changed on the device
-    // k / 1024 with |k| ≤ 1024 has at most 11 significant bits: exact in fp16.
-    Rng r(seed);
-    std::vector<float> table(grid.n_params());
-    for (auto& v : table) v = float(int(r.below(2049)) - 1024) / 1024.0f;
+  for (const char* schedule : {"chunked", "per_point"}) {
+    auto cfg = small_config();
+    cfg.half_table = true;
+    cfg.schedule = schedule;
+    INFO("schedule " << schedule);
+    field::HashGrid grid(rt, cfg);
+    const int n = 2000, lf = grid.n_output();
+    const auto x = uniform(size_t(n) * 3, -1.0f, 1.0f, 31);
+    const auto d_enc = uniform(size_t(n) * lf, -1.0f, 1.0f, 32);
+    const std::vector<float> weights(4, 1.0f);
+    auto b_x = cl::Buffer::from(rt, x), b_denc = cl::Buffer::from(rt, d_enc);
+    cl::Buffer b_enc(rt, size_t(n) * lf * 4), b_dx(rt, size_t(n) * 12),
+        b_grad(rt, grid.n_params() * 4), b_params(rt, grid.n_params() * 4);
+    for (uint64_t seed : {33u, 34u}) {  // second round: parameters changed on the device
+      // k / 1024 with |k| ≤ 1024 has at most 11 significant bits: exact in fp16.
+      Rng r(seed);
+      std::vector<float> table(grid.n_params());
+      for (auto& v : table) v = float(int(r.below(2049)) - 1024) / 1024.0f;
+      b_params.write_vec(table);
+      grid.params_changed();
+      grid.forward(b_params, 0, b_x, n, b_enc);
+      grid.backward(b_params, 0, b_x, n, b_denc, b_grad, 0, &b_dx);
+      const auto enc_ref = test::ref::hashgrid_fwd(cfg, table, x, weights);
+      const auto dx_ref = test::ref::hashgrid_bwd_dx(cfg, table, x, weights, d_enc);
+      CHECK(test::max_sym_rel_err(b_enc.read_vec<float>(size_t(n) * lf), enc_ref, 1e-2) < 1e-5);
+      // d_x sums terms up to scale·|table| ≈ 30 with cancellation: floor 1.
+      CHECK(test::max_sym_rel_err(b_dx.read_vec<float>(size_t(n) * 3), dx_ref, 1.0) < 1e-5);
+    }
+    // A general table is rounded to the nearest fp16: relative error ≤ 2^-11 per entry.
+    const auto table = uniform(grid.n_params(), 0.5f, 1.0f, 35);
     b_params.write_vec(table);
     grid.params_changed();
     grid.forward(b_params, 0, b_x, n, b_enc);
-    grid.backward(b_params, 0, b_x, n, b_denc, b_grad, 0, &b_dx);
-    const auto enc_ref = test::ref::hashgrid_fwd(cfg, table, x, weights);
-    const auto dx_ref = test::ref::hashgrid_bwd_dx(cfg, table, x, weights, d_enc);
-    CHECK(test::max_sym_rel_err(b_enc.read_vec<float>(size_t(n) * lf), enc_ref, 1e-2) < 1e-5);
-    // d_x sums terms up to scale·|table| ≈ 30 with cancellation: floor 1.
-    CHECK(test::max_sym_rel_err(b_dx.read_vec<float>(size_t(n) * 3), dx_ref, 1.0) < 1e-5);
+    CHECK(test::max_sym_rel_err(b_enc.read_vec<float>(size_t(n) * lf),
+                                test::ref::hashgrid_fwd(cfg, table, x, weights)) < 1.0 / 2048);
   }
-  // A general table is rounded to the nearest fp16: relative error ≤ 2^-11 per entry.
-  const auto table = uniform(grid.n_params(), 0.5f, 1.0f, 35);
-  b_params.write_vec(table);
-  grid.params_changed();
-  grid.forward(b_params, 0, b_x, n, b_enc);
-  CHECK(test::max_sym_rel_err(b_enc.read_vec<float>(size_t(n) * lf),
-                              test::ref::hashgrid_fwd(cfg, table, x, weights)) < 1.0 / 2048);
 }
