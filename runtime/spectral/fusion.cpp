@@ -2,6 +2,7 @@
 #include "spectral/fusion.hpp"
 
 #include <algorithm>
+#include <string>
 
 #include "core/error.hpp"
 
@@ -31,8 +32,9 @@ Json FusionRamp::to_json() const { return Json{{"start", start}, {"end", end}}; 
 
 SpectralFusion::SpectralFusion(cl::Runtime& rt, int geo_width, int k) : geo_width_(geo_width), k_(k) {
   require(geo_width >= 0 && k >= 1, "SpectralFusion: need geo_width >= 0 and k >= 1");
-  fwd_ = rt.kernel("spectral/fusion.cl", "spectral_fusion_fwd");
-  bwd_ = rt.kernel("spectral/fusion.cl", "spectral_fusion_bwd");
+  const std::string opt = "-DFUSION_G=" + std::to_string(geo_width) + " -DFUSION_K=" + std::to_string(k);
+  fwd_ = rt.kernel("spectral/fusion.cl", "spectral_fusion_fwd", opt);
+  bwd_ = rt.kernel("spectral/fusion.cl", "spectral_fusion_bwd", opt);
 }
 
 namespace {
@@ -48,7 +50,7 @@ void SpectralFusion::forward(const cl::Buffer& geo, const cl::Buffer& psi, int n
   if (geo_width_ > 0) check(geo, size_t(n) * geo_width_, "geo");
   check(psi, size_t(n) * k_, "psi");
   check(hyb, size_t(n) * fusion_width(), "hyb");
-  fwd_.set_args(n, geo_width_, k_, lambda, geo_width_ > 0 ? geo : psi, psi, hyb);
+  fwd_.set_args(n, lambda, geo_width_ > 0 ? geo : psi, psi, hyb);
   fwd_.launch({cl::round_up(size_t(n) * fusion_width(), 64)}, {64});
 }
 
@@ -57,7 +59,7 @@ void SpectralFusion::backward(const cl::Buffer& d_hyb, int n, float lambda, cl::
   check(d_hyb, size_t(n) * fusion_width(), "d_hyb");
   check(d_psi, size_t(n) * k_, "d_psi");
   if (d_geo) check(*d_geo, size_t(n) * geo_width_, "d_geo");
-  bwd_.set_args(n, geo_width_, k_, lambda, int(d_geo != nullptr), d_hyb, d_geo ? *d_geo : d_psi, d_psi);
+  bwd_.set_args(n, lambda, int(d_geo != nullptr), d_hyb, d_geo ? *d_geo : d_psi, d_psi);
   bwd_.launch({cl::round_up(size_t(n) * fusion_width(), 64)}, {64});
 }
 
