@@ -1,0 +1,53 @@
+// `sgnlf eval --run <run dir> [--json] [--data <dataset>] [--device SPEC]`: protocol §4 metrics
+// of a trained run's test frames and of the naive baseline; writes <run>/metrics.json.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "apps/command.hpp"
+#include "pipeline/session.hpp"
+
+namespace sgnlf::app {
+namespace {
+
+struct EvalArgs {
+  std::string run, data, device;
+  bool json = false;
+};
+
+std::string num(const Json& v) {
+  if (!v.is_number()) return "null";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4f", v.get<double>());
+  return buf;
+}
+
+const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [](CLI::App& sub) {
+  auto a = std::make_shared<EvalArgs>();
+  sub.add_option("--run", a->run, "Run folder")->required();
+  sub.add_option("--data", a->data, "Dataset folder (default: the one the run trained on)");
+  sub.add_option("--device", a->device, "OpenCL device index or name substring");
+  sub.add_flag("--json", a->json, "Print the metrics JSON");
+  return std::function<int()>([a] {
+    cl::Runtime rt(a->device);
+    auto run = pipeline::load_run(rt, a->run, a->data);
+    const Json j = pipeline::eval_run(run, a->run);
+    if (a->json) {
+      std::cout << j.dump(2) << "\n";
+      return 0;
+    }
+    const Json& m = j.at("metrics");
+    const Json& n = j.at("naive_baseline").at("metrics");
+    std::printf("%s (%s) on %s, step %ld, %zu test frames\n", j["method"].get<std::string>().c_str(),
+                j["preset"].get<std::string>().c_str(), j["dataset"].get<std::string>().c_str(),
+                j["step"].get<long>(), j["per_frame"].size());
+    std::printf("%-18s %12s %12s\n", "metric", "model", "naive");
+    for (auto it = m.begin(); it != m.end(); ++it)
+      std::printf("%-18s %12s %12s\n", it.key().c_str(), num(it.value()).c_str(),
+                  num(n.contains(it.key()) ? n.at(it.key()) : Json()).c_str());
+    return 0;
+  });
+});
+
+}  // namespace
+}  // namespace sgnlf::app

@@ -1,0 +1,33 @@
+// `sgnlf render --run <run dir> [--out <dir>] [--data <dataset>] [--device SPEC]`: renders the
+// test frames of a trained run (npy arrays and PNGs of the rendering above the ground truth).
+#include <filesystem>
+#include <iostream>
+
+#include "apps/command.hpp"
+#include "pipeline/session.hpp"
+
+namespace sgnlf::app {
+namespace {
+
+struct RenderArgs {
+  std::string run, out, data, device;
+};
+
+const Registrar reg("render", "Render the test frames of a trained run", [](CLI::App& sub) {
+  auto a = std::make_shared<RenderArgs>();
+  sub.add_option("--run", a->run, "Run folder")->required();
+  sub.add_option("--out", a->out, "Output folder (default <run>/renders)");
+  sub.add_option("--data", a->data, "Dataset folder (default: the one the run trained on)");
+  sub.add_option("--device", a->device, "OpenCL device index or name substring");
+  return std::function<int()>([a] {
+    cl::Runtime rt(a->device);
+    auto run = pipeline::load_run(rt, a->run, a->data);
+    const std::string out =
+        a->out.empty() ? (std::filesystem::path(a->run) / "renders").string() : a->out;
+    std::cout << pipeline::render_run(run, out).dump(2) << "\n";
+    return 0;
+  });
+});
+
+}  // namespace
+}  // namespace sgnlf::app

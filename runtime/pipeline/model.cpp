@@ -1,0 +1,200 @@
+// LidarNerfModel: composition of the field and render launchers into one training step
+// (method.md §0–1). Sample-major buffers hold max_rays × (n_samples + n_importance) samples.
+#include "pipeline/model.hpp"
+
+#include "core/error.hpp"
+
+namespace sgnlf::pipeline {
+namespace {
+
+constexpr int kDensStride = 16;  // density MLP output: σ logit + 15 geometric features
+constexpr float kSceneBound = 1.0f;  // normalised scene box (protocol §2)
+
+field::HashGridConfig grid_config(const FieldSizes& f) {
+  field::HashGridConfig g;
+  g.levels = f.levels;
+  g.features = f.features_per_level;
+  g.log2_table_size = f.log2_table_size;
+  g.base_resolution = float(f.base_resolution);
+  g.per_level_scale = float(f.per_level_scale);
+  g.deterministic = true;
+  g.validate();
+  return g;
+}
+
+field::AdamConfig adam_config(const OptimConfig& o) {
+  field::AdamConfig a;
+  a.beta1 = float(o.beta1);
+  a.beta2 = float(o.beta2);
+  a.eps = float(o.eps);
+  a.validate();
+  return a;
+}
+
+cl::Buffer floats(cl::Runtime& rt, size_t n) { return cl::Buffer(rt, std::max<size_t>(n, 1) * 4); }
+
+}  // namespace
+
+LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scene_scale,
+                               int max_rays)
+    : rt_(rt),
+      cfg_(c),
+      max_rays_(max_rays),
+      grid_(rt, grid_config(c.field)),
+      density_(rt, field::make_mlp_spec(c.field.levels * c.field.features_per_level,
+                                        c.field.density_hidden, 1, 1 + c.field.geo_features,
+                                        field::Activation::Relu)),
+      head_(rt, field::make_mlp_spec(c.field.geo_features + 6 * c.field.dir_frequencies,
+                                     c.field.head_hidden, c.field.head_layers, 2,
+                                     field::Activation::Relu)),
+      dirs_(rt, c.field.dir_frequencies, c.field.geo_features, 1, 1 + c.field.geo_features),
+      sampler_(rt, c.render, scene_scale),
+      renderer_(rt, c.render, scene_scale),
+      loss_(rt, c.render, scene_scale) {
+  if (1 + c.field.geo_features != kDensStride)
+    throw ConfigError("config.field: 'geo_features' must be 15 (density output 1 + 15 = 16)");
+  off_grid_ = layout_.add("hash_grid", grid_.n_params()).offset;
+  off_density_ = layout_.add("density_mlp", density_.n_params()).offset;
+  off_head_ = layout_.add("head_mlp", head_.n_params()).offset;
+  adam_ = std::make_unique<field::Adam>(rt, layout_.total(), adam_config(c.optim));
+  col_get_ = rt.kernel("pipeline/glue.cl", "pipeline_column_get");
+  col_set_ = rt.kernel("pipeline/glue.cl", "pipeline_column_set");
+  clamp_ = rt.kernel("pipeline/glue.cl", "pipeline_clamp_fwd");
+
+  const size_t R = size_t(max_rays), S = size_t(c.render.n_samples),
+               M = S + size_t(c.render.n_importance), N = R * M;
+  const size_t lf = size_t(c.field.levels * c.field.features_per_level);
+  const size_t enc_dim = size_t(dirs_.enc_dim()), hw = size_t(dirs_.head_width());
+  params_ = floats(rt, layout_.total());
+  grad_ = floats(rt, layout_.total());
+  grad_.fill_zero();
+  o_ = floats(rt, R * 3), d_ = floats(rt, R * 3), target_ = floats(rt, R * 3);
+  t_c_ = floats(rt, R * S), x_c_ = floats(rt, R * S * 3), w_c_ = floats(rt, R * S);
+  t_ = floats(rt, N), x_ = floats(rt, N * 3), enc_ = floats(rt, N * lf);
+  dens_ = floats(rt, N * kDensStride), h0_ = floats(rt, N);
+  dir_enc_ = floats(rt, R * enc_dim), head_in_ = floats(rt, N * hw), head_out_ = floats(rt, N * 2);
+  out_ = floats(rt, R * 3), weights_ = floats(rt, N), grad_out_ = floats(rt, R * 3);
+  terms_ = floats(rt, R * 3), loss_buf_ = floats(rt, render::kLossFloats);
+  g_h0_ = floats(rt, N), g_head_ = floats(rt, N * 2), g_head_in_ = floats(rt, N * hw);
+  g_dens_ = floats(rt, N * kDensStride), g_enc_ = floats(rt, N * lf);
+  g_dir_enc_ = floats(rt, R * enc_dim);
+  loss_buf_.fill_zero();
+}
+
+void LidarNerfModel::init_params(uint64_t seed) {
+  std::vector<float> p(layout_.total(), 0.0f);
+  grid_.init_params(p, off_grid_, seed ^ 0x1111);
+  density_.init_params(p, off_density_, seed ^ 0x2222);
+  head_.init_params(p, off_head_, seed ^ 0x3333);
+  params_.write_vec(p);
+  adam_->reset();
+}
+
+int LidarNerfModel::sample(int n_rays, bool jitter, uint64_t seed, uint32_t step) {
+  const int S = cfg_.render.n_samples, I = cfg_.render.n_importance;
+  const int n_c = n_rays * S;
+  if (I == 0) {
+    sampler_.uniform(o_, d_, n_rays, jitter, seed, step, t_, x_);
+    clamp_.set_args(n_c * 3, kSceneBound, x_);
+    clamp_.launch({cl::round_up(size_t(n_c) * 3, 64)}, {64});
+    return S;
+  }
+  // Coarse pass (densities only, no gradient), then importance samples merged with it.
+  sampler_.uniform(o_, d_, n_rays, jitter, seed, step, t_c_, x_c_);
+  clamp_.set_args(n_c * 3, kSceneBound, x_c_);
+  clamp_.launch({cl::round_up(size_t(n_c) * 3, 64)}, {64});
+  grid_.forward(params_, off_grid_, x_c_, n_c, enc_);
+  density_.forward(params_, off_density_, enc_, n_c, dens_, density_ctx_);
+  col_get_.set_args(n_c, kDensStride, 0, dens_, h0_);
+  col_get_.launch({cl::round_up(size_t(n_c), 64)}, {64});
+  renderer_.weights(t_c_, h0_, n_rays, S, w_c_);
+  sampler_.importance(o_, d_, n_rays, S, t_c_, w_c_, jitter, seed, step, t_, x_);
+  const int n = n_rays * (S + I);
+  clamp_.set_args(n * 3, kSceneBound, x_);
+  clamp_.launch({cl::round_up(size_t(n) * 3, 64)}, {64});
+  return S + I;
+}
+
+void LidarNerfModel::field_forward(int n_rays, int samples) {
+  const int n = n_rays * samples;
+  grid_.forward(params_, off_grid_, x_, n, enc_);
+  density_.forward(params_, off_density_, enc_, n, dens_, density_ctx_);
+  col_get_.set_args(n, kDensStride, 0, dens_, h0_);
+  col_get_.launch({cl::round_up(size_t(n), 64)}, {64});
+  dirs_.forward(d_, n_rays, dir_enc_);
+  dirs_.head_input_forward(dens_, dir_enc_, n_rays, samples, head_in_);
+  head_.forward(params_, off_head_, head_in_, n, head_out_, head_ctx_);
+  renderer_.forward(t_, h0_, head_out_, n_rays, samples, out_, weights_);
+}
+
+void LidarNerfModel::train_step(const RayBatch& b, uint64_t seed, long step, float lr) {
+  const int R = b.n_rays;
+  require(R > 0 && R <= max_rays_, "LidarNerfModel::train_step: batch of " + std::to_string(R) +
+                                       " rays, capacity " + std::to_string(max_rays_));
+  std::vector<float> target(size_t(R) * 3);
+  for (int i = 0; i < R; ++i) {
+    target[3 * size_t(i)] = b.range[size_t(i)];
+    target[3 * size_t(i) + 1] = b.intensity[size_t(i)];
+    target[3 * size_t(i) + 2] = b.label[size_t(i)];
+  }
+  o_.write_vec(b.origins);
+  d_.write_vec(b.directions);
+  target_.write_vec(target);
+  const int M = sample(R, cfg_.render.jitter, seed, uint32_t(step));
+  field_forward(R, M);
+  const int n = R * M;
+  // Loss (method.md §0) and its gradient; patch gradient loss on patch batches (§1).
+  loss_buf_.fill_zero();
+  loss_.range(out_, target_, R, grad_out_, terms_, loss_buf_);
+  if (b.patches) {
+    const int per_patch = cfg_.render.patch_rows * cfg_.render.patch_cols;
+    loss_.patch_gradient(out_, target_, R / per_patch, grad_out_, terms_, loss_buf_);
+  }
+  // Backward chain: renderer → head MLP → head input split → density MLP → hash grid.
+  renderer_.backward(t_, h0_, head_out_, weights_, grad_out_, R, M, g_h0_, g_head_);
+  head_.backward(params_, off_head_, head_ctx_, head_out_, g_head_, grad_, off_head_, &g_head_in_);
+  dirs_.head_input_backward(g_head_in_, R, M, g_dens_, g_dir_enc_);
+  col_set_.set_args(n, kDensStride, 0, g_h0_, g_dens_);
+  col_set_.launch({cl::round_up(size_t(n), 64)}, {64});
+  density_.backward(params_, off_density_, density_ctx_, dens_, g_dens_, grad_, off_density_,
+                    &g_enc_);
+  grid_.backward(params_, off_grid_, x_, n, g_enc_, grad_, off_grid_);
+  adam_->begin_step();
+  adam_->update(params_, grad_, 0, layout_.total(), lr);
+}
+
+render::LossValues LidarNerfModel::read_loss() const { return render::RangeLoss::read_losses(loss_buf_); }
+
+std::vector<float> LidarNerfModel::render_rays(const std::vector<float>& origins,
+                                               const std::vector<float>& directions, int n) {
+  require(n > 0 && n <= max_rays_, "LidarNerfModel::render_rays: " + std::to_string(n) +
+                                       " rays, capacity " + std::to_string(max_rays_));
+  o_.write_vec(origins);
+  d_.write_vec(directions);
+  const int M = sample(n, false, 0, 0);
+  field_forward(n, M);
+  return out_.read_vec<float>(size_t(n) * 3);
+}
+
+ModelState LidarNerfModel::state() const {
+  ModelState s;
+  s.params = params_.read_vec<float>(layout_.total());
+  s.adam_m = adam_->m().read_vec<float>(layout_.total());
+  s.adam_v = adam_->v().read_vec<float>(layout_.total());
+  s.adam_step = adam_->step();
+  return s;
+}
+
+void LidarNerfModel::set_state(const ModelState& s) {
+  const size_t n = layout_.total();
+  if (s.params.size() != n || s.adam_m.size() != n || s.adam_v.size() != n)
+    throw IoError("model state has " + std::to_string(s.params.size()) +
+                  " parameters, the model " + std::to_string(n));
+  params_.write_vec(s.params);
+  adam_->reset();
+  adam_->m().write_vec(s.adam_m);
+  adam_->v().write_vec(s.adam_v);
+  for (int64_t i = 0; i < s.adam_step; ++i) adam_->begin_step();  // Adam exposes no setter
+}
+
+}  // namespace sgnlf::pipeline

@@ -1,0 +1,80 @@
+// The LiDAR-NeRF model on the device (method.md §0–1): hash grid → density MLP (σ logit + 15
+// geometric features) → [geo, direction encoding] → LiDAR head → volume rendering, with
+// importance sampling from a density-only coarse pass, the range loss (+ the patch gradient
+// loss on patch batches), the backward chain and Adam over one flat parameter buffer.
+// A training step is enqueued as a whole; the only host sync is the caller's loss read-back.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "cl/runtime.hpp"
+#include "field/adam.hpp"
+#include "field/dir_encoding.hpp"
+#include "field/hash_grid.hpp"
+#include "field/mlp.hpp"
+#include "field/param_layout.hpp"
+#include "pipeline/ray_batch.hpp"
+#include "pipeline/train_config.hpp"
+#include "render/range_loss.hpp"
+#include "render/ray_sampler.hpp"
+#include "render/volume_renderer.hpp"
+
+namespace sgnlf::pipeline {
+
+// Device-side state that checkpoints hold (host copies).
+struct ModelState {
+  std::vector<float> params, adam_m, adam_v;
+  int64_t adam_step = 0;
+};
+
+class LidarNerfModel {
+ public:
+  // `max_rays`: the largest ray count of one call (training batch or render chunk).
+  LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scene_scale, int max_rays);
+
+  size_t n_params() const { return layout_.total(); }
+  const field::ParamLayout& layout() const { return layout_; }
+  // Deterministic initialisation from `seed` (hash grid ±1e-4, MLP fan-in uniform).
+  void init_params(uint64_t seed);
+
+  // Enqueues forward, loss, backward and the Adam update for one batch (no wait).
+  void train_step(const RayBatch& b, uint64_t seed, long step, float lr);
+  // The four loss terms of the last train_step (blocks until it finished).
+  render::LossValues read_loss() const;
+
+  // Renders rays (n ≤ max_rays; origins/directions n × 3, normalised frame) without jitter:
+  // returns n × 3 (depth normalised, return probability, intensity). Blocking.
+  std::vector<float> render_rays(const std::vector<float>& origins,
+                                 const std::vector<float>& directions, int n);
+
+  ModelState state() const;
+  void set_state(const ModelState& s);
+
+ private:
+  // Forward up to the head outputs on `samples` (rays × S samples at t_/x_); fills h0_, head_.
+  void field_forward(int n_rays, int samples);
+  // Samples (uniform + importance) for n_rays rays from o_/d_; returns samples per ray.
+  int sample(int n_rays, bool jitter, uint64_t seed, uint32_t step);
+
+  cl::Runtime& rt_;
+  TrainConfig cfg_;
+  int max_rays_;
+  field::ParamLayout layout_;
+  field::HashGrid grid_;
+  field::Mlp density_, head_;
+  field::DirEncoding dirs_;
+  std::unique_ptr<field::Adam> adam_;
+  render::RaySampler sampler_;
+  render::VolumeRenderer renderer_;
+  render::RangeLoss loss_;
+  cl::Kernel col_get_, col_set_, clamp_;
+  size_t off_grid_, off_density_, off_head_;
+  field::MlpContext density_ctx_, head_ctx_;
+  cl::Buffer params_, grad_;
+  cl::Buffer o_, d_, target_, t_c_, x_c_, w_c_, t_, x_, enc_, dens_, h0_, dir_enc_, head_in_,
+      head_out_, out_, weights_, grad_out_, terms_, loss_buf_, g_h0_, g_head_, g_head_in_, g_dens_,
+      g_enc_, g_dir_enc_;
+};
+
+}  // namespace sgnlf::pipeline

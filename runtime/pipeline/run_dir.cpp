@@ -1,0 +1,63 @@
+// Run folder manifest and loading (see run_dir.hpp).
+#include "pipeline/run_dir.hpp"
+
+#include <filesystem>
+
+#include "datasets/loader.hpp"
+#include "pipeline/checkpoint.hpp"
+#include "pipeline/trainer.hpp"
+
+namespace sgnlf::pipeline {
+namespace fs = std::filesystem;
+
+void write_manifest(const std::string& run_dir, const RunManifest& m) {
+  fs::create_directories(run_dir);
+  write_json_file((fs::path(run_dir) / "run.json").string(),
+                  Json{{"method", m.method}, {"preset", m.preset}, {"dataset", m.dataset},
+                       {"device", m.device}, {"seed", m.seed},
+                       {"config_hash", hex64(m.config.hash())},
+                       {"config", train_config_to_json(m.config)}});
+}
+
+RunManifest read_manifest(const std::string& run_dir) {
+  const std::string path = (fs::path(run_dir) / "run.json").string();
+  if (!fs::exists(path)) throw IoError(path + ": not a run folder (no run.json)");
+  const Json j = load_json_file(path);
+  RunManifest m;
+  ConfigReader r(j, path);
+  std::string hash;
+  Json cfg;
+  r.require("method", m.method).require("preset", m.preset).require("dataset", m.dataset);
+  r.get("device", m.device).require("seed", m.seed).get("config_hash", hash).require("config", cfg);
+  r.finish();
+  m.config = train_config_from_json(cfg, path + ": config");
+  return m;
+}
+
+int model_capacity(const TrainConfig& c) {
+  return std::max(c.schedule.rays_per_batch, c.schedule.render_chunk_rays);
+}
+
+LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
+                   const std::string& dataset_override) {
+  LoadedRun run;
+  run.manifest = read_manifest(run_dir);
+  const std::string data = dataset_override.empty() ? run.manifest.dataset : dataset_override;
+  run.dataset = std::make_unique<Dataset>(load_dataset(data));
+  run.scene = std::make_unique<Scene>(make_scene(*run.dataset));
+  const TrainConfig& c = run.manifest.config;
+  run.model = std::make_unique<LidarNerfModel>(rt, c, float(run.scene->norm.scale),
+                                               model_capacity(c));
+  const Checkpoint ck =
+      load_checkpoint_for(checkpoint_path(run_dir), c.hash(), run.manifest.seed);
+  ModelState st;
+  st.params = ck.array("params", run.model->n_params());
+  st.adam_m = ck.array("adam_m", run.model->n_params());
+  st.adam_v = ck.array("adam_v", run.model->n_params());
+  st.adam_step = ck.step;
+  run.model->set_state(st);
+  run.step = ck.step;
+  return run;
+}
+
+}  // namespace sgnlf::pipeline

@@ -1,0 +1,44 @@
+// The run folder of `sgnlf train/render/eval` (issue item 6):
+//   <run>/run.json           method, preset, seed, dataset path, device, resolved config, hash
+//   <run>/checkpoints/latest.ckpt, <run>/train_log.jsonl, <run>/eval_log.jsonl (trainer.hpp)
+//   <run>/summary.json       training summary (steps, seconds, samples/s, losses)
+//   <run>/metrics.json       `sgnlf eval`: per-frame and mean metrics, model and naive baseline
+//   <run>/renders/           `sgnlf render` default output
+#pragma once
+#include <memory>
+#include <string>
+
+#include "cl/runtime.hpp"
+#include "core/config.hpp"
+#include "pipeline/model.hpp"
+#include "pipeline/scene.hpp"
+#include "pipeline/train_config.hpp"
+
+namespace sgnlf::pipeline {
+
+struct RunManifest {
+  std::string method = "lidar-nerf", preset, dataset, device;
+  uint64_t seed = 1;
+  TrainConfig config;
+};
+
+void write_manifest(const std::string& run_dir, const RunManifest& m);
+RunManifest read_manifest(const std::string& run_dir);  // ConfigError/IoError naming the file
+
+// A run loaded for rendering or evaluation: dataset, scene and the model from the checkpoint.
+struct LoadedRun {
+  RunManifest manifest;
+  std::unique_ptr<Dataset> dataset;
+  std::unique_ptr<Scene> scene;
+  std::unique_ptr<LidarNerfModel> model;
+  long step = 0;
+};
+
+// `dataset_override` replaces the manifest's dataset path when not empty.
+LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
+                   const std::string& dataset_override = "");
+
+// Capacity (rays) a model needs for training and chunked rendering under `c`.
+int model_capacity(const TrainConfig& c);
+
+}  // namespace sgnlf::pipeline

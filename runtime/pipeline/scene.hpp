@@ -1,0 +1,29 @@
+// The training view of a dataset: scene normalisation (protocol §2) computed from the training
+// frames, poses and ground-truth range images in the normalised frame, and the sensor's ray
+// directions. Ranges are stored normalised (metres · scale); metrics convert back to metres.
+#pragma once
+#include <vector>
+
+#include "datasets/dataset.hpp"
+
+namespace sgnlf::pipeline {
+
+struct Scene {
+  Sensor sensor;
+  SceneNormalization norm;
+  std::vector<Pose> T_world_lidar;   // per dataset frame, normalised world (t ← (t − c)·s)
+  std::vector<RangeImage> images;    // per dataset frame, ranges normalised
+  std::vector<const RangeImage*> gt_images;  // per dataset frame, the dataset's own (metres)
+  std::vector<float> directions;     // H×W×3 sensor-frame unit directions (protocol §1)
+  std::vector<int> train, test;      // indices into the dataset's frames
+};
+
+// Builds the scene with ground-truth poses (LiDAR-NeRF, LiDAR4D). Keeps pointers into `d`,
+// which must outlive the scene.
+Scene make_scene(const Dataset& d);
+
+// Pose `T_world_lidar` (metres) → normalised frame, and back.
+Pose normalize_pose(const Pose& T_world_lidar, const SceneNormalization& n);
+Pose denormalize_pose(const Pose& T_norm, const SceneNormalization& n);
+
+}  // namespace sgnlf::pipeline

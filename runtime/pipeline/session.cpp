@@ -1,0 +1,128 @@
+// train_run / render_run / eval_run (see session.hpp).
+#include "pipeline/session.hpp"
+
+#include <chrono>
+#include <filesystem>
+
+#include "core/log.hpp"
+#include "datasets/loader.hpp"
+#include "io/png_writer.hpp"
+#include "io/range_array.hpp"
+#include "pipeline/evaluate.hpp"
+#include "pipeline/render_view.hpp"
+
+namespace sgnlf::pipeline {
+namespace fs = std::filesystem;
+
+namespace {
+
+Json loss_json(const render::LossValues& l) {
+  return Json{{"total", l.total()}, {"depth", l.depth}, {"return", l.ret},
+              {"intensity", l.intensity}, {"grad", l.grad}};
+}
+
+// Two pictures stacked with a gap of black rows.
+io::RgbImage stack(const io::RgbImage& a, const io::RgbImage& b, int gap) {
+  io::RgbImage out;
+  out.width = std::max(a.width, b.width);
+  out.height = a.height + gap + b.height;
+  out.rgb.assign(size_t(out.width) * out.height * 3, 0);
+  auto blit = [&](const io::RgbImage& img, int row0) {
+    for (int r = 0; r < img.height; ++r)
+      std::copy_n(&img.rgb[size_t(r) * img.width * 3], size_t(img.width) * 3,
+                  &out.rgb[(size_t(row0 + r) * out.width) * 3]);
+  };
+  blit(a, 0);
+  blit(b, a.height + gap);
+  return out;
+}
+
+}  // namespace
+
+Json train_run(cl::Runtime& rt, const TrainRequest& req) {
+  const auto t_load = std::chrono::steady_clock::now();
+  const fs::path run(req.run_dir);
+  if (fs::exists(run / "run.json")) {
+    const RunManifest old = read_manifest(req.run_dir);
+    if (old.config.hash() != req.manifest.config.hash() || old.seed != req.manifest.seed)
+      throw ConfigError((run / "run.json").string() +
+                        ": the folder holds a run with another config or seed; use a new --out");
+  }
+  write_manifest(req.run_dir, req.manifest);
+  const Dataset d = load_dataset(req.manifest.dataset);
+  const Scene scene = make_scene(d);
+  const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_load).count();
+  const TrainConfig& c = req.manifest.config;
+  LidarNerfModel model(rt, c, float(scene.norm.scale), model_capacity(c));
+  TrainOptions opt;
+  opt.run_dir = req.run_dir;
+  opt.seed = req.manifest.seed;
+  opt.resume = req.resume;
+  opt.stop_at = req.stop_at;
+  opt.show_progress = req.show_progress;
+  opt.evaluate = [&](long) { return evaluate_model(model, d, scene, c.schedule.render_chunk_rays).mean; };
+  log::info("training ", c.method, "-", c.preset, " on ", d.name, " (", d.split.train.size(),
+            " train / ", d.split.test.size(), " test frames, ", model.n_params(), " parameters, ",
+            "device ", rt.device().describe(), ")");
+  const TrainSummary s = train(model, scene, c, opt);
+  Json j{{"dataset", d.name},
+         {"train_frames", d.split.train.size()},
+         {"test_frames", d.split.test.size()},
+         {"parameters", model.n_params()},
+         {"scene_scale", scene.norm.scale},
+         {"start_step", s.start_step},
+         {"end_step", s.end_step},
+         {"finished", s.finished},
+         {"train_seconds", s.seconds},
+         {"load_seconds", load_s},
+         {"steps_per_s", s.steps_per_s},
+         {"samples_per_s", s.samples_per_s},
+         {"first_loss", loss_json(s.first_loss)},
+         {"last_loss", loss_json(s.last_loss)},
+         {"device", rt.device().describe()}};
+  write_json_file((run / "summary.json").string(), j);
+  return j;
+}
+
+Json render_run(LoadedRun& run, const std::string& out_dir) {
+  fs::create_directories(out_dir);
+  const Dataset& d = *run.dataset;
+  Json files = Json::array();
+  for (int f : d.split.test) {
+    const Frame& fr = d.frames[size_t(f)];
+    const RangeImage pred = render_view(*run.model, *run.scene, fr.T_world_lidar,
+                                        run.manifest.config.schedule.render_chunk_rays);
+    const std::string stem = (fs::path(out_dir) / std::to_string(fr.id)).string();
+    io::write_range_npy(stem + "_pred.npy", pred);
+    io::write_range_npy(stem + "_gt.npy", fr.image);
+    io::RangePictureOptions po;
+    po.max_range_m = d.sensor.max_range_m;
+    io::write_png(stem + ".png", stack(io::range_image_picture(masked_prediction(pred), po),
+                                       io::range_image_picture(fr.image, po), 12));
+    files.push_back(Json{{"frame", fr.id}, {"png", stem + ".png"}, {"pred", stem + "_pred.npy"},
+                         {"gt", stem + "_gt.npy"}});
+  }
+  return files;
+}
+
+Json eval_run(LoadedRun& run, const std::string& run_dir) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const ViewSet model = evaluate_model(*run.model, *run.dataset, *run.scene,
+                                       run.manifest.config.schedule.render_chunk_rays);
+  const double render_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const ViewSet naive = evaluate_naive(*run.dataset);
+  Json j{{"method", run.manifest.method},
+         {"preset", run.manifest.preset},
+         {"dataset", run.dataset->name},
+         {"dataset_path", run.manifest.dataset},
+         {"seed", run.manifest.seed},
+         {"step", run.step},
+         {"render_eval_seconds", render_s},
+         {"metrics", model.mean},
+         {"per_frame", model.per_frame},
+         {"naive_baseline", {{"metrics", naive.mean}, {"per_frame", naive.per_frame}}}};
+  write_json_file((fs::path(run_dir) / "metrics.json").string(), j);
+  return j;
+}
+
+}  // namespace sgnlf::pipeline

@@ -1,0 +1,33 @@
+// The three run-level operations behind `sgnlf train/render/eval` and run_method(): train a run
+// folder (new or resumed), render its test frames beside the ground truth, and evaluate it
+// (with the naive baseline alongside).
+#pragma once
+#include <string>
+
+#include "cl/runtime.hpp"
+#include "core/config.hpp"
+#include "pipeline/run_dir.hpp"
+#include "pipeline/trainer.hpp"
+
+namespace sgnlf::pipeline {
+
+struct TrainRequest {
+  RunManifest manifest;       // method, preset, dataset, seed, device, resolved config
+  std::string run_dir;
+  bool resume = true;
+  long stop_at = -1;
+  bool show_progress = true;
+};
+
+// Writes run.json (or checks that an existing one has the same config and seed), trains, and
+// writes summary.json. Returns the summary as JSON.
+Json train_run(cl::Runtime& rt, const TrainRequest& req);
+
+// Renders every test frame: <out>/<frame>_pred.npy, <frame>_gt.npy (H×W×3, io/range_array.hpp)
+// and <frame>.png (rendered above ground truth: depth, intensity, mask). Returns the files.
+Json render_run(LoadedRun& run, const std::string& out_dir);
+
+// Per-frame and mean metrics of the model and of the naive baseline; writes <run>/metrics.json.
+Json eval_run(LoadedRun& run, const std::string& run_dir);
+
+}  // namespace sgnlf::pipeline

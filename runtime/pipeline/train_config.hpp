@@ -1,0 +1,73 @@
+// The LiDAR-NeRF training configuration (method.md §0–1): field sizes, ray sampling and loss
+// weights (render::RenderConfig), optimiser and schedule. Plain structs with defaults (the `paper` values) and
+// validate(); JSON through ConfigReader with unknown keys rejected. Presets are JSON files in
+// runtime/pipeline/presets/, embedded into the binary (presets.hpp).
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "core/config.hpp"
+#include "render/render_config.hpp"
+
+namespace sgnlf::pipeline {
+
+// Hash grid + density MLP + LiDAR head (method.md §0 "Field").
+struct FieldSizes {
+  int levels = 16;
+  int features_per_level = 2;
+  int log2_table_size = 19;
+  int base_resolution = 16;
+  double per_level_scale = 1.6625;
+  int density_hidden = 64;   // encoding → 64 (ReLU) → 1 + geo_features
+  int geo_features = 15;
+  int head_hidden = 64;      // 3 layers of 64
+  int head_layers = 3;
+  int dir_frequencies = 12;  // 72-dim frequency encoding of the view direction
+  void validate(const std::string& where) const;
+};
+
+// Adam with exponential learning-rate decay to lr·final_factor (method.md §0 "Optimiser").
+struct OptimConfig {
+  double lr = 1e-2;
+  double beta1 = 0.9;
+  double beta2 = 0.99;
+  double eps = 1e-15;
+  double final_factor = 0.1;
+  void validate(const std::string& where) const;
+  // lr at `step` of `iterations`: lr · final_factor^(step / iterations).
+  double lr_at(long step, long iterations) const;
+};
+
+struct ScheduleConfig {
+  long iterations = 30000;
+  int rays_per_batch = 4096;     // rays from one training frame per iteration
+  long eval_every = 5000;        // periodic evaluation of the test frames (0 = only at the end)
+  long checkpoint_every = 1000;  // checkpoint period (0 = only at the end)
+  long log_every = 50;           // loss read back every log_every steps (host sync)
+  bool patches_on_even_epochs = true;  // patch batches + gradient loss on even epochs (§1)
+  double divergence_factor = 1e3;  // loss > factor · best smoothed loss → divergence
+  int render_chunk_rays = 8192;  // rays per chunk when rendering full range images
+  void validate(const std::string& where) const;
+};
+
+struct TrainConfig {
+  std::string method = "lidar-nerf";
+  std::string preset = "paper";
+  FieldSizes field;
+  // Sampling, volume rendering and loss weights (render module; lengths in metres).
+  render::RenderConfig render;
+  OptimConfig optim;
+  ScheduleConfig schedule;
+
+  void validate() const;
+  // Hash of the resolved config (checkpoints refuse to resume under a different config).
+  uint64_t hash() const;
+};
+
+// Reads a config (all keys optional; defaults = the struct defaults) and validates it.
+TrainConfig train_config_from_json(const Json& j, const std::string& where);
+Json train_config_to_json(const TrainConfig& c);
+// Applies `overrides` (nested objects merged key by key) to `base` and re-reads strictly.
+Json merge_config_json(Json base, const Json& overrides);
+
+}  // namespace sgnlf::pipeline

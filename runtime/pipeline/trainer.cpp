@@ -1,0 +1,150 @@
+// The training loop (see trainer.hpp).
+#include "pipeline/trainer.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "core/log.hpp"
+#include "core/progress.hpp"
+#include "pipeline/checkpoint.hpp"
+#include "pipeline/ray_batch.hpp"
+
+namespace sgnlf::pipeline {
+namespace fs = std::filesystem;
+
+std::string checkpoint_path(const std::string& run_dir) {
+  return (fs::path(run_dir) / "checkpoints" / "latest.ckpt").string();
+}
+
+namespace {
+
+Json loss_json(const render::LossValues& l) {
+  return Json{{"total", l.total()}, {"depth", l.depth}, {"return", l.ret},
+              {"intensity", l.intensity}, {"grad", l.grad}};
+}
+
+void append_line(const std::string& path, const Json& j) {
+  std::ofstream out(path, std::ios::app);
+  if (!out) throw IoError(path + ": cannot open for appending");
+  out << j.dump() << "\n";
+}
+
+// Smoothed-loss divergence tracker (state kept in checkpoints).
+struct Tracker {
+  double best = 0.0, smoothed = 0.0;
+  void add(double loss) {
+    smoothed = smoothed == 0.0 ? loss : 0.9 * smoothed + 0.1 * loss;
+    best = best == 0.0 ? smoothed : std::min(best, smoothed);
+  }
+};
+
+bool all_finite(const std::vector<float>& v) {
+  for (float x : v)
+    if (!std::isfinite(x)) return false;
+  return true;
+}
+
+}  // namespace
+
+TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig& cfg,
+                   const TrainOptions& opt) {
+  require(!opt.run_dir.empty(), "train: run_dir is required");
+  fs::create_directories(fs::path(opt.run_dir) / "checkpoints");
+  const std::string ck_path = checkpoint_path(opt.run_dir);
+  const std::string log_path = (fs::path(opt.run_dir) / "train_log.jsonl").string();
+  const std::string eval_path = (fs::path(opt.run_dir) / "eval_log.jsonl").string();
+  const uint64_t hash = cfg.hash();
+  const long total = cfg.schedule.iterations;
+
+  TrainSummary sum;
+  Tracker tracker;
+  long last_good = -1;
+  if (opt.resume && fs::exists(ck_path)) {
+    const Checkpoint ck = load_checkpoint_for(ck_path, hash, opt.seed);
+    ModelState st;
+    st.params = ck.array("params", model.n_params());
+    st.adam_m = ck.array("adam_m", model.n_params());
+    st.adam_v = ck.array("adam_v", model.n_params());
+    st.adam_step = ck.step;
+    model.set_state(st);
+    tracker.best = ck.best_loss;
+    tracker.smoothed = ck.smoothed_loss;
+    sum.start_step = last_good = ck.step;
+    log::info("resuming ", opt.run_dir, " from step ", ck.step);
+  } else {
+    model.init_params(opt.seed);
+  }
+
+  auto save = [&](long step) {
+    const ModelState st = model.state();
+    if (!all_finite(st.params) || !all_finite(st.adam_m) || !all_finite(st.adam_v))
+      throw NumericError("training diverged at step " + std::to_string(step) +
+                         ": non-finite parameters; the last good checkpoint (step " +
+                         std::to_string(last_good) + ") is kept at " + ck_path);
+    Checkpoint ck;
+    ck.step = step;
+    ck.seed = opt.seed;
+    ck.config_hash = hash;
+    ck.best_loss = tracker.best;
+    ck.smoothed_loss = tracker.smoothed;
+    ck.arrays = {{"params", st.params}, {"adam_m", st.adam_m}, {"adam_v", st.adam_v}};
+    save_checkpoint(ck_path, ck);
+    last_good = step;
+  };
+
+  const long end = opt.stop_at >= 0 ? std::min(opt.stop_at, total) : total;
+  const long samples_per_step =
+      long(cfg.schedule.rays_per_batch) * (cfg.render.n_samples + cfg.render.n_importance);
+  Progress progress("train " + cfg.method + "-" + cfg.preset, total);
+  const auto t0 = std::chrono::steady_clock::now();
+  bool first = true;
+  for (long step = sum.start_step; step < end; ++step) {
+    const RayBatch batch = draw_ray_batch(scene, cfg, opt.seed, step);
+    const float lr = float(cfg.optim.lr_at(step, total));
+    model.train_step(batch, opt.seed, step, lr);
+    const long done = step + 1;
+    const bool ck_due = (cfg.schedule.checkpoint_every > 0 && done % cfg.schedule.checkpoint_every == 0) ||
+                        done == end;
+    const bool eval_due = cfg.schedule.eval_every > 0 && done % cfg.schedule.eval_every == 0 &&
+                          opt.evaluate;
+    if (done % cfg.schedule.log_every == 0 || ck_due || eval_due || first) {
+      const auto loss = model.read_loss();  // waits for the step
+      const double total_loss = loss.total();
+      if (!std::isfinite(total_loss))
+        throw NumericError("training diverged at step " + std::to_string(done) + ": loss = " +
+                           std::to_string(total_loss) + " (lr " + std::to_string(lr) +
+                           "); the last good checkpoint (step " + std::to_string(last_good) +
+                           ") is kept at " + ck_path);
+      tracker.add(total_loss);
+      if (tracker.smoothed > cfg.schedule.divergence_factor * tracker.best)
+        throw NumericError("training diverged at step " + std::to_string(done) +
+                           ": smoothed loss " + std::to_string(tracker.smoothed) + " > " +
+                           std::to_string(cfg.schedule.divergence_factor) + " x best " +
+                           std::to_string(tracker.best) + "; the last good checkpoint (step " +
+                           std::to_string(last_good) + ") is kept at " + ck_path);
+      if (first) sum.first_loss = loss;
+      first = false;
+      sum.last_loss = loss;
+      const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      append_line(log_path, Json{{"step", done}, {"lr", lr}, {"elapsed_s", el},
+                                 {"loss", loss_json(loss)}});
+      char extra[96];
+      std::snprintf(extra, sizeof extra, "loss %.5f  lr %.2e", total_loss, double(lr));
+      if (opt.show_progress) progress.update(done, extra);
+    }
+    if (ck_due) save(done);
+    if (eval_due) append_line(eval_path, Json{{"step", done}, {"metrics", opt.evaluate(done)}});
+  }
+  sum.end_step = std::max(sum.start_step, end);
+  sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const long ran = sum.end_step - sum.start_step;
+  sum.steps_per_s = sum.seconds > 0 ? ran / sum.seconds : 0.0;
+  sum.samples_per_s = sum.steps_per_s * double(samples_per_step);
+  sum.finished = sum.end_step >= total;
+  if (opt.show_progress) progress.finish("");
+  return sum;
+}
+
+}  // namespace sgnlf::pipeline

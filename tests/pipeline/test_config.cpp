@@ -1,0 +1,83 @@
+// TrainConfig and presets: strict JSON (unknown keys and bad values are named), every embedded
+// preset resolves, overrides merge key by key, the learning-rate schedule decays to 0.1×.
+#include <catch2/catch.hpp>
+
+#include "pipeline/presets.hpp"
+
+using namespace sgnlf;
+using namespace sgnlf::pipeline;
+
+namespace {
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST_CASE("every embedded preset resolves and validates", "[pipeline][config]") {
+  const auto names = preset_names();
+  REQUIRE(names.size() >= 3);
+  for (const char* p : {"paper", "quick", "smoke"}) {
+    const TrainConfig c = resolve_config("lidar-nerf", p);
+    CHECK(c.preset == p);
+    CHECK(c.method == "lidar-nerf");
+  }
+  // paper = method.md §1 published values.
+  const TrainConfig paper = resolve_config("lidar-nerf", "paper");
+  CHECK(paper.schedule.iterations == 30000);
+  CHECK(paper.schedule.rays_per_batch == 4096);
+  CHECK(paper.render.n_samples == 768);
+  CHECK(paper.render.n_importance == 64);
+  CHECK(paper.field.log2_table_size == 19);
+  CHECK(paper.optim.lr == Approx(1e-2));
+}
+
+TEST_CASE("unknown keys are rejected with their name", "[pipeline][config]") {
+  Json j = preset_json("lidar-nerf", "smoke");
+  j["schedule"]["iteratons"] = 5;
+  const std::string e = error_of([&] { train_config_from_json(j, "x.json"); });
+  CHECK(e.find("iteratons") != std::string::npos);
+  CHECK(e.find("x.json") != std::string::npos);
+  Json top = preset_json("lidar-nerf", "smoke");
+  top["bogus"] = 1;
+  CHECK(error_of([&] { train_config_from_json(top, "y"); }).find("bogus") != std::string::npos);
+  Json render = preset_json("lidar-nerf", "smoke");
+  render["render"]["n_sample"] = 3;
+  CHECK(error_of([&] { train_config_from_json(render, "z"); }).find("n_sample") != std::string::npos);
+}
+
+TEST_CASE("bad values are named", "[pipeline][config]") {
+  Json j = preset_json("lidar-nerf", "smoke");
+  j["optim"]["lr"] = -1.0;
+  CHECK(error_of([&] { train_config_from_json(j, "c"); }).find("'lr'") != std::string::npos);
+  j = preset_json("lidar-nerf", "smoke");
+  j["schedule"]["iterations"] = "many";
+  CHECK(error_of([&] { train_config_from_json(j, "c"); }).find("iterations") != std::string::npos);
+  j = preset_json("lidar-nerf", "smoke");
+  j["schedule"]["rays_per_batch"] = 100;  // not a multiple of the 2×8 patch
+  CHECK(error_of([&] { train_config_from_json(j, "c"); }).find("rays_per_batch") != std::string::npos);
+  CHECK(error_of([&] { preset_json("lidar-nerf", "huge"); }).find("huge") != std::string::npos);
+}
+
+TEST_CASE("overrides merge into the preset and round-trip through JSON", "[pipeline][config]") {
+  const TrainConfig c =
+      resolve_config("lidar-nerf", "quick", Json{{"schedule", {{"iterations", 7}}}});
+  CHECK(c.schedule.iterations == 7);
+  CHECK(c.schedule.rays_per_batch == resolve_config("lidar-nerf", "quick").schedule.rays_per_batch);
+  const TrainConfig back = train_config_from_json(train_config_to_json(c), "rt");
+  CHECK(back.hash() == c.hash());
+  CHECK(resolve_config("lidar-nerf", "quick").hash() != c.hash());
+}
+
+TEST_CASE("learning rate decays exponentially to final_factor", "[pipeline][config]") {
+  OptimConfig o;
+  o.lr = 0.01;
+  o.final_factor = 0.1;
+  CHECK(o.lr_at(0, 1000) == Approx(0.01));
+  CHECK(o.lr_at(500, 1000) == Approx(0.01 * std::sqrt(0.1)));
+  CHECK(o.lr_at(1000, 1000) == Approx(0.001));
+}

@@ -1,0 +1,141 @@
+// Training on a tiny synthetic sequence: bit-identical parameters from one seed, resume from a
+// checkpoint equal to the uninterrupted run, divergence stopping with the last good checkpoint
+// kept, ray batches keyed by (seed, step), and a loss that decreases.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "pipeline/checkpoint.hpp"
+#include "pipeline/ray_batch.hpp"
+#include "pipeline/render_view.hpp"
+#include "pipeline/trainer.hpp"
+#include "support/test_device.hpp"
+#include "tiny_scene.hpp"
+
+SGNLF_DEVICE_TESTS;
+using namespace sgnlf;
+using namespace sgnlf::pipeline;
+
+namespace {
+
+std::vector<float> train_params(const Scene& scene, const TrainConfig& c, uint64_t seed,
+                                const std::string& dir, long stop_at = -1, bool resume = true) {
+  LidarNerfModel model(test::runtime(), c, float(scene.norm.scale),
+                       std::max(c.schedule.rays_per_batch, c.schedule.render_chunk_rays));
+  TrainOptions opt;
+  opt.run_dir = dir;
+  opt.seed = seed;
+  opt.stop_at = stop_at;
+  opt.resume = resume;
+  opt.show_progress = false;
+  train(model, scene, c, opt);
+  return model.state().params;
+}
+
+}  // namespace
+
+TEST_CASE("ray batches are keyed by (seed, step) and visit training frames only",
+          "[pipeline][batch]") {
+  const Scene scene = make_scene(test::tiny_dataset());
+  const TrainConfig c = test::tiny_config();
+  REQUIRE(scene.test == std::vector<int>{13});
+  const auto a = draw_ray_batch(scene, c, 3, 5), b = draw_ray_batch(scene, c, 3, 5);
+  CHECK(a.pixels == b.pixels);
+  CHECK(a.origins == b.origins);
+  CHECK(draw_ray_batch(scene, c, 4, 5).pixels != a.pixels);
+  // One epoch visits every training frame once; test frames never.
+  std::vector<int> seen;
+  for (long s = 0; s < long(scene.train.size()); ++s) seen.push_back(batch_frame(scene, 3, s));
+  std::sort(seen.begin(), seen.end());
+  CHECK(seen == scene.train);
+  // Epoch 0 is a patch epoch: rows × cols blocks of adjacent pixels; epoch 1 is not.
+  CHECK(a.patches);
+  const int W = scene.sensor.width, PR = c.render.patch_rows, PC = c.render.patch_cols;
+  for (int i = 0; i < PR * PC; ++i)
+    CHECK(a.pixels[size_t(i)] == a.pixels[0] + (i / PC) * W + i % PC);
+  CHECK_FALSE(draw_ray_batch(scene, c, 3, long(scene.train.size())).patches);
+  // Ground truth is the frame's normalised range.
+  const auto& img = scene.images[size_t(a.frame)];
+  CHECK(a.range[7] == img.range[size_t(a.pixels[7])]);
+}
+
+TEST_CASE("same seed gives bit-identical parameters; another seed differs",
+          "[pipeline][train][device]") {
+  const Scene scene = make_scene(test::tiny_dataset());
+  const TrainConfig c = test::tiny_config();
+  const auto p1 = train_params(scene, c, 7, test::temp_dir("det_a"));
+  const auto p2 = train_params(scene, c, 7, test::temp_dir("det_b"));
+  const auto p3 = train_params(scene, c, 8, test::temp_dir("det_c"));
+  REQUIRE(p1.size() == p2.size());
+  CHECK(p1 == p2);
+  CHECK(p1 != p3);
+}
+
+TEST_CASE("resuming from a checkpoint reproduces the uninterrupted run",
+          "[pipeline][train][device]") {
+  const Scene scene = make_scene(test::tiny_dataset());
+  const TrainConfig c = test::tiny_config();
+  const auto full = train_params(scene, c, 11, test::temp_dir("resume_full"));
+  const std::string dir = test::temp_dir("resume_split");
+  const auto half = train_params(scene, c, 11, dir, 6);
+  CHECK(load_checkpoint(checkpoint_path(dir)).step == 6);
+  CHECK(half != full);
+  const auto resumed = train_params(scene, c, 11, dir);
+  CHECK(load_checkpoint(checkpoint_path(dir)).step == 12);
+  CHECK(resumed == full);
+  // A different config refuses the checkpoint instead of silently mixing runs.
+  const TrainConfig other = test::tiny_config(Json{{"optim", {{"lr", 0.02}}}});
+  CHECK_THROWS_AS(train_params(scene, other, 11, dir), ConfigError);
+}
+
+TEST_CASE("an absurd learning rate stops with a NumericError and keeps the last good checkpoint",
+          "[pipeline][train][device]") {
+  const Scene scene = make_scene(test::tiny_dataset());
+  const TrainConfig c = test::tiny_config(
+      Json{{"optim", {{"lr", 1e6}}}, {"schedule", {{"checkpoint_every", 1}, {"log_every", 1}}}});
+  const std::string dir = test::temp_dir("diverge");
+  std::string msg;
+  try {
+    train_params(scene, c, 1, dir);
+  } catch (const NumericError& e) {
+    msg = e.what();
+  }
+  INFO(msg);
+  CHECK(msg.find("diverged") != std::string::npos);
+  CHECK(msg.find("last good checkpoint") != std::string::npos);
+  const Checkpoint ck = load_checkpoint(checkpoint_path(dir));
+  CHECK(ck.step >= 1);
+  CHECK(ck.step < c.schedule.iterations);
+  for (float v : ck.array("params")) REQUIRE(std::isfinite(v));
+}
+
+TEST_CASE("training lowers the loss and renders full images", "[pipeline][train][device]") {
+  const Dataset& d = test::tiny_dataset();
+  const Scene scene = make_scene(d);
+  const TrainConfig c = test::tiny_config(
+      Json{{"schedule", {{"iterations", 120}, {"checkpoint_every", 0}, {"log_every", 1}}}});
+  LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
+  TrainOptions opt;
+  opt.run_dir = test::temp_dir("loss_down");
+  opt.seed = 3;
+  opt.show_progress = false;
+  const TrainSummary s = train(model, scene, c, opt);
+  CHECK(s.finished);
+  // Compare the mean loss of the first and the last 12 logged steps (one frame per step).
+  std::vector<double> losses;
+  std::ifstream in(opt.run_dir + "/train_log.jsonl");
+  for (std::string line; std::getline(in, line);) losses.push_back(Json::parse(line)["loss"]["total"]);
+  REQUIRE(losses.size() == 120);
+  double first = 0, last = 0;
+  for (int i = 0; i < 12; ++i) {
+    first += losses[size_t(i)];
+    last += losses[losses.size() - 1 - size_t(i)];
+  }
+  INFO("first " << first / 12 << " last " << last / 12);
+  CHECK(last < 0.5 * first);
+  const RangeImage img = render_view(model, scene, d.frames[13].T_world_lidar, 512);
+  CHECK(img.height == 16);
+  CHECK(img.width == 128);
+  for (float v : img.range) REQUIRE(std::isfinite(v));
+}

@@ -1,0 +1,31 @@
+// Test fixture: a tiny synthetic KITTI-360-like sequence (14 frames of 16 × 128 pixels, test
+// frame 13), simulated in memory once per test binary, and the smoke config shrunk further.
+#pragma once
+#include "datasets/protocol.hpp"
+#include "datasets/simulate.hpp"
+#include "pipeline/presets.hpp"
+#include "pipeline/scene.hpp"
+
+namespace sgnlf::test {
+
+inline const Dataset& tiny_dataset() {
+  static const Dataset d = [] {
+    SimOptions o;
+    o.sequence = "kitti360-1538";
+    o.frames = 14;
+    o.width = 128;
+    o.height = 16;
+    o.threads = 1;
+    return simulate(o).dataset;
+  }();
+  return d;
+}
+
+inline pipeline::TrainConfig tiny_config(const Json& extra = Json::object()) {
+  Json o{{"schedule", {{"iterations", 12}, {"checkpoint_every", 4}, {"log_every", 2},
+                       {"rays_per_batch", 128}, {"render_chunk_rays", 512}}},
+         {"render", {{"n_samples", 16}, {"n_importance", 4}}}};
+  return pipeline::resolve_config("lidar-nerf", "smoke", pipeline::merge_config_json(o, extra));
+}
+
+}  // namespace sgnlf::test
