@@ -2,8 +2,8 @@
 // level-partitioned parameter backward, an atomic (non-deterministic) parameter backward kept for
 // comparison, and the input-position backward d_x that carries gradients into poses.
 //
-// Defines: LEVELS (L), FEATURES (F, 1..8), HALF_TABLE (0|1). Level table `meta` holds per level (res, entry offset,
-// entry count, hashed flag); `scale` the float grid scale. Entry e of level l stores its F
+// Defines: LEVELS (L), FEATURES (F, 1..8), HALF_TABLE (0|1), CHUNK. Level table `meta` holds
+// per level (res, entry offset, entry count, hashed flag); `scale` the float grid scale. Entry e of level l stores its F
 // features at params[param_offset + (meta.offset + e) * F + f]. Encoding layout: enc[n*L*F + l*F + f].
 // x is N×3 in [-1, 1]; it is mapped to [0, 1] and then pos = x01 * scale + 0.5 (instant-ngp).
 #ifndef LEVELS
@@ -20,98 +20,7 @@
 #endif
 #define LF (LEVELS * FEATURES)
 
-// Feature vector type of one entry (FEATURES floats) and its load/store.
-#if FEATURES == 1
-#define featv float
-#define LOADF(p) (*(p))
-#define STOREF(v, p) (*(p) = (v))
-#elif FEATURES == 2
-#define featv float2
-#define LOADF(p) vload2(0, p)
-#define STOREF(v, p) vstore2(v, 0, p)
-#elif FEATURES == 4
-#define featv float4
-#define LOADF(p) vload4(0, p)
-#define STOREF(v, p) vstore4(v, 0, p)
-#elif FEATURES == 8
-#define featv float8
-#define LOADF(p) vload8(0, p)
-#define STOREF(v, p) vstore8(v, 0, p)
-#else
-#error "FEATURES must be 1, 2, 4 or 8"
-#endif
-
-// The table the forward and d_x read: the fp32 parameters, or with HALF_TABLE a packed fp16
-// copy (one 32-bit word per entry at F = 2: 4-byte gathers, performance.md).
-#if HALF_TABLE
-// fp16 → fp32 by integer ops (vload_half is a slow software path on PoCL CPU): normals by
-// exponent re-bias, subnormals as mantissa · 2^-24 (never producing fp32 denormals).
-inline float half_bits_to_float(uint h) {
-  const uint sign = (h & 0x8000u) << 16, mag = h & 0x7fffu;
-  const float normal = as_float(sign | ((mag + 0x1c000u) << 13));
-  const float sub = as_float(sign | as_uint((float)mag * 5.9604644775390625e-8f));
-  return mag >= 0x400u ? normal : sub;
-}
-#define table_t ushort
-#if FEATURES == 1
-#define LOADT(p) half_bits_to_float(*(p))
-#elif FEATURES == 2
-inline float2 load_half2_bits(__global const ushort* p) {
-  const uint w = *(__global const uint*)p;  // one 4-byte gather per entry
-  return (float2)(half_bits_to_float(w & 0xffffu), half_bits_to_float(w >> 16));
-}
-#define LOADT(p) load_half2_bits(p)
-#else
-inline featv load_halfn_bits(__global const ushort* p) {
-  float v[FEATURES];
-  for (int f = 0; f < FEATURES; ++f) v[f] = half_bits_to_float(p[f]);
-  return LOADF(v);
-}
-#define LOADT(p) load_halfn_bits(p)
-#endif
-#else
-#define table_t float
-#define LOADT(p) LOADF(p)
-#endif
-#define CONCAT_(a, b) a##b
-#define CONCAT(a, b) CONCAT_(a, b)
-
-// Sum of the lanes of a feature vector.
-inline float hg_sum(featv v) {
-#if FEATURES == 1
-  return v;
-#elif FEATURES == 2
-  return v.x + v.y;
-#elif FEATURES == 4
-  return (v.x + v.y) + (v.z + v.w);
-#else
-  return ((v.s0 + v.s1) + (v.s2 + v.s3)) + ((v.s4 + v.s5) + (v.s6 + v.s7));
-#endif
-}
-
-// Index of integer grid point g in level m = (res, offset, size, hashed).
-// Dense levels clamp each coordinate to [0, res − 1] (no-op inside [−1, 1]³, where res =
-// ceil(scale) + 2 covers every corner), so the index needs no division.
-inline uint hg_index(uint gx, uint gy, uint gz, uint4 m) {
-  const uint r1 = m.x - 1u;
-  return m.w ? ((gx ^ (gy * 2654435761u) ^ (gz * 805459861u)) & (m.z - 1u))
-             : (min(gx, r1) + (min(gy, r1) + min(gz, r1) * m.x) * m.x);
-}
-
-// Grid position of point i at level scale s: integer cell g and fractional part (returned).
-inline float3 hg_locate(__global const float* x, int i, float s, uint3* g) {
-  const float3 x01 = fma(vload3(i, x), (float3)(0.5f), (float3)(0.5f));
-  const float3 pos = fma(x01, (float3)(s), (float3)(0.5f));
-  const float3 fl = floor(pos);
-  *g = convert_uint3(convert_int3(fl));
-  return pos - fl;
-}
-
-// Loop-free trilinear corner visit: CORNER(cx, cy, cz) defines wc (weight) and e (entry).
-#define CORNER_W(cx, cy, cz, fr) \
-  (((cx) ? (fr).x : 1.0f - (fr).x) * ((cy) ? (fr).y : 1.0f - (fr).y) * \
-   ((cz) ? (fr).z : 1.0f - (fr).z))
-#define CORNER_E(cx, cy, cz, g, m) hg_index((g).x + (cx), (g).y + (cy), (g).z + (cz), m)
+#include "field/hashgrid.clh"
 
 // One work-item per (point, level); the level is the slow dimension (level-major scheduling).
 // Straight-line scalar body without early exits, so the work-group loop vectorises across
@@ -254,16 +163,6 @@ __kernel void field_hashgrid_bwd_dx(const int n, __global const table_t* params,
     const float3 om = (float3)(1.0f) - fr;
     __global const table_t* t = params + param_offset + (size_t)m.y * FEATURES;
     const featv de = LOADF(d_enc + (size_t)i * LF + l * FEATURES);
-    // v = Σ_f d_enc · feature of the corner; ∂w/∂pos_d = ±(product of the other two factors).
-#define DX_CORNER(cx, cy, cz)                                                              \
-  {                                                                                        \
-    const featv fv = LOADT(t + (size_t)CORNER_E(cx, cy, cz, g, m) * FEATURES) * de;        \
-    const float v = hg_sum(fv);                                                            \
-    const float wx = (cx) ? fr.x : om.x, wy = (cy) ? fr.y : om.y, wz = (cz) ? fr.z : om.z; \
-    dp = fma((float3)((cx) ? wy * wz : -(wy * wz), (cy) ? wx * wz : -(wx * wz),            \
-                      (cz) ? wx * wy : -(wx * wy)),                                        \
-             (float3)(v), dp);                                                             \
-  }
     DX_CORNER(0, 0, 0) DX_CORNER(1, 0, 0) DX_CORNER(0, 1, 0) DX_CORNER(1, 1, 0)
     DX_CORNER(0, 0, 1) DX_CORNER(1, 0, 1) DX_CORNER(0, 1, 1) DX_CORNER(1, 1, 1)
     dp *= w * s * 0.5f;
