@@ -79,6 +79,18 @@ TEST_CASE("simulate: same seed bit-identical (any thread count), other seed diff
   const auto& pa = a.dataset.frames[0].points;
   CHECK((pc.size() != pa.size() || std::memcmp(pc.data(), pa.data(), pa.size() * sizeof(PointXYZI)) != 0));
   CHECK(a.metadata.dump() == b.metadata.dump());
+  // The native HDL-64E pattern too.
+  SimOptions n;
+  n.sequence = "kitti360-dynamic";
+  n.frames = 1;
+  n.threads = 1;
+  const auto n1 = simulate(n);
+  n.threads = 2;
+  const auto n2 = simulate(n);
+  const auto& q1 = n1.dataset.frames[0].points;
+  REQUIRE(q1.size() == n2.dataset.frames[0].points.size());
+  CHECK(q1.size() > 100000);
+  CHECK(std::memcmp(q1.data(), n2.dataset.frames[0].points.data(), q1.size() * sizeof(PointXYZI)) == 0);
 }
 
 TEST_CASE("simulated returns land in their own pixel; range image drop rate in a realistic band", "[sim]") {
