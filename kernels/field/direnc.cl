@@ -69,14 +69,26 @@ __kernel void field_head_input_bwd_geo(const int n, const int n_geo, const int g
 }
 
 // Backward, direction part: d_enc[r, k] = Σ_{s = 0..samples−1, in order} d_head_in[r·S + s, n_geo + k].
+// Work-item = (group of DIR_VEC encoding columns, ray): vector loads along the row.
+#if ENC_DIM % 8 == 0
+#define DIR_VEC 8
+#define dirv float8
+#define DIR_LOAD(p) vload8(0, p)
+#define DIR_STORE(v, p) vstore8(v, 0, p)
+#else
+#define DIR_VEC 2
+#define dirv float2
+#define DIR_LOAD(p) vload2(0, p)
+#define DIR_STORE(v, p) vstore2(v, 0, p)
+#endif
 __kernel void field_head_input_bwd_dir(const int n_rays, const int samples, const int n_geo,
                                        __global const float* d_head_in, __global float* d_enc) {
-  const int k = get_global_id(0);
+  const int k = get_global_id(0) * DIR_VEC;
   const int r = get_global_id(1);
   if (k >= ENC_DIM || r >= n_rays) return;
   const int width = n_geo + ENC_DIM;
-  float s = 0.0f;
-  for (int t = 0; t < samples; ++t)
-    s += d_head_in[((size_t)r * samples + t) * width + n_geo + k];
-  d_enc[(size_t)r * ENC_DIM + k] = s;
+  __global const float* src = d_head_in + (size_t)r * samples * width + n_geo + k;
+  dirv s = (dirv)(0.0f);
+  for (int t = 0; t < samples; ++t) s += DIR_LOAD(src + (size_t)t * width);
+  DIR_STORE(s, d_enc + (size_t)r * ENC_DIM + k);
 }

@@ -70,7 +70,8 @@ void DirEncoding::head_input_backward(const cl::Buffer& d_head_in, int n_rays, i
   head_bwd_geo_.set_args(int(n), n_geo_, geo_start_, dens_stride_, d_head_in, d_dens);
   head_bwd_geo_.launch({cl::round_up(n, 64)}, {64});
   head_bwd_dir_.set_args(n_rays, samples, n_geo_, d_head_in, d_enc);
-  head_bwd_dir_.launch({cl::round_up(size_t(enc_dim()), 8), size_t(n_rays)}, {8, 1});
+  const size_t groups = enc_dim() % 8 == 0 ? size_t(enc_dim() / 8) : size_t(enc_dim() / 2);
+  head_bwd_dir_.launch({groups, cl::round_up(size_t(n_rays), 8)}, {groups, 8});
 }
 
 }  // namespace sgnlf::field

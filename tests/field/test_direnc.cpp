@@ -82,33 +82,38 @@ TEST_CASE("direction encoding matches the reference and finite differences",
 
 TEST_CASE("head input assembly and its backward split", "[field][direnc]") {
   auto& rt = test::runtime();
-  field::DirEncoding de(rt);
-  const int rays = 37, s = 13, n = rays * s;
-  const auto dens = uniform(size_t(n) * 16, -1.0f, 1.0f, 4);
-  const auto enc = uniform(size_t(rays) * 72, -1.0f, 1.0f, 5);
-  const auto d_head = uniform(size_t(n) * 87, -1.0f, 1.0f, 6);
-  auto b_dens = cl::Buffer::from(rt, dens), b_enc = cl::Buffer::from(rt, enc);
-  auto b_dhead = cl::Buffer::from(rt, d_head);
-  cl::Buffer b_head(rt, size_t(n) * 87 * 4), b_denc(rt, size_t(rays) * 72 * 4);
-  auto b_ddens = cl::Buffer::from(rt, std::vector<float>(size_t(n) * 16, 5.0f));
-  de.head_input_forward(b_dens, b_enc, rays, s, b_head);
-  de.head_input_backward(b_dhead, rays, s, b_ddens, b_denc);
-  CHECK(b_head.read_vec<float>(size_t(n) * 87) ==
-        test::ref::head_input_fwd(dens, enc, rays, s, 15, 1, 16, 72));
-  const auto ddens = b_ddens.read_vec<float>(size_t(n) * 16);
-  const auto denc = b_denc.read_vec<float>(size_t(rays) * 72);
-  size_t bad = 0;
-  for (int i = 0; i < n; ++i) {
-    bad += ddens[size_t(i) * 16] != 5.0f;  // density column untouched
-    for (int j = 0; j < 15; ++j) bad += ddens[size_t(i) * 16 + 1 + j] != d_head[size_t(i) * 87 + j];
-  }
-  CHECK(bad == 0);
-  std::vector<float> denc_ref(size_t(rays) * 72, 0.0f);
-  for (int r = 0; r < rays; ++r)
-    for (int k = 0; k < 72; ++k) {
-      float acc = 0.0f;  // the kernel's order: samples in sequence, in float
-      for (int t = 0; t < s; ++t) acc += d_head[(size_t(r) * s + t) * 87 + 15 + k];
-      denc_ref[size_t(r) * 72 + k] = acc;
+  for (int n_freq : {12, 3}) {  // 72 columns (8-wide vector path) and 18 (2-wide path)
+    INFO("n_freq " << n_freq);
+    field::DirEncoding de(rt, n_freq);
+    const int ed = de.enc_dim(), hw = de.head_width();
+    const int rays = 37, s = 13, n = rays * s;
+    const auto dens = uniform(size_t(n) * 16, -1.0f, 1.0f, 4);
+    const auto enc = uniform(size_t(rays) * ed, -1.0f, 1.0f, 5);
+    const auto d_head = uniform(size_t(n) * hw, -1.0f, 1.0f, 6);
+    auto b_dens = cl::Buffer::from(rt, dens), b_enc = cl::Buffer::from(rt, enc);
+    auto b_dhead = cl::Buffer::from(rt, d_head);
+    cl::Buffer b_head(rt, size_t(n) * hw * 4), b_denc(rt, size_t(rays) * ed * 4);
+    auto b_ddens = cl::Buffer::from(rt, std::vector<float>(size_t(n) * 16, 5.0f));
+    de.head_input_forward(b_dens, b_enc, rays, s, b_head);
+    de.head_input_backward(b_dhead, rays, s, b_ddens, b_denc);
+    CHECK(b_head.read_vec<float>(size_t(n) * hw) ==
+          test::ref::head_input_fwd(dens, enc, rays, s, 15, 1, 16, ed));
+    const auto ddens = b_ddens.read_vec<float>(size_t(n) * 16);
+    const auto denc = b_denc.read_vec<float>(size_t(rays) * ed);
+    size_t bad = 0;
+    for (int i = 0; i < n; ++i) {
+      bad += ddens[size_t(i) * 16] != 5.0f;  // density column untouched
+      for (int j = 0; j < 15; ++j)
+        bad += ddens[size_t(i) * 16 + 1 + j] != d_head[size_t(i) * hw + j];
     }
-  CHECK(test::max_abs_err(denc, denc_ref) == 0.0);
+    CHECK(bad == 0);
+    std::vector<float> denc_ref(size_t(rays) * ed, 0.0f);
+    for (int r = 0; r < rays; ++r)
+      for (int k = 0; k < ed; ++k) {
+        float acc = 0.0f;  // the kernel's order: samples in sequence, in float
+        for (int t = 0; t < s; ++t) acc += d_head[(size_t(r) * s + t) * hw + 15 + k];
+        denc_ref[size_t(r) * ed + k] = acc;
+      }
+    CHECK(test::max_abs_err(denc, denc_ref) == 0.0);
+  }
 }
