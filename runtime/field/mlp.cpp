@@ -12,8 +12,8 @@ namespace sgnlf::field {
 namespace {
 constexpr int kPts = 8;          // points per work-item in the GEMM kernels
 constexpr int kRows = 16;        // weight rows per work-item in the weight gradient
-constexpr int kMaxChunks = 32;   // weight-gradient partial sums (fixed for a given N)
-constexpr int kMinChunk = 2048;  // points per chunk at least
+constexpr int kMaxChunks = 256;  // weight-gradient partial sums (fixed for a given N)
+constexpr int kMinChunk = 512;   // points per chunk at least (a chunk's rows stay in L2)
 constexpr size_t kLocal = 16;    // work-group size along the point dimension
 
 void check_bytes(const cl::Buffer& b, size_t floats, const char* what) {
@@ -155,7 +155,8 @@ void Mlp::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& in,
     cl::Buffer& dst = l + 1 == layers_.size() ? out : ctx.post[l];
     cl::Buffer& pre = L.store_pre ? ctx.pre[l] : dst;
     L.fwd.set_args(n, params, uint32_t(offset + layer_off_[l]), src, dst, pre);
-    L.fwd.launch({groups, size_t(L.out_pad / 16)}, {kLocal, 1});
+    // One work-group covers all output tiles of its points: input rows are read once.
+    L.fwd.launch({groups, size_t(L.out_pad / 16)}, {kLocal, size_t(L.out_pad / 16)});
   }
 }
 
@@ -202,8 +203,10 @@ void Mlp::backward(const cl::Buffer& params, size_t offset, const MlpContext& ct
     Layer& L = layers_[size_t(l)];
     const cl::Buffer& src = l == 0 ? *ctx.in : ctx.post[size_t(l - 1)];
     L.wgt.set_args(n, chunk, src, d_pre_[cur], partial_);
-    L.wgt.launch({chunks, ceil_div(size_t(L.n_in), kRows) + 1, size_t(L.out_pad / 16)},
-                 {1, 1, size_t(L.out_pad / 16)});
+    // One work-group per chunk: all row blocks and output tiles reuse the chunk from cache.
+    const size_t row_blocks = ceil_div(size_t(L.n_in), kRows) + 1;
+    L.wgt.launch({chunks, row_blocks, size_t(L.out_pad / 16)},
+                 {1, row_blocks, size_t(L.out_pad / 16)});
     const size_t count = size_t(L.n_in + 1) * L.out_pad;
     L.reduce.set_args(int(chunks), partial_, grad, uint32_t(grad_offset + layer_off_[size_t(l)]));
     L.reduce.launch({cl::round_up(count, 64)}, {64});
@@ -215,7 +218,7 @@ void Mlp::backward(const cl::Buffer& params, size_t offset, const MlpContext& ct
         l == 0 ? d_out
                : (layers_[size_t(l - 1)].store_pre ? ctx.pre[size_t(l - 1)] : ctx.post[size_t(l - 1)]);
     L.bwd_in.set_args(n, wt_, d_pre_[cur], prev, dst);
-    L.bwd_in.launch({groups, size_t(pad16(L.n_in) / 16)}, {kLocal, 1});
+    L.bwd_in.launch({groups, size_t(pad16(L.n_in) / 16)}, {kLocal, size_t(pad16(L.n_in) / 16)});
     cur = 1 - cur;
   }
 }
