@@ -90,7 +90,8 @@ PixelOut cast_pixel(const Scene& scene, const Sensor& s, const Pose& T, const Li
     if (u_drop > 1.0 - m.random_drop) { ++st.random; return out; }
   }
   // Intensity: reflectance, Lambert-like incidence, mild range attenuation, additive noise.
-  const double inten = h.reflectance * (0.45 + 0.55 * cos_i) * std::exp(-r / 250.0) + m.intensity_noise * n_int;
+  const double inten = m.intensity_gain * h.reflectance * (m.intensity_ambient + (1.0 - m.intensity_ambient) * cos_i) *
+                           std::exp(-r / 250.0) + m.intensity_noise * n_int;
   const Eigen::Vector3f p = d_l * float(r);
   out.ret = true;
   out.p = {p.x(), p.y(), p.z(), float(std::clamp(inten, 0.0, 0.99))};

@@ -18,6 +18,10 @@ struct LidarModel {
   double range_noise_m = 0.015;         // σ of the range noise (plus range_noise_rel · r)
   double range_noise_rel = 3e-4;
   double intensity_noise = 0.02;        // σ of additive intensity noise
+  // intensity = gain · ρ · (ambient + (1 − ambient) · cos θ) · exp(−r / 250 m) + noise: KITTI's
+  // reflectance is largely calibrated for incidence; nuScenes' 0–255 values are darker (gain).
+  double intensity_ambient = 0.7;
+  double intensity_gain = 1.0;
   double grazing_cos = 0.035;           // cos(incidence) below which returns fade out
   double weak_power = 2.0e-4;           // ρ·cosθ·(10 m / r)² threshold of a detectable return
   double random_drop = 0.015;           // probability of a random dropout

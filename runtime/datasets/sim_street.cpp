@@ -211,7 +211,7 @@ StreetWorld generate_street(const StreetConfig& cfg) {
   const double wr = w.road_half_width, sw = w.sidewalk_width, L = w.path.length();
   w.ego_lateral = -(wr - 2.2) / 2;
   w.scene.texture_seed = cfg.seed;
-  w.scene.ground_reflectance = rng.uniform(0.14f, 0.22f);
+  w.scene.ground_reflectance = rng.uniform(0.22f, 0.32f);
   Placer P{w, rng};
   for (double s = 0; s < L; s += 9.0)  // dashed centre line
     P.add_clear(P.box_at(s + 1.5, 0, 0, V3(1.5f, 0.08f, 0.01f), 0.01f, Material::paint, 0.7f), 0.0);

@@ -90,6 +90,8 @@ SimResult simulate(const SimOptions& opt) {
     ids.push_back(k * stride);
     times.push_back(k * stride / sensor.rate_hz);
   }
+  sim::LidarModel lidar = opt.lidar;
+  if (nus) lidar.intensity_gain *= 0.3;  // real nuScenes LIDAR_TOP: mean intensity 0.074 after / 255
   sim::StreetConfig sc;
   sc.layout = ns.layout;
   sc.seed = world_seed;
@@ -114,7 +116,7 @@ SimResult simulate(const SimOptions& opt) {
     f.timestamp_s = times[size_t(k)];
     f.T_world_lidar = poses[size_t(k)];
     sim::DropStats st;
-    f.points = sim::cast_scan(world.scene, sensor, f.T_world_lidar, opt.lidar, world_seed, uint32_t(f.id),
+    f.points = sim::cast_scan(world.scene, sensor, f.T_world_lidar, lidar, world_seed, uint32_t(f.id),
                               opt.threads, &st);
     ProjectionStats ps;
     f.image = project_points(sensor, f.points, &ps);

@@ -48,7 +48,7 @@ TEST_CASE("flat ground at a known height: exact range and intensity per beam", "
         continue;
       }
       REQUIRE(img.range[i] == Approx(expect).epsilon(2e-5));
-      REQUIRE(img.intensity[i] == Approx(0.4 * (0.45 + 0.55 * cos_i) * std::exp(-expect / 250.0)).epsilon(1e-4));
+      REQUIRE(img.intensity[i] == Approx(0.4 * (0.7 + 0.3 * cos_i) * std::exp(-expect / 250.0)).epsilon(1e-4));
       ++checked;
     }
   }
@@ -104,8 +104,9 @@ TEST_CASE("simulated returns land in their own pixel; range image drop rate in a
   project_points(rg.dataset.sensor, rg.dataset.frames[0].points, &ps);
   CHECK(ps.projected == rg.dataset.frames[0].points.size());
   CHECK(ps.occluded == 0);
-  // Native beams (HDL-64E / HDL-32E): measured range-image drop rates 0.17-0.23 (KITTI-like)
-  // and ~0.3 (nuScenes-like); the real KITTI slice has 0.28, the real nuScenes frame 0.29.
+  // Native beams (HDL-64E / HDL-32E): full named sequences measure range-image drop rates of
+  // 0.17-0.20 (KITTI-like) and 0.17-0.21 (nuScenes-like); the real KITTI slice has 0.28, the
+  // real nuScenes frame 0.29. The lead's realistic band is 0.10-0.30.
   for (const char* seq : {"kitti360-low-c", "nuscenes-low-a"}) {
     SimOptions o;
     o.sequence = seq;
@@ -114,7 +115,7 @@ TEST_CASE("simulated returns land in their own pixel; range image drop rate in a
     const double drop = r.metadata["ray_drop"]["image_drop_rate"].get<double>();
     INFO(seq << " image drop rate " << drop);
     CHECK(drop > 0.10);
-    CHECK(drop < 0.40);
+    CHECK(drop < 0.30);
     CHECK(r.metadata["ray_drop"]["no_hit"].get<double>() > 0);
     CHECK(r.metadata["ray_drop"]["random"].get<double>() > 0);
   }
