@@ -123,6 +123,27 @@ BENCHMARK(BM_MlpDensityBwd)->Arg(1 << 16)->Arg(1 << 18)->UseManualTime()->Unit(b
 BENCHMARK(BM_MlpHeadFwd)->Arg(1 << 16)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MlpHeadBwd)->Arg(1 << 16)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 
+// The shape of the prototype figure in performance.md: 32→64→64→16, forward + backward.
+static void BM_MlpProtoFwdBwd(benchmark::State& state) {
+  auto& rt = bench::runtime();
+  const auto spec = field::make_mlp_spec(32, 64, 2, 16, Activation::Relu);
+  field::Mlp mlp(rt, spec);
+  const int n = int(state.range(0));
+  std::vector<float> params(mlp.n_params());
+  mlp.init_params(params, 0, 1);
+  auto b_p = cl::Buffer::from(rt, params);
+  auto b_in = cl::Buffer::from(rt, uniform(size_t(n) * 32, -1, 1, 2));
+  auto b_dout = cl::Buffer::from(rt, uniform(size_t(n) * 16, -1, 1, 3));
+  cl::Buffer b_out(rt, size_t(n) * 64), b_g(rt, params.size() * 4), b_din(rt, size_t(n) * 128);
+  field::MlpContext ctx;
+  const double secs = run_timed(state, [&] {
+    mlp.forward(b_p, 0, b_in, n, b_out, ctx);
+    mlp.backward(b_p, 0, ctx, b_out, b_dout, b_g, 0, &b_din);
+  });
+  set_counters(state, secs, n, double(n) * spec.macs_per_point() * 6, 0);
+}
+BENCHMARK(BM_MlpProtoFwdBwd)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
+
 static void BM_DirEncodingAndHeadInput(benchmark::State& state) {
   auto& rt = bench::runtime();
   field::DirEncoding de(rt);

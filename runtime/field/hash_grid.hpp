@@ -24,8 +24,9 @@ struct HashGridConfig {
   int log2_table_size = 19;  // entries per level (upper bound)
   float base_resolution = 16.0f;
   float per_level_scale = 1.6625f;
-  // true: level-partitioned, bit-reproducible backward; false: atomic compare-and-swap adds
-  // (summation order varies; kept to measure what determinism costs).
+  // true: level-partitioned, bit-reproducible backward (one work-item per level: the fast
+  // path on CPUs, too little parallelism for GPUs); false: atomic compare-and-swap adds per
+  // (point, level) (summation order varies; the GPU path, and the cost comparison on CPU).
   bool deterministic = true;
   // true: forward and d_x read an fp16 copy of the table (4-byte gathers at F = 2), refreshed
   // from the fp32 parameters on the first forward after params_changed(). Gradients and Adam
