@@ -42,6 +42,18 @@ std::vector<std::string> str_list(const Json& j) {
   return v;
 }
 
+// The naive baseline the pipeline scores beside each run (extra.naive_baseline: the nearest
+// training scan moved with the ground-truth poses); it depends on the data only, so the
+// first running row's copy stands for all. Empty object when no run reports it.
+Json naive_for(const Json& r, const std::string& sequence) {
+  for (const auto& row : r.value("rows", Json::array()))
+    for (const auto& s : row.value("sequences", Json::array()))
+      if (s.value("sequence", "") == sequence && s.contains("extra") && s["extra"].is_object() &&
+          s["extra"].contains("naive_baseline"))
+        return s["extra"]["naive_baseline"];
+  return Json::object();
+}
+
 }  // namespace
 
 std::string format_metric(const std::string& key, const Json& v) {
@@ -97,6 +109,28 @@ std::string render_markdown(const Json& r) {
       o << " " << (ok ? format_metric(c, get_or_null(mean, c)) : status_cell(row)) << " |";
     o << "\n";
   }
+  // Reference row: the naive baseline, mean over the sequences that report it.
+  {
+    std::vector<Json> naive;
+    for (const auto& seq : r.value("sequences", Json::array())) {
+      const Json n = naive_for(r, seq.value("name", ""));
+      if (!n.empty()) naive.push_back(n);
+    }
+    if (!naive.empty()) {
+      o << "| *naive baseline (nearest training scan)* |";
+      auto mean = [&](const std::string& c) -> Json {
+        double sum = 0;
+        for (const auto& n : naive) {
+          if (!n.contains(c) || !n[c].is_number()) return Json();
+          sum += n[c].get<double>();
+        }
+        return sum / double(naive.size());
+      };
+      for (const auto& c : cols) o << " " << format_metric(c, mean(c)) << " | | |";
+      for (const auto& c : extra) o << " " << format_metric(c, mean(c)) << " |";
+      o << "\n";
+    }
+  }
   o << "\nΔ = ours − paper. Paper numbers: protocol §5 (results/paper_tables.json).";
   if (any_unverified) o << " † from third-party notes, not verified.";
   o << " F-score compares squared distances with 0.05, i.e. a √0.05 ≈ 0.224 m threshold "
@@ -140,6 +174,12 @@ std::string render_markdown(const Json& r) {
       for (const auto& c : all)
         o << " " << (m.is_object() ? format_metric(c, get_or_null(m, c)) : status_cell(row))
           << " |";
+      o << "\n";
+    }
+    const Json naive = naive_for(r, name);
+    if (!naive.empty()) {
+      o << "| *naive baseline* |";
+      for (const auto& c : all) o << " " << format_metric(c, get_or_null(naive, c)) << " |";
       o << "\n";
     }
   }

@@ -33,6 +33,7 @@ inline harness::BenchHooks fake_hooks(int* prepare_calls = nullptr, bool fail_sg
                        {"depth_lpips", nullptr}};
     res.per_frame = Json::array({Json{{"frame", 13}, {"cd", f * (0.1 + 0.02 * k)}}});
     res.pose_metrics = r.method == "sg-nlf" ? Json{{"ate_m", 0.07}} : Json(nullptr);
+    res.extra = Json{{"naive_baseline", {{"cd", 0.2 + 0.1 * k}, {"depth_psnr", 18.0}}}};
     res.timings = Json{{"train", 1.0 + k}, {"step", {0.010, 0.011, 0.012, 0.013, 0.014, 0.015}}};
     return res;
   };

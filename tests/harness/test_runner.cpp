@@ -97,6 +97,9 @@ TEST_CASE("markdown: ours beside the paper, not implemented rows, per-sequence t
   CHECK(md.find("## Sequence kitti360-1538") != std::string::npos);
   CHECK(md.find("## Sequence kitti360-1728") != std::string::npos);
   CHECK(md.find("fake divergence") != std::string::npos);
+  // The naive baseline reported by the runs: mean over sequences (0.2 + 0.3) / 2.
+  CHECK(md.find("| *naive baseline (nearest training scan)* | 0.2500 | | | 18.00 | | | — | | |") !=
+        std::string::npos);
   CHECK(harness::format_metric("depth_psnr", Json(20.456)) == "20.46");
   CHECK(harness::format_metric("cd", Json()) == "—");
 }
