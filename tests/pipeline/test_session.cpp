@@ -1,0 +1,63 @@
+// The run-folder flow behind `sgnlf train/render/eval` on a tiny synthetic sequence written to
+// disk: run.json, checkpoint, summary, metrics of the model and the naive baseline, renders;
+// a folder holding another run is refused.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include "datasets/simulate.hpp"
+#include "pipeline/session.hpp"
+#include "support/test_device.hpp"
+#include "tiny_scene.hpp"
+
+SGNLF_DEVICE_TESTS;
+using namespace sgnlf;
+using namespace sgnlf::pipeline;
+namespace fs = std::filesystem;
+
+TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") {
+  const std::string data = test::temp_dir("session_data") + "/seq";
+  {
+    SimOptions o;
+    o.sequence = "kitti360-1538";
+    o.frames = 14;
+    o.width = 128;
+    o.height = 16;
+    o.threads = 1;
+    write_synthetic(simulate(o), data);
+  }
+  const std::string run_dir = test::temp_dir("session_run");
+  TrainRequest req;
+  req.manifest.preset = "smoke";
+  req.manifest.dataset = data;
+  req.manifest.seed = 5;
+  req.manifest.config = test::tiny_config();
+  req.run_dir = run_dir;
+  req.show_progress = false;
+  const Json summary = train_run(test::runtime(), req);
+  CHECK(summary.at("finished").get<bool>());
+  CHECK(summary.at("end_step").get<long>() == 12);
+  CHECK(fs::exists(run_dir + "/run.json"));
+  CHECK(fs::exists(run_dir + "/summary.json"));
+
+  LoadedRun run = load_run(test::runtime(), run_dir);
+  CHECK(run.step == 12);
+  const Json m = eval_run(run, run_dir);
+  CHECK(fs::exists(run_dir + "/metrics.json"));
+  REQUIRE(m.at("per_frame").size() == 1);
+  CHECK(m.at("per_frame")[0].at("frame").get<int>() == run.dataset->frames[13].id);
+  for (const char* k : {"cd", "fscore", "depth_rmse", "depth_psnr", "intensity_psnr"}) {
+    CHECK(m.at("metrics").contains(k));
+    CHECK(m.at("naive_baseline").at("metrics").contains(k));
+  }
+  CHECK(m.at("naive_baseline").at("metrics").at("fscore").get<double>() > 0.0);
+
+  const Json files = render_run(run, run_dir + "/renders");
+  REQUIRE(files.size() == 1);
+  CHECK(fs::file_size(files[0].at("png").get<std::string>()) > 100);
+  CHECK(fs::exists(files[0].at("pred").get<std::string>()));
+
+  TrainRequest other = req;
+  other.manifest.seed = 6;
+  CHECK_THROWS_AS(train_run(test::runtime(), other), ConfigError);
+}
