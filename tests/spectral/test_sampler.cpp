@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "spectral/implicit_sampler.hpp"
+#include "spectral/point_cloud_surface.hpp"
 #include "spectral/uniformity.hpp"
 
 using namespace sgnlf;
@@ -86,4 +87,25 @@ TEST_CASE("point-set thinning evens out a non-uniform density", "[sampler]") {
   CHECK(before.chi2_per_dof > 20);
   CHECK(after.chi2_per_dof < 1.35);  // 255 dof: 1 ± 0.089
   CHECK(kept.size() > 10000);
+}
+
+TEST_CASE("surface from observed points: uniform thinning and PCA normals", "[sampler]") {
+  const auto shape = make_shape(kSphere);
+  Rng rng(24);
+  std::vector<Eigen::Vector3d> x;
+  while (x.size() < 120000) {  // density ∝ 1 + 0.8 z, as a LiDAR scan is denser near the sensor
+    const auto p = shape->sample(rng, 1)[0];
+    if (rng.uniform_double() * 1.8 < 1 + 0.8 * p.x.z() / kSphere.radius) x.push_back(p.x);
+  }
+  PointCloudSurfaceStats st;
+  const auto pts = surface_from_points(x, 0.08, rng, &st);
+  CHECK(st.kept == pts.size());
+  CHECK(st.too_few_neighbours == 0);
+  double worst = 0;
+  for (const auto& p : pts) {
+    worst = std::max(worst, 1 - std::fabs(p.n.dot(p.x.normalized())));
+    REQUIRE(std::fabs(p.t1.dot(p.n)) + std::fabs(p.t2.dot(p.n)) < 1e-12);
+  }
+  CHECK(worst < 1e-3);  // |cos| > 0.999: normals within 2.6 degrees
+  CHECK(sphere_uniformity(pts).chi2_per_dof < 1.35);
 }
