@@ -135,6 +135,8 @@ double metric_tolerance(const std::string& metric, const std::string& mode, doub
 CompareReport compare_results(const Json& fresh, const Json& base, const CompareOptions& opt) {
   opt.validate();
   CompareReport rep;
+  rep.mode = "none";
+  rep.mode_reason = "the results are not comparable";
   Comparer c{opt, rep};
   for (const auto* j : {&fresh, &base}) {
     if (j->value("schema", "") != kSchemaName || at(*j, "schema_version") != Json(kSchemaVersion)) {
