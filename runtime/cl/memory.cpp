@@ -95,7 +95,12 @@ Event Kernel::launch(std::vector<size_t> global, std::vector<size_t> local) {
                                global.data(), local.empty() ? nullptr : local.data(), 0, nullptr,
                                &e),
         "clEnqueueNDRangeKernel", name_);
-  return Event(e);
+  Event ev(e);
+  if (rt_->profiling()) {
+    ev.wait();
+    rt_->record(name_, ev.elapsed_ms());
+  }
+  return ev;
 }
 
 }  // namespace sgnlf::cl

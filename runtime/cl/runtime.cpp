@@ -1,5 +1,12 @@
 #include "cl/runtime.hpp"
 
+#include <algorithm>
+#include <cstdlib>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <vector>
+
 #include "cl/kernel_sources.hpp"
 #include "core/config.hpp"
 #include "core/log.hpp"
@@ -21,6 +28,39 @@ void Runtime::open() {
   check(rc, "clCreateCommandQueue", device_.describe());
   queue_ = QueueHandle(q);
   log::debug("opened OpenCL device ", device_.describe());
+  const char* prof = std::getenv("SGNLF_PROFILE");
+  profiling_ = prof != nullptr && std::string(prof) != "0" && std::string(prof) != "";
+}
+
+Runtime::~Runtime() {
+  if (!profile_.empty()) std::cerr << profile_report();
+}
+
+void Runtime::record(const std::string& kernel, double ms) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto& row = profile_[kernel];
+  ++row.launches;
+  row.total_ms += ms;
+}
+
+std::string Runtime::profile_report() const {
+  std::vector<std::pair<std::string, ProfileRow>> rows(profile_.begin(), profile_.end());
+  std::sort(rows.begin(), rows.end(),
+            [](const auto& a, const auto& b) { return a.second.total_ms > b.second.total_ms; });
+  double total = 0.0;
+  for (const auto& r : rows) total += r.second.total_ms;
+  std::ostringstream os;
+  os << "kernel profile on " << device_.describe() << " (SGNLF_PROFILE; device time, "
+     << std::fixed << std::setprecision(1) << total << " ms in all)\n";
+  os << "  " << std::left << std::setw(40) << "kernel" << std::right << std::setw(10)
+     << "launches" << std::setw(12) << "total ms" << std::setw(10) << "ms/launch" << std::setw(8)
+     << "share" << "\n";
+  for (const auto& [name, r] : rows)
+    os << "  " << std::left << std::setw(40) << name << std::right << std::setw(10) << r.launches
+       << std::setw(12) << std::setprecision(1) << r.total_ms << std::setw(10)
+       << std::setprecision(3) << r.total_ms / double(r.launches) << std::setw(7)
+       << std::setprecision(1) << 100.0 * r.total_ms / std::max(total, 1e-12) << "%\n";
+  return os.str();
 }
 
 cl_program Runtime::program(const std::string& file, const std::string& options) {

@@ -40,6 +40,21 @@ class Runtime {
   void finish();
   size_t programs_built() const { return builds_; }
 
+  // Kernel profile: when on (the constructor turns it on if SGNLF_PROFILE is set to anything
+  // but "0"), every launch waits for its kernel and adds the device time to the kernel's row;
+  // the destructor of a Runtime with a non-empty profile prints it to stderr. Serialises the
+  // queue, so it is for finding where time goes, not for throughput numbers.
+  struct ProfileRow {
+    long launches = 0;
+    double total_ms = 0.0;
+  };
+  void set_profiling(bool on) { profiling_ = on; }
+  bool profiling() const { return profiling_; }
+  void record(const std::string& kernel, double ms);
+  const std::map<std::string, ProfileRow>& profile() const { return profile_; }
+  std::string profile_report() const;
+  ~Runtime();
+
  private:
   void open();
   DeviceInfo device_;
@@ -48,6 +63,8 @@ class Runtime {
   std::mutex mutex_;
   std::map<std::string, ProgramHandle> programs_;
   size_t builds_ = 0;
+  bool profiling_ = false;
+  std::map<std::string, ProfileRow> profile_;
 };
 
 }  // namespace sgnlf::cl

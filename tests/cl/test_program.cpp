@@ -90,3 +90,29 @@ TEST_CASE("includes are inlined and buffers reject out-of-range transfers", "[cl
   CHECK_THROWS_AS(b.write(v.data(), 32), Error);
   CHECK_THROWS_AS(cl::kernel_source("no/such/file.cl"), Error);
 }
+
+TEST_CASE("the kernel profile counts launches and device time per kernel", "[cl][profile]") {
+  auto& rt = test::runtime();
+  const bool was = rt.profiling();
+  const int n = 4096;
+  std::vector<float> x(n, 1.0f), y(n, 2.0f);
+  auto bx = cl::Buffer::from(rt, x), by = cl::Buffer::from(rt, y);
+  auto k = rt.kernel("common/smoke.cl", "common_saxpy_fwd");
+  k.set_args(n, 0.5f, bx, by);
+  const long before = rt.profile().count("common_saxpy_fwd")
+                          ? rt.profile().at("common_saxpy_fwd").launches
+                          : 0;
+  rt.set_profiling(true);
+  for (int i = 0; i < 3; ++i) k.launch({size_t(n)});
+  rt.set_profiling(false);
+  k.launch({size_t(n)});  // not profiled
+  rt.finish();
+  rt.set_profiling(was);
+  const auto& row = rt.profile().at("common_saxpy_fwd");
+  CHECK(row.launches == before + 3);
+  CHECK(row.total_ms >= 0.0);
+  const std::string report = rt.profile_report();
+  CHECK_THAT(report, Catch::Contains("common_saxpy_fwd") && Catch::Contains(rt.device().name));
+  // The launches really ran: y = 2 + 4 * 0.5
+  CHECK(by.read_vec<float>(n)[0] == Approx(4.0f));
+}
