@@ -1,4 +1,4 @@
-// `sgnlf eval --run <run dir> [--json] [--data <dataset>] [--device SPEC]`: protocol §4 metrics
+// `sgnlf eval --run <run dir> [--json] [--data <dataset>] [--device SPEC] [--samples N] [--importance M]`: protocol §4 metrics
 // of a trained run's test frames and of the naive baseline; writes <run>/metrics.json.
 #include <cmath>
 #include <cstdio>
@@ -12,6 +12,7 @@ namespace {
 
 struct EvalArgs {
   std::string run, data, device;
+  pipeline::RenderSampling sampling;
   bool json = false;
 };
 
@@ -27,10 +28,14 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
   sub.add_option("--run", a->run, "Run folder")->required();
   sub.add_option("--data", a->data, "Dataset folder (default: the one the run trained on)");
   sub.add_option("--device", a->device, "OpenCL device index or name substring");
+  sub.add_option("--samples", a->sampling.n_samples,
+                 "Uniform samples per ray when rendering (default: as trained)");
+  sub.add_option("--importance", a->sampling.n_importance,
+                 "Importance samples per ray when rendering (default: as trained)");
   sub.add_flag("--json", a->json, "Print the metrics JSON");
   return std::function<int()>([a] {
     cl::Runtime rt(a->device);
-    auto run = pipeline::load_run(rt, a->run, a->data);
+    auto run = pipeline::load_run(rt, a->run, a->data, a->sampling);
     const Json j = pipeline::eval_run(run, a->run);
     if (a->json) {
       std::cout << j.dump(2) << "\n";

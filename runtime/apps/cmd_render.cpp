@@ -11,6 +11,7 @@ namespace {
 
 struct RenderArgs {
   std::string run, out, data, device;
+  pipeline::RenderSampling sampling;
 };
 
 const Registrar reg("render", "Render the test frames of a trained run", [](CLI::App& sub) {
@@ -19,9 +20,13 @@ const Registrar reg("render", "Render the test frames of a trained run", [](CLI:
   sub.add_option("--out", a->out, "Output folder (default <run>/renders)");
   sub.add_option("--data", a->data, "Dataset folder (default: the one the run trained on)");
   sub.add_option("--device", a->device, "OpenCL device index or name substring");
+  sub.add_option("--samples", a->sampling.n_samples,
+                 "Uniform samples per ray when rendering (default: as trained)");
+  sub.add_option("--importance", a->sampling.n_importance,
+                 "Importance samples per ray when rendering (default: as trained)");
   return std::function<int()>([a] {
     cl::Runtime rt(a->device);
-    auto run = pipeline::load_run(rt, a->run, a->data);
+    auto run = pipeline::load_run(rt, a->run, a->data, a->sampling);
     const std::string out =
         a->out.empty() ? (std::filesystem::path(a->run) / "renders").string() : a->out;
     std::cout << pipeline::render_run(run, out).dump(2) << "\n";

@@ -39,9 +39,16 @@ int model_capacity(const TrainConfig& c) {
 }
 
 LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
-                   const std::string& dataset_override) {
+                   const std::string& dataset_override, const RenderSampling& sampling) {
   LoadedRun run;
   run.manifest = read_manifest(run_dir);
+  const uint64_t trained_hash = run.manifest.config.hash();
+  if (sampling.n_samples < 0 || sampling.n_importance < -1)
+    throw ConfigError("render sampling override: samples " + std::to_string(sampling.n_samples) +
+                      ", importance " + std::to_string(sampling.n_importance) +
+                      " (samples >= 1, importance >= 0)");
+  if (sampling.n_samples > 0) run.manifest.config.render.n_samples = sampling.n_samples;
+  if (sampling.n_importance >= 0) run.manifest.config.render.n_importance = sampling.n_importance;
   const std::string data = dataset_override.empty() ? run.manifest.dataset : dataset_override;
   run.dataset = std::make_unique<Dataset>(load_dataset(data));
   run.scene = std::make_unique<Scene>(make_scene(*run.dataset));
@@ -49,7 +56,7 @@ LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
   run.model = std::make_unique<LidarNerfModel>(rt, c, float(run.scene->norm.scale),
                                                model_capacity(c));
   const Checkpoint ck =
-      load_checkpoint_for(checkpoint_path(run_dir), c.hash(), run.manifest.seed);
+      load_checkpoint_for(checkpoint_path(run_dir), trained_hash, run.manifest.seed);
   ModelState st;
   st.params = ck.array("params", run.model->n_params());
   st.adam_m = ck.array("adam_m", run.model->n_params());

@@ -34,9 +34,19 @@ struct LoadedRun {
   long step = 0;
 };
 
-// `dataset_override` replaces the manifest's dataset path when not empty.
+// Sampling used when rendering a loaded run (a finer sampling than training's is allowed: the
+// checkpoint does not depend on it). 0 keeps the trained value; n_importance 0 is itself a valid
+// override, so "keep" is -1 there.
+struct RenderSampling {
+  int n_samples = 0;
+  int n_importance = -1;
+};
+
+// `dataset_override` replaces the manifest's dataset path when not empty. The checkpoint is
+// checked against the run's config as trained; `sampling` then changes the model's render
+// sampling (LoadedRun::manifest.config shows the sampling in use).
 LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
-                   const std::string& dataset_override = "");
+                   const std::string& dataset_override = "", const RenderSampling& sampling = {});
 
 // Capacity (rays) a model needs for training and chunked rendering under `c`.
 int model_capacity(const TrainConfig& c);

@@ -3,6 +3,7 @@
 // a folder holding another run is refused.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
 
 #include "datasets/simulate.hpp"
@@ -56,6 +57,17 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
   REQUIRE(files.size() == 1);
   CHECK(fs::file_size(files[0].at("png").get<std::string>()) > 100);
   CHECK(fs::exists(files[0].at("pred").get<std::string>()));
+
+  // A finer render sampling than training's loads the same checkpoint and is recorded.
+  const int trained_samples = run.manifest.config.render.n_samples;
+  LoadedRun fine = load_run(test::runtime(), run_dir, "", RenderSampling{2 * trained_samples, 8});
+  CHECK(fine.step == 12);
+  CHECK(fine.manifest.config.render.n_samples == 2 * trained_samples);
+  const Json mf = eval_run(fine, run_dir);
+  CHECK(mf.at("render_sampling").at("n_samples").get<int>() == 2 * trained_samples);
+  CHECK(mf.at("render_sampling").at("n_importance").get<int>() == 8);
+  CHECK(std::isfinite(mf.at("metrics").at("depth_rmse").get<double>()));
+  CHECK_THROWS_AS(load_run(test::runtime(), run_dir, "", RenderSampling{-1, -1}), ConfigError);
 
   TrainRequest other = req;
   other.manifest.seed = 6;
