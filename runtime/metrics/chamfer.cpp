@@ -34,17 +34,16 @@ ChamferResult chamfer_fscore(const std::vector<Point3f>& pred, const std::vector
   r.n_gt = gt.size();
   if (pred.empty() || gt.empty()) {
     // The peers' code would average an empty tensor (NaN); F-score is 0 where undefined.
-    r.cd = std::numeric_limits<double>::quiet_NaN();
+    r.cd = r.cd_pred_to_gt = r.cd_gt_to_pred = std::numeric_limits<double>::quiet_NaN();
     return r;
   }
   const KdTree tree_gt(gt), tree_pred(pred);
   std::vector<float> d1, d2;
   tree_gt.nearest_all(pred, d1);
   tree_pred.nearest_all(gt, d2);
-  double m1, m2;
-  summarize(d1, threshold_sq, m1, r.precision);
-  summarize(d2, threshold_sq, m2, r.recall);
-  r.cd = m1 + m2;
+  summarize(d1, threshold_sq, r.cd_pred_to_gt, r.precision);
+  summarize(d2, threshold_sq, r.cd_gt_to_pred, r.recall);
+  r.cd = r.cd_pred_to_gt + r.cd_gt_to_pred;
   const double s = r.precision + r.recall;
   r.fscore = s > 0.0 ? 2.0 * r.precision * r.recall / s : 0.0;
   return r;

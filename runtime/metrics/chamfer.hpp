@@ -16,6 +16,8 @@ constexpr double kFscoreThresholdSq = 0.05;  // m², protocol §4
 
 struct ChamferResult {
   double cd = 0.0;           // mean(d1) + mean(d2), m²; NaN when either set is empty
+  double cd_pred_to_gt = 0.0;  // mean(d1): accuracy (floaters, mixed edge depths raise it)
+  double cd_gt_to_pred = 0.0;  // mean(d2): completeness (holes, missed returns raise it)
   double fscore = 0.0;       // 0 where undefined (P1 + P2 = 0 or an empty set)
   double precision = 0.0;    // P1: fraction of predicted points with d1 < τ
   double recall = 0.0;       // P2: fraction of ground-truth points with d2 < τ

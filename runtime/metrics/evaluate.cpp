@@ -50,7 +50,8 @@ const std::vector<std::string>& view_metric_keys() {
   static const std::vector<std::string> keys = {
       "cd",           "fscore",          "depth_rmse",     "depth_medae",     "depth_ssim",
       "depth_psnr",   "depth_delta1",    "depth_lpips",    "intensity_rmse",  "intensity_medae",
-      "intensity_ssim", "intensity_psnr", "raydrop_rmse",  "raydrop_acc",     "raydrop_f1"};
+      "intensity_ssim", "intensity_psnr", "raydrop_rmse",  "raydrop_acc",     "raydrop_f1",
+      "cd_pred_to_gt",  "cd_gt_to_pred"};
   return keys;
 }
 
@@ -92,6 +93,9 @@ Json evaluate_view(const Sensor& sensor, const RangeImage& pred, const RangeImag
   j["raydrop_rmse"] = number_or_null(rm.rmse);
   j["raydrop_acc"] = number_or_null(rm.acc);
   j["raydrop_f1"] = number_or_null(rm.f1);
+  // The two directions of CD (not in the peers' tables): which side the error comes from.
+  j["cd_pred_to_gt"] = number_or_null(ch.cd_pred_to_gt);
+  j["cd_gt_to_pred"] = number_or_null(ch.cd_gt_to_pred);
   return j;
 }
 

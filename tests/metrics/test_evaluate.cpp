@@ -47,9 +47,11 @@ TEST_CASE("evaluate_view of a perfect prediction", "[metrics][evaluate]") {
   std::set<std::string> keys;
   for (const auto& [k, v] : j.items()) keys.insert(k);
   CHECK(keys == std::set<std::string>(view_metric_keys().begin(), view_metric_keys().end()));
-  CHECK(keys.size() == 15);
+  CHECK(keys.size() == 17);
   CHECK(j["cd"].get<double>() == 0.0);
   CHECK(j["fscore"].get<double>() == 1.0);
+  CHECK(j["cd_pred_to_gt"].get<double>() == 0.0);
+  CHECK(j["cd_gt_to_pred"].get<double>() == 0.0);
   CHECK(j["depth_rmse"].get<double>() == 0.0);
   CHECK(j["depth_psnr"].is_null());  // MSE = 0
   CHECK(j["depth_ssim"].get<double>() == Approx(1.0));

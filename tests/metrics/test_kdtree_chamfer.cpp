@@ -67,12 +67,15 @@ TEST_CASE("Chamfer distance and F-score on a hand-computed case", "[metrics][cha
   const auto r = chamfer_fscore(pred, gt);
   const double d01 = double(0.1f) * double(0.1f);
   CHECK(r.cd == Approx(d01 + (d01 + 1.0) / 2.0).epsilon(1e-6));  // ≈ 0.515
+  CHECK(r.cd_pred_to_gt == Approx(d01).epsilon(1e-6));
+  CHECK(r.cd_gt_to_pred == Approx((d01 + 1.0) / 2.0).epsilon(1e-6));
   CHECK(r.precision == 1.0);
   CHECK(r.recall == 0.5);
   CHECK(r.fscore == Approx(2.0 * 1.0 * 0.5 / 1.5));  // 2/3
   // Symmetric: swapping the sets swaps precision and recall, CD and F unchanged.
   const auto s = chamfer_fscore(gt, pred);
   CHECK(s.cd == Approx(r.cd));
+  CHECK(s.cd_pred_to_gt == Approx(r.cd_gt_to_pred));
   CHECK(s.precision == r.recall);
   CHECK(s.fscore == Approx(r.fscore));
 }
