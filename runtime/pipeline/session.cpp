@@ -2,6 +2,7 @@
 #include "pipeline/session.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 
 #include "core/log.hpp"
@@ -101,6 +102,31 @@ Json render_run(LoadedRun& run, const std::string& out_dir) {
                                        io::range_image_picture(fr.image, po), 12));
     files.push_back(Json{{"frame", fr.id}, {"png", stem + ".png"}, {"pred", stem + "_pred.npy"},
                          {"gt", stem + "_gt.npy"}});
+  }
+  return files;
+}
+
+Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
+                  const std::string& out_dir) {
+  if (T_world_lidar.empty()) throw ConfigError("render_poses: no poses to render");
+  fs::create_directories(out_dir);
+  io::RangePictureOptions po;
+  po.max_range_m = run.dataset->sensor.max_range_m;
+  Json files = Json::array();
+  for (size_t k = 0; k < T_world_lidar.size(); ++k) {
+    const Eigen::Vector3d o = normalize_pose(T_world_lidar[k], run.scene->norm).translation();
+    if (o.cwiseAbs().maxCoeff() > 1.0)
+      log::warn("render_poses: pose ", k, " has its origin at (", o.x(), ", ", o.y(), ", ", o.z(),
+                ") in the normalised scene, outside the trained box [-1, 1]^3");
+    const RangeImage pred = render_view(*run.model, *run.scene, T_world_lidar[k],
+                                        run.manifest.config.schedule.render_chunk_rays);
+    char name[32];
+    std::snprintf(name, sizeof name, "pose_%04zu", k);
+    const std::string stem = (fs::path(out_dir) / name).string();
+    io::write_range_npy(stem + ".npy", pred);
+    io::write_png(stem + ".png", io::range_image_picture(masked_prediction(pred), po));
+    files.push_back(Json{{"pose", k}, {"npy", stem + ".npy"}, {"png", stem + ".png"},
+                         {"origin_normalised", {o.x(), o.y(), o.z()}}});
   }
   return files;
 }

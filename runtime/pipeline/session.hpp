@@ -27,6 +27,14 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req);
 // and <frame>.png (rendered above ground truth: depth, intensity, mask). Returns the files.
 Json render_run(LoadedRun& run, const std::string& out_dir);
 
+// Renders novel views at the given poses (T_world_lidar in the dataset's world frame, metres):
+// <out>/pose_<k>.npy (H×W×3: range, return probability, intensity) and pose_<k>.png (the
+// prediction masked at probability 0.5: depth, intensity, mask). ConfigError for an empty list;
+// a pose whose origin lies outside the scene's normalised box is rendered with a warning (the
+// field is only trained inside it). Returns the files with each pose's normalised origin.
+Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
+                  const std::string& out_dir);
+
 // Per-frame and mean metrics of the model and of the naive baseline; writes <run>/metrics.json.
 Json eval_run(LoadedRun& run, const std::string& run_dir);
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "datasets/simulate.hpp"
+#include "io/range_array.hpp"
 #include "pipeline/session.hpp"
 #include "support/test_device.hpp"
 #include "tiny_scene.hpp"
@@ -57,6 +58,22 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
   REQUIRE(files.size() == 1);
   CHECK(fs::file_size(files[0].at("png").get<std::string>()) > 100);
   CHECK(fs::exists(files[0].at("pred").get<std::string>()));
+
+  // Novel views: at a test frame's own pose the render equals render_run's; a pose far outside
+  // the scene still renders; an empty pose list is refused.
+  const Pose T_test = run.dataset->frames[13].T_world_lidar;
+  Pose T_far = T_test;
+  T_far.translation() += Eigen::Vector3d(1e4, 0.0, 0.0);
+  const Json views = render_poses(run, {T_test, T_far}, run_dir + "/views");
+  REQUIRE(views.size() == 2);
+  const RangeImage at_test = io::read_range_npy(views[0].at("npy").get<std::string>());
+  const RangeImage from_run = io::read_range_npy(files[0].at("pred").get<std::string>());
+  CHECK(at_test.range == from_run.range);
+  CHECK(at_test.intensity == from_run.intensity);
+  CHECK(at_test.ray_drop == from_run.ray_drop);
+  CHECK(views[1].at("origin_normalised")[0].get<double>() > 1.0);
+  CHECK(fs::file_size(views[1].at("png").get<std::string>()) > 100);
+  CHECK_THROWS_AS(render_poses(run, {}, run_dir + "/views"), ConfigError);
 
   // A finer render sampling than training's loads the same checkpoint and is recorded.
   const int trained_samples = run.manifest.config.render.n_samples;
