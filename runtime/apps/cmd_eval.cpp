@@ -1,5 +1,6 @@
-// `sgnlf eval --run <run dir> [--json] [--data <dataset>] [--device SPEC] [--samples N] [--importance M]`: protocol §4 metrics
-// of a trained run's test frames and of the naive baseline; writes <run>/metrics.json.
+// `sgnlf eval --run <run dir> [--json] [--data <dataset>] [--device SPEC] [--samples N]
+// [--importance M]`: protocol §4 metrics of a trained run's test frames and of the naive
+// baseline; writes <run>/metrics.json.
 #include <cmath>
 #include <cstdio>
 #include <iostream>
