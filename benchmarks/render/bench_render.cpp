@@ -108,18 +108,18 @@ static void BM_SampleImportance(benchmark::State& state) {
   cl::Buffer o, d;
   make_rays(n_rays, o, d);
   const size_t nc = size_t(n_rays) * Sc, no = size_t(n_rays) * (Sc + Sf);
-  cl::Buffer tc(rt, nc * 4), xc(rt, nc * 12), t(rt, no * 4), x(rt, no * 12);
+  cl::Buffer tc(rt, nc * 4), xc(rt, nc * 12), t(rt, no * 4), x(rt, no * 12), src(rt, no * 4);
   sampler.uniform(o, d, n_rays, true, 1, 0, tc, xc).wait();
   auto w = cl::Buffer::from(rt, random_vec(nc, 0.f, 0.05f, 2));
   double ms = 0;
   uint32_t step = 0;
   for (auto _ : state) {
     const double e =
-        sampler.importance(o, d, n_rays, Sc, tc, w, true, 1, ++step, t, x).elapsed_ms();
+        sampler.importance(o, d, n_rays, Sc, tc, w, true, 1, ++step, t, x, src).elapsed_ms();
     ms += e;
     state.SetIterationTime(e * 1e-3);
   }
-  report(state, ms, n_rays, no, 8.0 * nc + 16.0 * no);
+  report(state, ms, n_rays, no, 8.0 * nc + 20.0 * no);
 }
 BENCHMARK(BM_SampleImportance)
     ->Args({4096, 64, 32})

@@ -10,7 +10,19 @@
 //   ACT (activation of this layer), STORE_PRE (1: also write pre-activations, OUT_PAD stride),
 //   PREV_ACT (activation of the previous layer, -1: none = input of the MLP),
 //   PREV_PRE (1: previous layer's derivative from its pre-activations), DIN_STRIDE,
-//   PTS (points per work-item), ROWS (weight rows per work-item in the weight gradient).
+//   PTS (points per work-item), ROWS (weight rows per work-item in the weight gradient),
+//   IN_OFFSET / DIN_OFFSET (first column of the input / of d_in within its row),
+//   GROUP_BIAS (1: the pre-activation starts from a per-group row gbias[point / group] instead
+//   of the bias: layer 0 of an MLP with grouped inputs, see runtime/field/mlp.hpp).
+#ifndef IN_OFFSET
+#define IN_OFFSET 0
+#endif
+#ifndef DIN_OFFSET
+#define DIN_OFFSET 0
+#endif
+#ifndef GROUP_BIAS
+#define GROUP_BIAS 0
+#endif
 #define ACT_NONE 0
 #define ACT_RELU 1
 #define ACT_TANH 2
@@ -55,21 +67,28 @@ inline void store_row(float16 v, __global float* row, int o0, int width, int pad
   }
 }
 
-// Forward: out = act(in · W_t + b). Work-item = PTS points × 16 outputs.
+// Forward: out = act(in · W_t + b), or with GROUP_BIAS act(in · W_t + gbias[point / group]).
+// Work-item = PTS points × 16 outputs.
 __kernel void field_mlp_fwd(const int n, __global const float* params, const uint w_off,
                             __global const float* in, __global float* out,
-                            __global float* pre) {
+                            __global float* pre, __global const float* gbias, const int group) {
   const int p0 = get_global_id(0) * PTS;
   const int o0 = get_global_id(1) * 16;
   if (p0 >= n) return;
   __global const float* W = params + w_off;
-  const float16 b = vload16(0, W + N_IN * OUT_PAD + o0);
   float16 acc[PTS];
   __global const float* rows[PTS];
+#if !GROUP_BIAS
+  const float16 b = vload16(0, W + N_IN * OUT_PAD + o0);
+#endif
 #pragma unroll
   for (int p = 0; p < PTS; ++p) {
+#if GROUP_BIAS
+    acc[p] = vload16(0, gbias + (size_t)(min(p0 + p, n - 1) / group) * OUT_PAD + o0);
+#else
     acc[p] = b;
-    rows[p] = in + (size_t)min(p0 + p, n - 1) * IN_STRIDE;
+#endif
+    rows[p] = in + (size_t)min(p0 + p, n - 1) * IN_STRIDE + IN_OFFSET;
   }
   for (int i = 0; i < N_IN; ++i) {
     const float16 w = vload16(0, W + i * OUT_PAD + o0);
@@ -144,7 +163,7 @@ __kernel void field_mlp_bwd_wgt(const int n, const int chunk, __global const flo
   }
   for (int i = begin; i < end; ++i) {
     const float16 d = vload16(0, d_pre + (size_t)i * OUT_PAD + o0);
-    __global const float* row = in + (size_t)i * IN_STRIDE;
+    __global const float* row = in + (size_t)i * IN_STRIDE + IN_OFFSET;
 #pragma unroll
     for (int r = 0; r < ROWS; ++r) acc[r] = fma((float16)(row[col[r]]), d, acc[r]);
   }
@@ -198,7 +217,8 @@ __kernel void field_mlp_bwd_in(const int n, __global const float* wt, __global c
     if (p0 + p >= n) continue;
     const size_t row = (size_t)(p0 + p);
 #if PREV_ACT < 0
-    store_row(acc[p], d_in + row * DIN_STRIDE, i0, N_IN, DIN_STRIDE == IN_PAD);
+    store_row(acc[p], d_in + row * DIN_STRIDE + DIN_OFFSET, i0, N_IN,
+              DIN_STRIDE == IN_PAD && DIN_OFFSET == 0);
 #elif PREV_ACT == ACT_NONE
     vstore16(acc[p], 0, d_in + row * IN_PAD + i0);
 #elif PREV_PRE
@@ -209,4 +229,17 @@ __kernel void field_mlp_bwd_in(const int n, __global const float* wt, __global c
              d_in + row * IN_PAD + i0);
 #endif
   }
+}
+
+// Grouped inputs, backward: d_group[g] = Σ_{k < group} d_pre[g·group + k] (OUT_PAD wide, in
+// order: deterministic). Work-item = group × 16 outputs.
+__kernel void field_mlp_group_sum(const int n_groups, const int group,
+                                  __global const float* d_pre, __global float* d_group) {
+  const int g = get_global_id(0);
+  const int o0 = get_global_id(1) * 16;
+  if (g >= n_groups) return;
+  float16 acc = (float16)(0.0f);
+  for (int k = 0; k < group; ++k)
+    acc += vload16(0, d_pre + ((size_t)g * group + k) * OUT_PAD + o0);
+  vstore16(acc, 0, d_group + (size_t)g * OUT_PAD + o0);
 }

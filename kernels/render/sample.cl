@@ -72,14 +72,16 @@ __kernel void render_sample_uniform(const int n_rays, const int n_samples, const
 // w_k + 1e-5 (NeRF's floor keeps empty rays sampled uniformly). Fine sample j uses
 // u_j = (j + xi_j) / S_f (xi from Philox, or 0.5), so the fine samples come out sorted and one
 // walk over the bins inverts the CDF; they are merged with the coarse samples on the fly
-// (ties: coarse first). Output: S_c + S_f sorted samples per ray.
+// (ties: coarse first). Output: S_c + S_f sorted samples per ray, and for each its source
+// src = k for coarse sample k, S_c + j for fine sample j (lets a caller reuse what it computed
+// at the coarse samples).
 __kernel void render_sample_importance(const int n_rays, const int n_coarse, const int n_fine,
                                        const float near, const float far, const int jitter,
                                        const uint seed_lo, const uint seed_hi, const uint step,
                                        __global const float* o, __global const float* d,
                                        __global const float* t_coarse,
                                        __global const float* w_coarse, __global float* t_out,
-                                       __global float* x_out) {
+                                       __global float* x_out, __global int* src_out) {
   const int r = get_global_id(0);
   if (r >= n_rays) return;
   const int cbase = r * n_coarse, obase = r * (n_coarse + n_fine);
@@ -117,9 +119,11 @@ __kernel void render_sample_importance(const int n_rays, const int n_coarse, con
     float t;
     if (take_coarse) {
       t = t_coarse[cbase + ic];
+      src_out[obase + out] = ic;
       ++ic;
     } else {
       t = t_fine;
+      src_out[obase + out] = n_coarse + j;
       ++j;
       need_fine = 1;
     }

@@ -46,6 +46,13 @@ std::string to_string(Activation a) {
 
 void MlpSpec::validate() const {
   check_range("mlp", "n_in", n_in, 1, 128);
+  check_range("mlp", "n_in_group", n_in_group, 0, 128);
+  check_range("mlp", "in_offset", in_offset, 0, 1 << 20);
+  if (in_stride != 0 && in_stride < in_offset + n_in)
+    throw ConfigError("mlp: 'in_stride' " + std::to_string(in_stride) + " is below in_offset + n_in = " +
+                      std::to_string(in_offset + n_in));
+  if (in_stride == 0 && in_offset != 0)
+    throw ConfigError("mlp: 'in_offset' needs an explicit 'in_stride'");
   if (layers.empty()) throw ConfigError("mlp: at least one layer is required");
   for (size_t l = 0; l < layers.size(); ++l)
     check_range("mlp", "layers[" + std::to_string(l) + "].width", layers[l].width, 1, 128);
@@ -73,12 +80,16 @@ MlpSpec make_mlp_spec(int n_in, int width, int hidden, int n_out, Activation act
 Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec) : rt_(rt), spec_(spec) {
   spec_.validate();
   const int n_layers = int(spec_.layers.size());
+  const int n_group = spec_.n_in_group;
+  auto d = [](const char* k, int v) { return std::string(" -D") + k + "=" + std::to_string(v); };
+  const std::string f = "field/mlp.cl";
   int n_in = spec_.n_in;
   for (int l = 0; l < n_layers; ++l) {
     const auto& ls = spec_.layers[size_t(l)];
     Layer L{};
     L.n_in = n_in;
-    L.in_stride = l == 0 ? n_in : pad16(n_in);
+    L.n_rows = l == 0 ? n_in + n_group : n_in;
+    L.in_stride = l == 0 ? spec_.row_stride() : pad16(n_in);
     L.out = ls.width;
     L.out_pad = pad16(ls.width);
     L.out_stride = l == n_layers - 1 ? ls.width : L.out_pad;
@@ -86,24 +97,49 @@ Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec) : rt_(rt), spec_(spec) {
     L.store_pre = L.act == Activation::Sine ||
                   (l == n_layers - 1 && L.act != Activation::None);
     layer_off_.push_back(n_params_);
-    n_params_ += size_t(n_in + 1) * size_t(L.out_pad);
+    n_params_ += size_t(L.n_rows + 1) * size_t(L.out_pad);
     const bool prev_pre = l > 0 && layers_.back().store_pre;
     const int prev_act = l > 0 ? int(layers_.back().act) : -1;
-    auto d = [](const char* k, int v) { return std::string(" -D") + k + "=" + std::to_string(v); };
+    const int in_off = l == 0 ? spec_.in_offset : 0;
     const std::string opt = d("N_IN", n_in) + d("IN_STRIDE", L.in_stride) +
-                            d("IN_PAD", pad16(n_in)) + d("OUT", L.out) +
+                            d("IN_OFFSET", in_off) + d("IN_PAD", pad16(n_in)) + d("OUT", L.out) +
                             d("OUT_PAD", L.out_pad) + d("OUT_STRIDE", L.out_stride) +
                             d("ACT", int(L.act)) + d("STORE_PRE", L.store_pre) +
                             d("PREV_ACT", prev_act) + d("PREV_PRE", prev_pre) +
-                            d("DIN_STRIDE", l == 0 ? n_in : pad16(n_in)) + d("PTS", kPts) +
+                            d("DIN_STRIDE", L.in_stride) + d("DIN_OFFSET", in_off) +
+                            d("GROUP_BIAS", l == 0 && n_group > 0) + d("PTS", kPts) +
                             d("ROWS", kRows);
-    const std::string f = "field/mlp.cl";
     L.fwd = rt_.kernel(f, "field_mlp_fwd", opt);
     L.bwd_out = rt_.kernel(f, "field_mlp_bwd_out", opt);
     L.wgt = rt_.kernel(f, "field_mlp_bwd_wgt", opt);
     L.reduce = rt_.kernel(f, "field_mlp_bwd_reduce", opt);
     L.transpose = rt_.kernel(f, "field_mlp_transpose", opt);
     L.bwd_in = rt_.kernel(f, "field_mlp_bwd_in", opt);
+    if (l == 0 && n_group > 0) {
+      L.group_sum = rt_.kernel(f, "field_mlp_group_sum", opt);
+      // The grouped part: a linear layer of n_group inputs whose weights are rows n_in .. of
+      // layer 0 and whose bias is layer 0's bias (both follow at n_in · out_pad).
+      Layer G{};
+      G.n_in = G.n_rows = n_group;
+      G.in_stride = n_group;
+      G.out = L.out;
+      G.out_pad = L.out_pad;
+      G.out_stride = L.out_pad;
+      G.act = Activation::None;
+      G.store_pre = false;
+      const std::string gopt = d("N_IN", n_group) + d("IN_STRIDE", n_group) + d("IN_OFFSET", 0) +
+                               d("IN_PAD", pad16(n_group)) + d("OUT", G.out) +
+                               d("OUT_PAD", G.out_pad) + d("OUT_STRIDE", G.out_pad) +
+                               d("ACT", 0) + d("STORE_PRE", 0) + d("PREV_ACT", -1) +
+                               d("PREV_PRE", 0) + d("DIN_STRIDE", n_group) + d("DIN_OFFSET", 0) +
+                               d("GROUP_BIAS", 0) + d("PTS", kPts) + d("ROWS", kRows);
+      G.fwd = rt_.kernel(f, "field_mlp_fwd", gopt);
+      G.wgt = rt_.kernel(f, "field_mlp_bwd_wgt", gopt);
+      G.reduce = rt_.kernel(f, "field_mlp_bwd_reduce", gopt);
+      G.transpose = rt_.kernel(f, "field_mlp_transpose", gopt);
+      G.bwd_in = rt_.kernel(f, "field_mlp_bwd_in", gopt);
+      group_ = std::move(G);
+    }
     layers_.push_back(std::move(L));
     n_in = ls.width;
   }
@@ -117,12 +153,12 @@ void Mlp::init_params(std::vector<float>& host_params, size_t offset, uint64_t s
   for (size_t l = 0; l < layers_.size(); ++l) {
     const Layer& L = layers_[l];
     const double gain = L.act == Activation::Relu ? 6.0 : 3.0;
-    const float bound = float(std::sqrt(gain / L.n_in));
+    const float bound = float(std::sqrt(gain / L.n_rows));  // fan-in includes grouped inputs
     float* w = host_params.data() + offset + layer_off_[l];
-    for (int i = 0; i <= L.n_in; ++i)
+    for (int i = 0; i <= L.n_rows; ++i)
       for (int o = 0; o < L.out_pad; ++o) {
         const float u = rng.uniform(-bound, bound);  // drawn for every slot: layout-stable
-        w[size_t(i) * L.out_pad + o] = (i < L.n_in && o < L.out) ? u : 0.0f;
+        w[size_t(i) * L.out_pad + o] = (i < L.n_rows && o < L.out) ? u : 0.0f;
       }
   }
 }
@@ -140,21 +176,41 @@ void Mlp::ensure(MlpContext& ctx, int n) const {
 }
 
 void Mlp::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& in, int n,
-                  cl::Buffer& out, MlpContext& ctx) {
+                  cl::Buffer& out, MlpContext& ctx, const cl::Buffer* group_in, int group) {
   check_bytes(params, offset + n_params_, "params");
-  check_bytes(in, size_t(std::max(n, 0)) * spec_.n_in, "in");
+  check_bytes(in, size_t(std::max(n, 0)) * spec_.row_stride(), "in");
   check_bytes(out, size_t(std::max(n, 0)) * spec_.n_out(), "out");
+  const bool grouped = spec_.n_in_group > 0;
+  if (grouped) {
+    if (!group_in || group < 1 || n % group != 0)
+      throw Error("Mlp::forward: grouped inputs need group_in and a group size dividing n = " +
+                  std::to_string(n) + " (group " + std::to_string(group) + ")");
+    check_bytes(*group_in, size_t(n / group) * spec_.n_in_group, "group_in");
+  }
   ctx.n = n;
   ctx.in = &in;
+  ctx.group_in = grouped ? group_in : nullptr;
+  ctx.group = grouped ? group : 0;
   if (n <= 0) return;
   ensure(ctx, n);
   const size_t groups = cl::round_up(ceil_div(size_t(n), kPts), kLocal);
+  if (grouped) {
+    const int ng = n / group;
+    const size_t need = size_t(ng) * group_.out_pad * sizeof(float);
+    if (ctx.group_pre.bytes() < need) ctx.group_pre = cl::Buffer(rt_, need);
+    group_.fwd.set_args(ng, params, uint32_t(offset + layer_off_[0] + size_t(spec_.n_in) * group_.out_pad),
+                        *group_in, ctx.group_pre, ctx.group_pre, ctx.group_pre, 1);
+    group_.fwd.launch({cl::round_up(ceil_div(size_t(ng), kPts), kLocal), size_t(group_.out_pad / 16)},
+                      {kLocal, size_t(group_.out_pad / 16)});
+  }
   for (size_t l = 0; l < layers_.size(); ++l) {
     Layer& L = layers_[l];
     const cl::Buffer& src = l == 0 ? in : ctx.post[l - 1];
     cl::Buffer& dst = l + 1 == layers_.size() ? out : ctx.post[l];
     cl::Buffer& pre = L.store_pre ? ctx.pre[l] : dst;
-    L.fwd.set_args(n, params, uint32_t(offset + layer_off_[l]), src, dst, pre);
+    const cl::Buffer& gbias = l == 0 && grouped ? ctx.group_pre : dst;  // unused without groups
+    L.fwd.set_args(n, params, uint32_t(offset + layer_off_[l]), src, dst, pre, gbias,
+                   std::max(group, 1));
     // One work-group covers all output tiles of its points: input rows are read once.
     L.fwd.launch({groups, size_t(L.out_pad / 16)}, {kLocal, size_t(L.out_pad / 16)});
   }
@@ -168,6 +224,8 @@ void Mlp::ensure_scratch(int n) {
     max_pad = std::max({max_pad, L.out_pad, pad16(L.n_in)});
     partial = std::max(partial, chunks * size_t(L.n_in + 1) * L.out_pad);
   }
+  if (spec_.n_in_group > 0)  // the grouped pass has at most as many chunks as the per-point one
+    partial = std::max(partial, chunks * size_t(group_.n_in + 1) * group_.out_pad);
   if (scratch_points_ < size_t(n)) {
     for (auto& b : d_pre_) b = cl::Buffer(rt_, size_t(n) * max_pad * sizeof(float));
     scratch_points_ = size_t(n);
@@ -181,15 +239,19 @@ void Mlp::ensure_scratch(int n) {
 
 void Mlp::backward(const cl::Buffer& params, size_t offset, const MlpContext& ctx,
                    const cl::Buffer& out, const cl::Buffer& d_out, cl::Buffer& grad,
-                   size_t grad_offset, cl::Buffer* d_in) {
+                   size_t grad_offset, cl::Buffer* d_in, cl::Buffer* d_group_in) {
   const int n = ctx.n;
   check_bytes(grad, grad_offset + n_params_, "grad");
   if (n <= 0 || !ctx.in) throw Error("Mlp::backward: context holds no forward pass");
+  const bool grouped = spec_.n_in_group > 0;
+  if (grouped && (!ctx.group_in || ctx.group < 1))
+    throw Error("Mlp::backward: grouped MLP without the forward's group input");
+  if (d_group_in && !grouped) throw Error("Mlp::backward: d_group_in given, the MLP has no grouped inputs");
   check_bytes(d_out, size_t(n) * spec_.n_out(), "d_out");
-  if (d_in) check_bytes(*d_in, size_t(n) * spec_.n_in, "d_in");
+  if (d_in) check_bytes(*d_in, size_t(n) * spec_.row_stride(), "d_in");
+  const int ng = grouped ? n / ctx.group : 0;
+  if (d_group_in) check_bytes(*d_group_in, size_t(ng) * spec_.n_in_group, "d_group_in");
   ensure_scratch(n);
-  const size_t chunks = std::min<size_t>(kMaxChunks, ceil_div(size_t(n), kMinChunk));
-  const int chunk = int(ceil_div(size_t(n), chunks));
   const size_t groups = cl::round_up(ceil_div(size_t(n), kPts), kLocal);
   const int last = int(layers_.size()) - 1;
   int cur = 0;
@@ -199,17 +261,42 @@ void Mlp::backward(const cl::Buffer& params, size_t offset, const MlpContext& ct
     L.bwd_out.set_args(n, d_out, y, d_pre_[cur]);
     L.bwd_out.launch({cl::round_up(size_t(n), 64)}, {64});
   }
+  // Weight gradient of one layer (or layer 0's grouped part) from its input and d_pre.
+  auto weight_grad = [&](Layer& L, const cl::Buffer& src, const cl::Buffer& d_pre, int rows,
+                         size_t w_off) {
+    const size_t ch = std::min<size_t>(kMaxChunks, ceil_div(size_t(rows), kMinChunk));
+    const int per = int(ceil_div(size_t(rows), ch));
+    L.wgt.set_args(rows, per, src, d_pre, partial_);
+    // One work-group per chunk: all row blocks and output tiles reuse the chunk from cache.
+    const size_t row_blocks = ceil_div(size_t(L.n_in), kRows) + 1;
+    L.wgt.launch({ch, row_blocks, size_t(L.out_pad / 16)}, {1, row_blocks, size_t(L.out_pad / 16)});
+    const size_t count = size_t(L.n_in + 1) * L.out_pad;
+    L.reduce.set_args(int(ch), partial_, grad, uint32_t(w_off));
+    L.reduce.launch({cl::round_up(count, 64)}, {64});
+  };
   for (int l = last; l >= 0; --l) {
     Layer& L = layers_[size_t(l)];
     const cl::Buffer& src = l == 0 ? *ctx.in : ctx.post[size_t(l - 1)];
-    L.wgt.set_args(n, chunk, src, d_pre_[cur], partial_);
-    // One work-group per chunk: all row blocks and output tiles reuse the chunk from cache.
-    const size_t row_blocks = ceil_div(size_t(L.n_in), kRows) + 1;
-    L.wgt.launch({chunks, row_blocks, size_t(L.out_pad / 16)},
-                 {1, row_blocks, size_t(L.out_pad / 16)});
-    const size_t count = size_t(L.n_in + 1) * L.out_pad;
-    L.reduce.set_args(int(chunks), partial_, grad, uint32_t(grad_offset + layer_off_[size_t(l)]));
-    L.reduce.launch({cl::round_up(count, 64)}, {64});
+    // Layer 0 with groups: this pass writes the x rows and a provisional bias row, which the
+    // grouped pass below overwrites with the y rows and the true bias (in-order queue).
+    weight_grad(L, src, d_pre_[cur], n, grad_offset + layer_off_[size_t(l)]);
+    if (l == 0 && grouped) {
+      const size_t need = size_t(ng) * group_.out_pad * sizeof(float);
+      if (d_group_.bytes() < need) d_group_ = cl::Buffer(rt_, need);
+      L.group_sum.set_args(ng, ctx.group, d_pre_[cur], d_group_);
+      L.group_sum.launch({cl::round_up(size_t(ng), 16), size_t(L.out_pad / 16)},
+                         {16, size_t(L.out_pad / 16)});
+      const size_t y_rows = size_t(spec_.n_in) * group_.out_pad;
+      weight_grad(group_, *ctx.group_in, d_group_, ng, grad_offset + layer_off_[0] + y_rows);
+      if (d_group_in) {
+        group_.transpose.set_args(params, uint32_t(offset + layer_off_[0] + y_rows), wt_);
+        group_.transpose.launch({size_t(pad16(group_.n_in)), size_t(group_.out_pad)});
+        group_.bwd_in.set_args(ng, wt_, d_group_, d_group_, *d_group_in);
+        group_.bwd_in.launch({cl::round_up(ceil_div(size_t(ng), kPts), kLocal),
+                              size_t(pad16(group_.n_in) / 16)},
+                             {kLocal, size_t(pad16(group_.n_in) / 16)});
+      }
+    }
     if (l == 0 && !d_in) break;
     L.transpose.set_args(params, uint32_t(offset + layer_off_[size_t(l)]), wt_);
     L.transpose.launch({size_t(pad16(L.n_in)), size_t(L.out_pad)});

@@ -7,6 +7,15 @@
 // Parameter slice layout, per layer l with n_in inputs and out outputs (out_pad =
 // round_up(out, 16)): W_t[n_in][out_pad] (W_t[i][o] = weight from input i to output o) followed
 // by b[out_pad]; padding columns are zero and receive zero gradient.
+//
+// Grouped inputs (spec.n_in_group > 0): the network's input is [x_p, y_g], x_p per point
+// (n_in values) and y_g shared by a group of `group` consecutive points (n_in_group values; the
+// LiDAR head's direction encoding is the same for every sample of a ray). Layer 0 keeps the
+// layout of an MLP with n_in + n_in_group inputs (rows of x, then rows of y, then the bias) and
+// computes the same function, but the y part once per group: y_g · W_y + b, added to every
+// point's x_p · W_x. Its backward sums the pre-activation gradient over each group first.
+// The per-point input may be a column range of a wider row (in_stride, in_offset); d_in is then
+// written into the same columns of a buffer with that layout, other columns untouched.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -28,11 +37,17 @@ struct MlpLayerSpec {
 
 struct MlpSpec {
   int n_in = 32;
+  int n_in_group = 0;  // inputs shared by groups of consecutive points (0: none)
+  int in_stride = 0;   // row stride of the per-point input, in floats (0: n_in)
+  int in_offset = 0;   // first column of the per-point input within its row
   std::vector<MlpLayerSpec> layers;  // hidden layers then the output layer
   void validate() const;  // throws ConfigError
   int n_out() const { return layers.empty() ? 0 : layers.back().width; }
-  // Multiply-adds per point of a forward pass (×2 for FLOPs; backward ≈ 2× forward).
+  // Multiply-adds per point of a forward pass (×2 for FLOPs; backward ≈ 2× forward); with
+  // grouped inputs the per-group part is macs_per_group().
   double macs_per_point() const;
+  double macs_per_group() const { return layers.empty() ? 0.0 : double(n_in_group) * layers[0].width; }
+  int row_stride() const { return in_stride > 0 ? in_stride : n_in; }
 };
 
 // A spec with `hidden` layers of `width` and activation `act`, then a linear output layer.
@@ -44,6 +59,9 @@ MlpSpec make_mlp_spec(int n_in, int width, int hidden, int n_out, Activation act
 struct MlpContext {
   int n = 0;
   const cl::Buffer* in = nullptr;
+  const cl::Buffer* group_in = nullptr;  // grouped inputs: the per-group input and group size
+  int group = 0;
+  cl::Buffer group_pre;                  // y_g · W_y + b per group
   std::vector<cl::Buffer> post;  // hidden layer outputs, N × out_pad
   std::vector<cl::Buffer> pre;   // pre-activations where the derivative needs them
   size_t capacity = 0;           // points the buffers hold
@@ -62,21 +80,26 @@ class Mlp {
   // Fan-in uniform init: relu layers U(±√(6/fan_in)) (He), others U(±√(3/fan_in)); bias 0.
   void init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) const;
 
-  // out (N × n_out) = MLP(in (N × n_in)). Enqueued, no wait.
+  // out (N × n_out) = MLP(in (N × row_stride)). With grouped inputs, group_in holds N / group
+  // rows of n_in_group (N a multiple of group). Enqueued, no wait.
   void forward(const cl::Buffer& params, size_t offset, const cl::Buffer& in, int n,
-               cl::Buffer& out, MlpContext& ctx);
-  // From d_out (N × n_out): overwrites grad[grad_offset, + n_params()); writes d_in
-  // (N × n_in) when given. `out` is the forward output. Enqueued, no wait.
+               cl::Buffer& out, MlpContext& ctx, const cl::Buffer* group_in = nullptr,
+               int group = 0);
+  // From d_out (N × n_out): overwrites grad[grad_offset, + n_params()); writes d_in (the
+  // input's layout, its columns only) and d_group_in (N / group × n_in_group) when given.
+  // `out` is the forward output. Enqueued, no wait.
   void backward(const cl::Buffer& params, size_t offset, const MlpContext& ctx,
                 const cl::Buffer& out, const cl::Buffer& d_out, cl::Buffer& grad,
-                size_t grad_offset, cl::Buffer* d_in = nullptr);
+                size_t grad_offset, cl::Buffer* d_in = nullptr,
+                cl::Buffer* d_group_in = nullptr);
 
  private:
   struct Layer {
     int n_in, in_stride, out, out_pad, out_stride;
+    int n_rows;  // parameter rows before the bias: n_in, + n_in_group for layer 0
     Activation act;
     bool store_pre;
-    cl::Kernel fwd, bwd_out, wgt, reduce, transpose, bwd_in;
+    cl::Kernel fwd, bwd_out, wgt, reduce, transpose, bwd_in, group_sum;
   };
   void ensure(MlpContext& ctx, int n) const;
   void ensure_scratch(int n);
@@ -86,7 +109,9 @@ class Mlp {
   size_t n_params_ = 0;
   std::vector<size_t> layer_off_;
   std::vector<Layer> layers_;
-  cl::Buffer d_pre_[2], partial_, wt_;
+  Layer group_{};  // layer 0's grouped part: n_in_group inputs, linear, into group_pre
+  cl::Buffer d_pre_[2], partial_, wt_, d_group_;
+  size_t group_rows_ = 0;
   size_t scratch_points_ = 0, partial_floats_ = 0;
 };
 

@@ -31,6 +31,19 @@ field::AdamConfig adam_config(const OptimConfig& o) {
   return a;
 }
 
+// LiDAR head on [geo, dir_enc] (method.md §0) with the direction encoding as a grouped input:
+// the same function and parameter layout as an MLP on the 87-wide concatenation, but the
+// direction part of the first layer is computed once per ray; the 15 geometric features are
+// read in place from columns 1..15 of the density output.
+field::MlpSpec head_spec(const FieldSizes& f) {
+  field::MlpSpec s = field::make_mlp_spec(f.geo_features, f.head_hidden, f.head_layers, 2,
+                                          field::Activation::Relu);
+  s.n_in_group = 6 * f.dir_frequencies;
+  s.in_stride = kDensStride;
+  s.in_offset = 1;
+  return s;
+}
+
 cl::Buffer floats(cl::Runtime& rt, size_t n) { return cl::Buffer(rt, std::max<size_t>(n, 1) * 4); }
 
 }  // namespace
@@ -44,9 +57,7 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
       density_(rt, field::make_mlp_spec(c.field.levels * c.field.features_per_level,
                                         c.field.density_hidden, 1, 1 + c.field.geo_features,
                                         field::Activation::Relu)),
-      head_(rt, field::make_mlp_spec(c.field.geo_features + 6 * c.field.dir_frequencies,
-                                     c.field.head_hidden, c.field.head_layers, 2,
-                                     field::Activation::Relu)),
+      head_(rt, head_spec(c.field)),
       dirs_(rt, c.field.dir_frequencies, c.field.geo_features, 1, 1 + c.field.geo_features),
       sampler_(rt, c.render, scene_scale),
       renderer_(rt, c.render, scene_scale),
@@ -60,22 +71,26 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
   col_get_ = rt.kernel("pipeline/glue.cl", "pipeline_column_get");
   col_set_ = rt.kernel("pipeline/glue.cl", "pipeline_column_set");
   clamp_ = rt.kernel("pipeline/glue.cl", "pipeline_clamp_fwd");
+  fine_points_ = rt.kernel("pipeline/glue.cl", "pipeline_fine_points");
+  merge_ = rt.kernel("pipeline/glue.cl", "pipeline_merge_encodings");
 
   const size_t R = size_t(max_rays), S = size_t(c.render.n_samples),
                M = S + size_t(c.render.n_importance), N = R * M;
   const size_t lf = size_t(c.field.levels * c.field.features_per_level);
-  const size_t enc_dim = size_t(dirs_.enc_dim()), hw = size_t(dirs_.head_width());
+  const size_t enc_dim = size_t(dirs_.enc_dim());
   params_ = floats(rt, layout_.total());
   grad_ = floats(rt, layout_.total());
   grad_.fill_zero();
   o_ = floats(rt, R * 3), d_ = floats(rt, R * 3), target_ = floats(rt, R * 3);
   t_c_ = floats(rt, R * S), x_c_ = floats(rt, R * S * 3), w_c_ = floats(rt, R * S);
+  enc_c_ = floats(rt, R * S * lf), src_ = floats(rt, N);  // src_: int32 per merged sample
+  x_f_ = floats(rt, R * (M - S) * 3), enc_f_ = floats(rt, R * (M - S) * lf);
   t_ = floats(rt, N), x_ = floats(rt, N * 3), enc_ = floats(rt, N * lf);
   dens_ = floats(rt, N * kDensStride), h0_ = floats(rt, N);
-  dir_enc_ = floats(rt, R * enc_dim), head_in_ = floats(rt, N * hw), head_out_ = floats(rt, N * 2);
+  dir_enc_ = floats(rt, R * enc_dim), head_out_ = floats(rt, N * 2);
   out_ = floats(rt, R * 3), weights_ = floats(rt, N), grad_out_ = floats(rt, R * 3);
   terms_ = floats(rt, R * 3), loss_buf_ = floats(rt, render::kLossFloats);
-  g_h0_ = floats(rt, N), g_head_ = floats(rt, N * 2), g_head_in_ = floats(rt, N * hw);
+  g_h0_ = floats(rt, N), g_head_ = floats(rt, N * 2);
   g_dens_ = floats(rt, N * kDensStride), g_enc_ = floats(rt, N * lf);
   g_dir_enc_ = floats(rt, R * enc_dim);
   loss_buf_.fill_zero();
@@ -93,6 +108,7 @@ void LidarNerfModel::init_params(uint64_t seed) {
 int LidarNerfModel::sample(int n_rays, bool jitter, uint64_t seed, uint32_t step) {
   const int S = cfg_.render.n_samples, I = cfg_.render.n_importance;
   const int n_c = n_rays * S;
+  encoded_ = false;
   if (I == 0) {
     sampler_.uniform(o_, d_, n_rays, jitter, seed, step, t_, x_);
     clamp_.set_args(n_c * 3, kSceneBound, x_);
@@ -103,27 +119,39 @@ int LidarNerfModel::sample(int n_rays, bool jitter, uint64_t seed, uint32_t step
   sampler_.uniform(o_, d_, n_rays, jitter, seed, step, t_c_, x_c_);
   clamp_.set_args(n_c * 3, kSceneBound, x_c_);
   clamp_.launch({cl::round_up(size_t(n_c) * 3, 64)}, {64});
-  grid_.forward(params_, off_grid_, x_c_, n_c, enc_);
-  density_.forward(params_, off_density_, enc_, n_c, dens_, density_ctx_);
+  grid_.forward(params_, off_grid_, x_c_, n_c, enc_c_);
+  density_.forward(params_, off_density_, enc_c_, n_c, dens_, density_ctx_);
   col_get_.set_args(n_c, kDensStride, 0, dens_, h0_);
   col_get_.launch({cl::round_up(size_t(n_c), 64)}, {64});
   renderer_.weights(t_c_, h0_, n_rays, S, w_c_);
-  sampler_.importance(o_, d_, n_rays, S, t_c_, w_c_, jitter, seed, step, t_, x_);
-  const int n = n_rays * (S + I);
+  sampler_.importance(o_, d_, n_rays, S, t_c_, w_c_, jitter, seed, step, t_, x_, src_);
+  const int M = S + I, n = n_rays * M;
   clamp_.set_args(n * 3, kSceneBound, x_);
   clamp_.launch({cl::round_up(size_t(n) * 3, 64)}, {64});
-  return S + I;
+  // The merged set's coarse samples were encoded above with the same parameters: only the
+  // importance samples need the hash grid (exact; the coarse positions are copied over so that
+  // the backward scatters where the forward read).
+  const size_t global = cl::round_up(size_t(n), 64);
+  if (reuse_coarse_) {
+    fine_points_.set_args(n_rays, S, M, src_, x_, x_f_);
+    fine_points_.launch({global}, {64});
+    grid_.forward(params_, off_grid_, x_f_, n_rays * I, enc_f_);
+  }
+  const int lf = cfg_.field.levels * cfg_.field.features_per_level;
+  merge_.set_args(n_rays, S, M, lf, src_, x_c_, enc_c_, enc_f_, x_, enc_);
+  merge_.launch({global}, {64});
+  encoded_ = reuse_coarse_;
+  return M;
 }
 
 void LidarNerfModel::field_forward(int n_rays, int samples) {
   const int n = n_rays * samples;
-  grid_.forward(params_, off_grid_, x_, n, enc_);
+  if (!encoded_) grid_.forward(params_, off_grid_, x_, n, enc_);
   density_.forward(params_, off_density_, enc_, n, dens_, density_ctx_);
   col_get_.set_args(n, kDensStride, 0, dens_, h0_);
   col_get_.launch({cl::round_up(size_t(n), 64)}, {64});
   dirs_.forward(d_, n_rays, dir_enc_);
-  dirs_.head_input_forward(dens_, dir_enc_, n_rays, samples, head_in_);
-  head_.forward(params_, off_head_, head_in_, n, head_out_, head_ctx_);
+  head_.forward(params_, off_head_, dens_, n, head_out_, head_ctx_, &dir_enc_, samples);
   renderer_.forward(t_, h0_, head_out_, n_rays, samples, out_, weights_);
 }
 
@@ -150,10 +178,11 @@ void LidarNerfModel::train_step(const RayBatch& b, uint64_t seed, long step, flo
     const int per_patch = cfg_.render.patch_rows * cfg_.render.patch_cols;
     loss_.patch_gradient(out_, target_, R / per_patch, grad_out_, terms_, loss_buf_);
   }
-  // Backward chain: renderer → head MLP → head input split → density MLP → hash grid.
+  // Backward chain: renderer → head MLP (into columns 1..15 of g_dens_, and per ray into
+  // g_dir_enc_) → density MLP → hash grid.
   renderer_.backward(t_, h0_, head_out_, weights_, grad_out_, R, M, g_h0_, g_head_);
-  head_.backward(params_, off_head_, head_ctx_, head_out_, g_head_, grad_, off_head_, &g_head_in_);
-  dirs_.head_input_backward(g_head_in_, R, M, g_dens_, g_dir_enc_);
+  head_.backward(params_, off_head_, head_ctx_, head_out_, g_head_, grad_, off_head_, &g_dens_,
+                 &g_dir_enc_);
   col_set_.set_args(n, kDensStride, 0, g_h0_, g_dens_);
   col_set_.launch({cl::round_up(size_t(n), 64)}, {64});
   density_.backward(params_, off_density_, density_ctx_, dens_, g_dens_, grad_, off_density_,

@@ -48,6 +48,11 @@ class LidarNerfModel {
   std::vector<float> render_rays(const std::vector<float>& origins,
                                  const std::vector<float>& directions, int n);
 
+  // With importance sampling the coarse samples' hash encodings are reused in the merged pass
+  // (default, exact). Off: the merged pass encodes every sample again (the reference path,
+  // for tests and benchmarks); the results are bit-identical.
+  void set_reuse_coarse_encodings(bool on) { reuse_coarse_ = on; }
+
   ModelState state() const;
   void set_state(const ModelState& s);
 
@@ -68,12 +73,13 @@ class LidarNerfModel {
   render::RaySampler sampler_;
   render::VolumeRenderer renderer_;
   render::RangeLoss loss_;
-  cl::Kernel col_get_, col_set_, clamp_;
+  cl::Kernel col_get_, col_set_, clamp_, fine_points_, merge_;
+  bool reuse_coarse_ = true, encoded_ = false;
   size_t off_grid_, off_density_, off_head_;
   field::MlpContext density_ctx_, head_ctx_;
   cl::Buffer params_, grad_;
-  cl::Buffer o_, d_, target_, t_c_, x_c_, w_c_, t_, x_, enc_, dens_, h0_, dir_enc_, head_in_,
-      head_out_, out_, weights_, grad_out_, terms_, loss_buf_, g_h0_, g_head_, g_head_in_, g_dens_,
+  cl::Buffer o_, d_, target_, t_c_, x_c_, w_c_, enc_c_, src_, x_f_, enc_f_, t_, x_, enc_, dens_, h0_, dir_enc_,
+      head_out_, out_, weights_, grad_out_, terms_, loss_buf_, g_h0_, g_head_, g_dens_,
       g_enc_, g_dir_enc_;
 };
 

@@ -32,7 +32,8 @@ cl::Event RaySampler::uniform(const cl::Buffer& origins, const cl::Buffer& dirs,
 cl::Event RaySampler::importance(const cl::Buffer& origins, const cl::Buffer& dirs, int n_rays,
                                  int n_coarse, const cl::Buffer& t_coarse,
                                  const cl::Buffer& w_coarse, bool jitter, uint64_t seed,
-                                 uint32_t step, cl::Buffer& t_out, cl::Buffer& x_out) {
+                                 uint32_t step, cl::Buffer& t_out, cl::Buffer& x_out,
+                                 cl::Buffer& src_out) {
   const int n_fine = cfg_.n_importance;
   require(n_fine > 0, "RaySampler::importance: config has n_importance = 0");
   require(n_coarse > 0, "RaySampler::importance: n_coarse must be positive");
@@ -44,9 +45,10 @@ cl::Event RaySampler::importance(const cl::Buffer& origins, const cl::Buffer& di
   check_floats(w_coarse, nc, "RaySampler::importance w_coarse");
   check_floats(t_out, no, "RaySampler::importance t_out");
   check_floats(x_out, no * 3, "RaySampler::importance x_out");
+  check_floats(src_out, no, "RaySampler::importance src_out");  // int32: same size as float
   importance_k_.set_args(n_rays, n_coarse, n_fine, near_, far_, int(jitter), uint32_t(seed),
                          uint32_t(seed >> 32), step, origins, dirs, t_coarse, w_coarse, t_out,
-                         x_out);
+                         x_out, src_out);
   return launch_1d(importance_k_, size_t(n_rays));
 }
 

@@ -25,9 +25,11 @@ class RaySampler {
                     uint64_t seed, uint32_t step, cl::Buffer& t, cl::Buffer& x);
   // cfg.n_importance samples per ray drawn from w_coarse (n_rays x n_coarse, e.g. from
   // VolumeRenderer::weights) and merged with t_coarse: n_coarse + n_importance per ray.
+  // src_out (int per merged sample): k for coarse sample k, n_coarse + j for fine sample j.
   cl::Event importance(const cl::Buffer& origins, const cl::Buffer& dirs, int n_rays, int n_coarse,
                        const cl::Buffer& t_coarse, const cl::Buffer& w_coarse, bool jitter,
-                       uint64_t seed, uint32_t step, cl::Buffer& t_out, cl::Buffer& x_out);
+                       uint64_t seed, uint32_t step, cl::Buffer& t_out, cl::Buffer& x_out,
+                       cl::Buffer& src_out);
 
  private:
   RenderConfig cfg_;

@@ -155,3 +155,134 @@ TEST_CASE("MLP gradients agree with finite differences of the device forward",
   }
   CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 5e-3);
 }
+
+TEST_CASE("grouped inputs compute the plain MLP on [x, y] with the same gradients",
+          "[field][mlp]") {
+  auto& rt = test::runtime();
+  // The LiDAR head's shape: 15 geometric features read from columns 1..15 of the density
+  // output (stride 16), the 72-dim direction encoding shared by the samples of a ray.
+  field::MlpSpec gs = field::make_mlp_spec(15, 64, 3, 2, Activation::Relu);
+  gs.n_in_group = 72;
+  gs.in_stride = 16;
+  gs.in_offset = 1;
+  const field::MlpSpec ps = field::make_mlp_spec(87, 64, 3, 2, Activation::Relu);
+  field::Mlp grouped(rt, gs), plain(rt, ps);
+  REQUIRE(grouped.n_params() == plain.n_params());
+  const int G = 37, group = 13, n = G * group, no = 2;
+  std::vector<float> params(plain.n_params());
+  plain.init_params(params, 0, 11);
+  std::vector<float> params_g(grouped.n_params());
+  grouped.init_params(params_g, 0, 11);
+  CHECK(params_g == params);  // same layout and initialisation as the plain MLP
+  for (int o = 0; o < 64; ++o) params[size_t(87) * 64 + o] = 0.03f * (o % 7 - 3);  // bias
+  const auto wide = uniform(size_t(n) * 16, -1.0f, 1.0f, 12);
+  const auto y = uniform(size_t(G) * 72, -1.0f, 1.0f, 13);
+  std::vector<float> cat(size_t(n) * 87);
+  for (int p = 0; p < n; ++p) {
+    for (int c = 0; c < 15; ++c) cat[size_t(p) * 87 + c] = wide[size_t(p) * 16 + 1 + c];
+    for (int c = 0; c < 72; ++c) cat[size_t(p) * 87 + 15 + c] = y[size_t(p / group) * 72 + c];
+  }
+  const auto d_out = uniform(size_t(n) * no, -1.0f, 1.0f, 14);
+  auto b_p = cl::Buffer::from(rt, params), b_dout = cl::Buffer::from(rt, d_out);
+  auto b_wide = cl::Buffer::from(rt, wide), b_y = cl::Buffer::from(rt, y);
+  auto b_cat = cl::Buffer::from(rt, cat);
+  cl::Buffer b_out_g(rt, size_t(n) * no * 4), b_out_p(rt, size_t(n) * no * 4);
+  cl::Buffer b_grad_g(rt, params.size() * 4), b_grad_p(rt, params.size() * 4);
+  auto b_din_g = cl::Buffer::from(rt, std::vector<float>(size_t(n) * 16, 7.0f));
+  cl::Buffer b_din_p(rt, size_t(n) * 87 * 4), b_dy(rt, size_t(G) * 72 * 4);
+  field::MlpContext cg, cp;
+  grouped.forward(b_p, 0, b_wide, n, b_out_g, cg, &b_y, group);
+  grouped.backward(b_p, 0, cg, b_out_g, b_dout, b_grad_g, 0, &b_din_g, &b_dy);
+  plain.forward(b_p, 0, b_cat, n, b_out_p, cp);
+  plain.backward(b_p, 0, cp, b_out_p, b_dout, b_grad_p, 0, &b_din_p);
+  const auto out_p = b_out_p.read_vec<float>(size_t(n) * no);
+  const auto din_p = b_din_p.read_vec<float>(size_t(n) * 87);
+  const auto din_g = b_din_g.read_vec<float>(size_t(n) * 16);
+  CHECK(norm_err(b_out_g.read_vec<float>(size_t(n) * no), out_p) < 1e-5);
+  CHECK(norm_err(b_grad_g.read_vec<float>(params.size()), b_grad_p.read_vec<float>(params.size())) < 1e-5);
+  std::vector<float> dx_g, dx_p, dy_ref(size_t(G) * 72, 0.0f);
+  size_t untouched = 0;
+  for (int p = 0; p < n; ++p) {
+    untouched += din_g[size_t(p) * 16] == 7.0f;
+    for (int c = 0; c < 15; ++c) {
+      dx_g.push_back(din_g[size_t(p) * 16 + 1 + c]);
+      dx_p.push_back(din_p[size_t(p) * 87 + c]);
+    }
+    for (int c = 0; c < 72; ++c) dy_ref[size_t(p / group) * 72 + c] += din_p[size_t(p) * 87 + 15 + c];
+  }
+  CHECK(untouched == size_t(n));  // column 0 is not the MLP's input: left alone
+  CHECK(norm_err(dx_g, dx_p) < 1e-5);
+  CHECK(norm_err(b_dy.read_vec<float>(dy_ref.size()), dy_ref) < 1e-5);
+  // A group size that does not divide n is refused.
+  field::MlpContext bad;
+  CHECK_THROWS(grouped.forward(b_p, 0, b_wide, n, b_out_g, bad, &b_y, 10));
+}
+
+TEST_CASE("grouped-input MLP gradients agree with finite differences", "[field][mlp][fd]") {
+  auto& rt = test::runtime();
+  field::MlpSpec spec;
+  spec.n_in = 4;
+  spec.n_in_group = 5;
+  spec.in_stride = 6;
+  spec.in_offset = 2;
+  spec.layers = {{12, Activation::Tanh}, {7, Activation::Softplus}, {3, Activation::None}};
+  field::Mlp mlp(rt, spec);
+  const int G = 6, group = 4, n = G * group, no = 3;
+  std::vector<float> params(mlp.n_params(), 0.0f);
+  mlp.init_params(params, 0, 21);
+  const auto x = uniform(size_t(n) * 6, -1.0f, 1.0f, 22);
+  const auto y = uniform(size_t(G) * 5, -1.0f, 1.0f, 23);
+  const auto r = uniform(size_t(n) * no, -1.0f, 1.0f, 24);  // L = Σ r · out
+  auto b_p = cl::Buffer::from(rt, params), b_x = cl::Buffer::from(rt, x);
+  auto b_y = cl::Buffer::from(rt, y), b_r = cl::Buffer::from(rt, r);
+  cl::Buffer b_out(rt, size_t(n) * no * 4), b_dx(rt, x.size() * 4), b_dy(rt, y.size() * 4),
+      b_grad(rt, params.size() * 4);
+  field::MlpContext ctx;
+  mlp.forward(b_p, 0, b_x, n, b_out, ctx, &b_y, group);
+  mlp.backward(b_p, 0, ctx, b_out, b_r, b_grad, 0, &b_dx, &b_dy);
+  const auto grad = b_grad.read_vec<float>(params.size());
+  const auto dx = b_dx.read_vec<float>(x.size()), dy = b_dy.read_vec<float>(y.size());
+  auto loss = [&](const std::vector<float>& p, const std::vector<float>& xv,
+                  const std::vector<float>& yv) {
+    b_p.write_vec(p);
+    b_x.write_vec(xv);
+    b_y.write_vec(yv);
+    field::MlpContext c2;
+    mlp.forward(b_p, 0, b_x, n, b_out, c2, &b_y, group);
+    return dot(b_out.read_vec<float>(size_t(n) * no), r);
+  };
+  const float h = 1e-2f;
+  std::vector<float> fd, an;
+  for (size_t k = 0; k < params.size(); k += 3) {
+    if (grad[k] == 0.0f) continue;  // padding
+    auto pp = params, pm = params;
+    pp[k] += h;
+    pm[k] -= h;
+    fd.push_back(float((loss(pp, x, y) - loss(pm, x, y)) / (2.0 * h)));
+    an.push_back(grad[k]);
+  }
+  REQUIRE(fd.size() > 40);
+  CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 5e-3);
+  fd.clear();
+  an.clear();
+  for (int p = 0; p < n; ++p)
+    for (int c = 0; c < 4; ++c) {  // the per-point columns 2..5 of each row
+      const size_t k = size_t(p) * 6 + 2 + size_t(c);
+      auto xp = x, xm = x;
+      xp[k] += h;
+      xm[k] -= h;
+      fd.push_back(float((loss(params, xp, y) - loss(params, xm, y)) / (2.0 * h)));
+      an.push_back(dx[k]);
+    }
+  CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 5e-3);
+  fd.clear();
+  an.clear();
+  for (size_t k = 0; k < y.size(); ++k) {
+    auto yp = y, ym = y;
+    yp[k] += h;
+    ym[k] -= h;
+    fd.push_back(float((loss(params, x, yp) - loss(params, x, ym)) / (2.0 * h)));
+    an.push_back(dy[k]);
+  }
+  CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 5e-3);
+}

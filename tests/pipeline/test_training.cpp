@@ -20,9 +20,11 @@ using namespace sgnlf::pipeline;
 namespace {
 
 std::vector<float> train_params(const Scene& scene, const TrainConfig& c, uint64_t seed,
-                                const std::string& dir, long stop_at = -1, bool resume = true) {
+                                const std::string& dir, long stop_at = -1, bool resume = true,
+                                bool reuse_coarse = true) {
   LidarNerfModel model(test::runtime(), c, float(scene.norm.scale),
                        std::max(c.schedule.rays_per_batch, c.schedule.render_chunk_rays));
+  model.set_reuse_coarse_encodings(reuse_coarse);
   TrainOptions opt;
   opt.run_dir = dir;
   opt.seed = seed;
@@ -70,6 +72,19 @@ TEST_CASE("same seed gives bit-identical parameters; another seed differs",
   REQUIRE(p1.size() == p2.size());
   CHECK(p1 == p2);
   CHECK(p1 != p3);
+}
+
+TEST_CASE("reusing the coarse pass's encodings is exact: same parameters as re-encoding",
+          "[pipeline][train][device]") {
+  const Scene scene = make_scene(test::tiny_dataset());
+  const TrainConfig c = test::tiny_config();
+  REQUIRE(c.render.n_importance > 0);
+  const auto reuse = train_params(scene, c, 7, test::temp_dir("reuse_on"));
+  const auto again = train_params(scene, c, 7, test::temp_dir("reuse_off"), -1, true, false);
+  REQUIRE(reuse.size() == again.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < reuse.size(); ++i) differ += reuse[i] != again[i];
+  CHECK(differ == 0);
 }
 
 TEST_CASE("resuming from a checkpoint reproduces the uninterrupted run",

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/rng.hpp"
@@ -42,9 +43,10 @@ inline void ref_sample_uniform(int n_rays, int S, float near, float far, bool ji
 inline void ref_sample_importance(int n_rays, int Sc, int Sf, float near, float far, bool jitter,
                                   uint64_t seed, uint32_t step, const Vec<float>& o,
                                   const Vec<float>& d, const Vec<float>& tc, const Vec<float>& wc,
-                                  Vec<float>& t, Vec<float>& x) {
+                                  Vec<float>& t, Vec<float>& x, Vec<int>* src = nullptr) {
   const int So = Sc + Sf;
   t.assign(size_t(n_rays) * So, 0.f);
+  if (src) src->assign(t.size(), -1);
   x.assign(t.size() * 3, 0.f);
   for (int r = 0; r < n_rays; ++r) {
     const float* tr = &tc[size_t(r) * Sc];
@@ -66,12 +68,16 @@ inline void ref_sample_importance(int n_rays, int Sc, int Sf, float near, float 
       const float f = std::clamp((u - cdf) / p[k], 0.f, 1.f);
       fine[j] = edges[k] + f * (edges[k + 1] - edges[k]);
     }
-    std::vector<float> merged(tr, tr + Sc);
-    merged.insert(merged.end(), fine.begin(), fine.end());
-    std::stable_sort(merged.begin(), merged.end());  // coarse first on ties, as the kernel
+    std::vector<std::pair<float, int>> merged;  // (t, source: k coarse, Sc + j fine)
+    for (int k = 0; k < Sc; ++k) merged.emplace_back(tr[k], k);
+    for (int j = 0; j < Sf; ++j) merged.emplace_back(fine[j], Sc + j);
+    // Coarse first on ties, as the kernel.
+    std::stable_sort(merged.begin(), merged.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
     for (int i = 0; i < So; ++i) {
       const size_t s = size_t(r) * So + i;
-      t[s] = merged[i];
+      t[s] = merged[i].first;
+      if (src) (*src)[s] = merged[i].second;
       for (int c = 0; c < 3; ++c) x[3 * s + c] = o[3 * r + c] + t[s] * d[3 * r + c];
     }
   }

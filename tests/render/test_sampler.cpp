@@ -102,16 +102,28 @@ TEST_CASE("Importance samples equal the reference, are sorted and follow the wei
   for (int r = 0; r < n_rays; ++r) w[size_t(r) * Sc + r % Sc] = 0.9f;
   auto bo = cl::Buffer::from(rt, o), bd = cl::Buffer::from(rt, d);
   auto btc = cl::Buffer::from(rt, coarse.t), bwc = cl::Buffer::from(rt, w);
-  cl::Buffer bt(rt, size_t(n_rays) * So * 4), bx(rt, size_t(n_rays) * So * 12);
+  cl::Buffer bt(rt, size_t(n_rays) * So * 4), bx(rt, size_t(n_rays) * So * 12),
+      bsrc(rt, size_t(n_rays) * So * 4);
   for (bool jitter : {true, false}) {
-    sampler.importance(bo, bd, n_rays, Sc, btc, bwc, jitter, 99, 3, bt, bx).wait();
+    sampler.importance(bo, bd, n_rays, Sc, btc, bwc, jitter, 99, 3, bt, bx, bsrc).wait();
     const auto t = bt.read_vec<float>(size_t(n_rays) * So);
     const auto x = bx.read_vec<float>(size_t(n_rays) * So * 3);
+    const auto src = bsrc.read_vec<int>(size_t(n_rays) * So);
     std::vector<float> t_ref, x_ref;
+    std::vector<int> src_ref;
     test::ref_sample_importance(n_rays, Sc, Sf, sampler.near(), sampler.far(), jitter, 99, 3, o, d,
-                                coarse.t, w, t_ref, x_ref);
+                                coarse.t, w, t_ref, x_ref, &src_ref);
     CHECK(test::max_abs_err(t, t_ref) < 1e-5);
     CHECK(test::max_abs_err(x, x_ref) < 1e-5);
+    // Sources: the reference's, and each coarse source returns that coarse sample's t exactly.
+    size_t src_mismatch = 0, coarse_t_mismatch = 0;
+    for (size_t s = 0; s < src.size(); ++s) {
+      src_mismatch += src[s] != src_ref[s];
+      if (src[s] >= 0 && src[s] < Sc)
+        coarse_t_mismatch += t[s] != coarse.t[s / So * Sc + size_t(src[s])];
+    }
+    CHECK(src_mismatch == 0);
+    CHECK(coarse_t_mismatch == 0);
     size_t unsorted = 0, in_peak = 0, fine_total = 0;
     for (int r = 0; r < n_rays; ++r) {
       const float* tr = &t[size_t(r) * So];
@@ -152,9 +164,9 @@ TEST_CASE("Coarse weights of an opaque wall draw the importance samples to the w
   auto bo = cl::Buffer::from(rt, o), bd = cl::Buffer::from(rt, d);
   auto btc = cl::Buffer::from(rt, coarse.t), bh = cl::Buffer::from(rt, h0);
   cl::Buffer w(rt, coarse.t.size() * 4), bt(rt, size_t(n_rays) * So * 4),
-      bx(rt, size_t(n_rays) * So * 12);
+      bx(rt, size_t(n_rays) * So * 12), bsrc(rt, size_t(n_rays) * So * 4);
   vr.weights(btc, bh, n_rays, Sc, w);
-  sampler.importance(bo, bd, n_rays, Sc, btc, w, true, 8, 1, bt, bx).wait();
+  sampler.importance(bo, bd, n_rays, Sc, btc, w, true, 8, 1, bt, bx, bsrc).wait();
   const auto t = bt.read_vec<float>(size_t(n_rays) * So);
   const float bin = (sampler.far() - sampler.near()) / Sc;
   size_t near_wall = 0;
