@@ -89,19 +89,21 @@ Json render_run(LoadedRun& run, const std::string& out_dir) {
   fs::create_directories(out_dir);
   const Dataset& d = *run.dataset;
   Json files = Json::array();
-  for (int f : d.split.test) {
-    const Frame& fr = d.frames[size_t(f)];
+  const ViewSet naive = evaluate_naive(d);  // one image per test frame, in split order
+  for (size_t k = 0; k < d.split.test.size(); ++k) {
+    const Frame& fr = d.frames[size_t(d.split.test[k])];
     const RangeImage pred = render_view(*run.model, *run.scene, fr.T_world_lidar,
                                         run.manifest.config.schedule.render_chunk_rays);
     const std::string stem = (fs::path(out_dir) / std::to_string(fr.id)).string();
     io::write_range_npy(stem + "_pred.npy", pred);
     io::write_range_npy(stem + "_gt.npy", fr.image);
+    io::write_range_npy(stem + "_naive.npy", naive.images[k]);
     io::RangePictureOptions po;
     po.max_range_m = d.sensor.max_range_m;
     io::write_png(stem + ".png", stack(io::range_image_picture(masked_prediction(pred), po),
                                        io::range_image_picture(fr.image, po), 12));
     files.push_back(Json{{"frame", fr.id}, {"png", stem + ".png"}, {"pred", stem + "_pred.npy"},
-                         {"gt", stem + "_gt.npy"}});
+                         {"gt", stem + "_gt.npy"}, {"naive", stem + "_naive.npy"}});
   }
   return files;
 }

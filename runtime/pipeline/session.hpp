@@ -23,8 +23,8 @@ struct TrainRequest {
 // writes summary.json. Returns the summary as JSON.
 Json train_run(cl::Runtime& rt, const TrainRequest& req);
 
-// Renders every test frame: <out>/<frame>_pred.npy, <frame>_gt.npy (H×W×3, io/range_array.hpp)
-// and <frame>.png (rendered above ground truth: depth, intensity, mask). Returns the files.
+// Renders every test frame: <out>/<frame>_pred.npy, <frame>_gt.npy, <frame>_naive.npy (the naive
+// baseline's view; H×W×3, io/range_array.hpp) and <frame>.png (rendered above ground truth: depth, intensity, mask). Returns the files.
 Json render_run(LoadedRun& run, const std::string& out_dir);
 
 // Renders novel views at the given poses (T_world_lidar in the dataset's world frame, metres):

@@ -1,5 +1,7 @@
 # CTest script: runs the smoke kitti360-standard table and compares it with the committed
-# baseline (exit 4 from `sgnlf compare` = regression → test fails).
+# baseline (exit 4 from `sgnlf compare` = regression → test fails). Runs of an earlier ctest
+# are removed first: bench resumes finished runs, which would hide a change in training.
+file(REMOVE_RECURSE ${OUT}/runs)
 execute_process(COMMAND ${SGNLF} bench --table kitti360-standard --scale smoke --seed 1 --out ${OUT}
                 RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)

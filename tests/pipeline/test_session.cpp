@@ -8,6 +8,7 @@
 
 #include "datasets/simulate.hpp"
 #include "io/range_array.hpp"
+#include "pipeline/evaluate.hpp"
 #include "pipeline/session.hpp"
 #include "support/test_device.hpp"
 #include "tiny_scene.hpp"
@@ -58,6 +59,9 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
   REQUIRE(files.size() == 1);
   CHECK(fs::file_size(files[0].at("png").get<std::string>()) > 100);
   CHECK(fs::exists(files[0].at("pred").get<std::string>()));
+  // The naive baseline's view is the one `eval` scored.
+  const RangeImage naive_img = io::read_range_npy(files[0].at("naive").get<std::string>());
+  CHECK(naive_img.range == evaluate_naive(*run.dataset).images[0].range);
 
   // Novel views: at a test frame's own pose the render equals render_run's; a pose far outside
   // the scene still renders; an empty pose list is refused.
