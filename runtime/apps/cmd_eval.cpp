@@ -30,9 +30,9 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
   sub.add_option("--data", a->data, "Dataset folder (default: the one the run trained on)");
   sub.add_option("--device", a->device, "OpenCL device index or name substring");
   sub.add_option("--samples", a->sampling.n_samples,
-                 "Uniform samples per ray when rendering (default: as trained)");
+                 "Uniform samples per ray when rendering (default: the config's render.eval_samples, else as trained)");
   sub.add_option("--importance", a->sampling.n_importance,
-                 "Importance samples per ray when rendering (default: as trained)");
+                 "Importance samples per ray when rendering (default: the config's render.eval_importance, else as trained)");
   sub.add_flag("--json", a->json, "Print the metrics JSON");
   return std::function<int()>([a] {
     cl::Runtime rt(a->device);

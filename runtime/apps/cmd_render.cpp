@@ -26,9 +26,9 @@ const Registrar reg("render", "Render the test frames of a trained run", [](CLI:
                  "Render these views instead of the test frames: KITTI trajectory file, one "
                  "T_world_lidar per line (12 numbers, the dataset's world frame, metres)");
   sub.add_option("--samples", a->sampling.n_samples,
-                 "Uniform samples per ray when rendering (default: as trained)");
+                 "Uniform samples per ray when rendering (default: the config's render.eval_samples, else as trained)");
   sub.add_option("--importance", a->sampling.n_importance,
-                 "Importance samples per ray when rendering (default: as trained)");
+                 "Importance samples per ray when rendering (default: the config's render.eval_importance, else as trained)");
   return std::function<int()>([a] {
     // Poses first: a bad trajectory file fails before the run is loaded.
     const std::vector<Pose> poses =

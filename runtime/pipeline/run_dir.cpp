@@ -39,10 +39,15 @@ int model_capacity(const TrainConfig& c) {
 }
 
 LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
-                   const std::string& dataset_override, const RenderSampling& sampling) {
+                   const std::string& dataset_override, const RenderSampling& requested) {
   LoadedRun run;
   run.manifest = read_manifest(run_dir);
   const uint64_t trained_hash = run.manifest.config.hash();
+  // The config's eval sampling applies unless the caller overrides it.
+  RenderSampling sampling = requested;
+  const render::RenderConfig& rc = run.manifest.config.render;
+  if (sampling.n_samples == 0) sampling.n_samples = rc.eval_samples;
+  if (sampling.n_importance == -1) sampling.n_importance = rc.eval_importance;
   if (sampling.n_samples < 0 || sampling.n_importance < -1)
     throw ConfigError("render sampling override: samples " + std::to_string(sampling.n_samples) +
                       ", importance " + std::to_string(sampling.n_importance) +

@@ -43,8 +43,9 @@ struct RenderSampling {
 };
 
 // `dataset_override` replaces the manifest's dataset path when not empty. The checkpoint is
-// checked against the run's config as trained; `sampling` then changes the model's render
-// sampling (LoadedRun::manifest.config shows the sampling in use).
+// checked against the run's config as trained; `sampling`, else the config's eval_samples /
+// eval_importance, then changes the model's render sampling (LoadedRun::manifest.config shows
+// the sampling in use).
 LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
                    const std::string& dataset_override = "", const RenderSampling& sampling = {});
 

@@ -24,6 +24,8 @@ void RenderConfig::validate(const std::string& where) const {
                       " must exceed 'near_m' = " + std::to_string(near_m));
   check_range(where, "n_samples", n_samples, 1, 1 << 16);
   check_range(where, "n_importance", n_importance, 0, 1 << 16);
+  check_range(where, "eval_samples", eval_samples, 0, 1 << 16);
+  check_range(where, "eval_importance", eval_importance, -1, 1 << 16);
   check_range(where, "weights.depth", weights.depth, 0.0f, 1e9f);
   check_range(where, "weights.ret", weights.ret, 0.0f, 1e9f);
   check_range(where, "weights.intensity", weights.intensity, 0.0f, 1e9f);
@@ -39,6 +41,7 @@ RenderConfig RenderConfig::from_json(const Json& j, const std::string& where, Re
   ConfigReader r(j, where);
   r.get("near_m", c.near_m).get("far_m", c.far_m).get("n_samples", c.n_samples);
   r.get("n_importance", c.n_importance).get("jitter", c.jitter);
+  r.get("eval_samples", c.eval_samples).get("eval_importance", c.eval_importance);
   r.get("patch_rows", c.patch_rows).get("patch_cols", c.patch_cols);
   r.get("grad_l1", c.grad_l1).get("grad_clip_m", c.grad_clip_m);
   if (r.has("weights")) {
@@ -57,7 +60,7 @@ RenderConfig RenderConfig::from_json(const Json& j, const std::string& where) {
 }
 
 Json RenderConfig::to_json() const {
-  return Json{{"near_m", near_m},
+  Json j{{"near_m", near_m},
               {"far_m", far_m},
               {"n_samples", n_samples},
               {"n_importance", n_importance},
@@ -71,6 +74,9 @@ Json RenderConfig::to_json() const {
                 {"ret", weights.ret},
                 {"intensity", weights.intensity},
                 {"grad", weights.grad}}}};
+  if (eval_samples != 0) j["eval_samples"] = eval_samples;
+  if (eval_importance != -1) j["eval_importance"] = eval_importance;
+  return j;
 }
 
 }  // namespace sgnlf::render

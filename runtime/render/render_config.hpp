@@ -22,6 +22,11 @@ struct RenderConfig {
   int n_samples = 64;    // uniform samples per ray (paper: 768)
   int n_importance = 0;  // extra importance samples (LiDAR-NeRF: 64); 0 = off
   bool jitter = true;    // stratified jitter in training; midpoints when false
+  // Sampling when a trained run is rendered (eval, render, the harness): 0 / -1 keep
+  // n_samples / n_importance. The checkpoint does not depend on it; a preset trained with few
+  // samples may render its test views with more (closer to the paper's 768).
+  int eval_samples = 0;
+  int eval_importance = -1;
   RangeLossWeights weights;
   // Gradient loss on patch batches (LiDAR-NeRF: 2 × 8 patches, L1, GT steps ≥ 1 cm ignored).
   int patch_rows = 2;
@@ -35,6 +40,8 @@ struct RenderConfig {
   // Reads the keys of this struct (all optional, unknown keys rejected) and validates.
   static RenderConfig from_json(const Json& j, const std::string& where);
   static RenderConfig from_json(const Json& j, const std::string& where, RenderConfig defaults);
+  // eval_samples / eval_importance appear only when set, so configs without them keep their
+  // JSON and hash (run folders and baselines written before they existed still load).
   Json to_json() const;
   // Uniform bin width in normalised units: also the last sample's δ (see kernels/render/volume.cl).
   float bin_width(float scene_scale) const {

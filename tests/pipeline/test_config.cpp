@@ -71,6 +71,17 @@ TEST_CASE("overrides merge into the preset and round-trip through JSON", "[pipel
   const TrainConfig back = train_config_from_json(train_config_to_json(c), "rt");
   CHECK(back.hash() == c.hash());
   CHECK(resolve_config("lidar-nerf", "quick").hash() != c.hash());
+  // Eval sampling round-trips, is validated, and is absent from the JSON when unset (configs
+  // written before it existed keep their hash).
+  CHECK_FALSE(train_config_to_json(resolve_config("lidar-nerf", "smoke"))["render"].contains("eval_samples"));
+  const TrainConfig e = resolve_config("lidar-nerf", "smoke",
+                                       Json{{"render", {{"eval_samples", 96}, {"eval_importance", 0}}}});
+  const TrainConfig e_back = train_config_from_json(train_config_to_json(e), "rt");
+  CHECK(e_back.render.eval_samples == 96);
+  CHECK(e_back.render.eval_importance == 0);
+  CHECK(e_back.hash() == e.hash());
+  CHECK_THROWS_AS(resolve_config("lidar-nerf", "smoke", Json{{"render", {{"eval_samples", -2}}}}),
+                  ConfigError);
 }
 
 TEST_CASE("learning rate decays exponentially to final_factor", "[pipeline][config]") {

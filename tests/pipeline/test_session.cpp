@@ -90,6 +90,20 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
   CHECK(std::isfinite(mf.at("metrics").at("depth_rmse").get<double>()));
   CHECK_THROWS_AS(load_run(test::runtime(), run_dir, "", RenderSampling{-1, -1}), ConfigError);
 
+  // A config's eval sampling is what eval uses unless overridden; training does not see it.
+  TrainRequest ev = req;
+  ev.run_dir = test::temp_dir("session_run_eval_sampling");
+  ev.manifest.config.render.eval_samples = 3 * trained_samples;
+  ev.manifest.config.render.eval_importance = 5;
+  train_run(test::runtime(), ev);
+  LoadedRun by_config = load_run(test::runtime(), ev.run_dir);
+  CHECK(by_config.manifest.config.render.n_samples == 3 * trained_samples);
+  CHECK(by_config.manifest.config.render.n_importance == 5);
+  CHECK(by_config.model->state().params == run.model->state().params);  // same training
+  LoadedRun overridden = load_run(test::runtime(), ev.run_dir, "", RenderSampling{0, 2});
+  CHECK(overridden.manifest.config.render.n_samples == 3 * trained_samples);
+  CHECK(overridden.manifest.config.render.n_importance == 2);
+
   TrainRequest other = req;
   other.manifest.seed = 6;
   CHECK_THROWS_AS(train_run(test::runtime(), other), ConfigError);
