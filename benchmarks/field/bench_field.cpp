@@ -123,6 +123,38 @@ BENCHMARK(BM_MlpDensityBwd)->Arg(1 << 16)->Arg(1 << 18)->UseManualTime()->Unit(b
 BENCHMARK(BM_MlpHeadFwd)->Arg(1 << 16)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MlpHeadBwd)->Arg(1 << 16)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 
+// The head as the model runs it: 15 geometric features read in place from the density output
+// (stride 16) and the 72-dim direction encoding as a grouped input, one group per ray of 64
+// samples. Same function as BM_MlpHead*; compare points/s. FLOPs counted as performed.
+static void mlp_grouped_head_bench(benchmark::State& state, bool backward) {
+  auto& rt = bench::runtime();
+  field::MlpSpec spec = field::make_mlp_spec(15, 64, 3, 2, Activation::Relu);
+  spec.n_in_group = 72;
+  spec.in_stride = 16;
+  spec.in_offset = 1;
+  field::Mlp mlp(rt, spec);
+  const int n = int(state.range(0)), group = 64, groups = n / group;
+  std::vector<float> params(mlp.n_params());
+  mlp.init_params(params, 0, 1);
+  auto b_p = cl::Buffer::from(rt, params);
+  auto b_in = cl::Buffer::from(rt, uniform(size_t(n) * 16, -1, 1, 2));
+  auto b_y = cl::Buffer::from(rt, uniform(size_t(groups) * 72, -1, 1, 4));
+  auto b_dout = cl::Buffer::from(rt, uniform(size_t(n) * 2, -1, 1, 3));
+  cl::Buffer b_out(rt, size_t(n) * 2 * 4), b_g(rt, params.size() * 4),
+      b_din(rt, size_t(n) * 16 * 4), b_dy(rt, size_t(groups) * 72 * 4);
+  field::MlpContext ctx;
+  mlp.forward(b_p, 0, b_in, n, b_out, ctx, &b_y, group);
+  const double secs =
+      backward ? run_timed(state, [&] { mlp.backward(b_p, 0, ctx, b_out, b_dout, b_g, 0, &b_din, &b_dy); })
+               : run_timed(state, [&] { mlp.forward(b_p, 0, b_in, n, b_out, ctx, &b_y, group); });
+  const double macs = double(n) * spec.macs_per_point() + double(groups) * spec.macs_per_group();
+  set_counters(state, secs, n, macs * (backward ? 4 : 2), 0);
+}
+static void BM_MlpHeadGroupedFwd(benchmark::State& s) { mlp_grouped_head_bench(s, false); }
+static void BM_MlpHeadGroupedBwd(benchmark::State& s) { mlp_grouped_head_bench(s, true); }
+BENCHMARK(BM_MlpHeadGroupedFwd)->Arg(1 << 16)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MlpHeadGroupedBwd)->Arg(1 << 16)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
+
 // The shape of the prototype figure in performance.md: 32→64→64→16, forward + backward.
 static void BM_MlpProtoFwdBwd(benchmark::State& state) {
   auto& rt = bench::runtime();

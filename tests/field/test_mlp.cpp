@@ -39,6 +39,27 @@ field::MlpSpec odd_spec() {  // widths not multiples of 16, every activation
               {3, Activation::Relu}, {2, Activation::Tanh}};
   return s;
 }
+// Central differences (step h) of loss(v') where v' is v with entry k moved by ±h, for the
+// entries k in `which`; appended to fd, the analytic gradients an_all[k] to an.
+template <typename Loss>
+void central_diffs(const std::vector<float>& v, const std::vector<float>& an_all,
+                   const std::vector<size_t>& which, float h, Loss loss, std::vector<float>& fd,
+                   std::vector<float>& an) {
+  for (size_t k : which) {
+    auto vp = v, vm = v;
+    vp[k] += h;
+    vm[k] -= h;
+    fd.push_back(float((loss(vp) - loss(vm)) / (2.0 * h)));
+    an.push_back(an_all[k]);
+  }
+}
+// Indices 0, stride, 2·stride, … below n, skipping those where grad is exactly 0 (padding).
+std::vector<size_t> every(size_t n, size_t stride, const std::vector<float>* grad = nullptr) {
+  std::vector<size_t> k;
+  for (size_t i = 0; i < n; i += stride)
+    if (!grad || (*grad)[i] != 0.0f) k.push_back(i);
+  return k;
+}
 struct Case {
   const char* name;
   field::MlpSpec spec;
@@ -133,26 +154,15 @@ TEST_CASE("MLP gradients agree with finite differences of the device forward",
   };
   const float h = 1e-2f;
   std::vector<float> fd, an;
-  for (size_t k = 0; k < params.size(); k += 7) {
-    if (grad[k] == 0.0f) continue;  // padding
-    auto pp = params, pm = params;
-    pp[k] += h;
-    pm[k] -= h;
-    fd.push_back(float((loss(pp, in) - loss(pm, in)) / (2.0 * h)));
-    an.push_back(grad[k]);
-  }
+  central_diffs(params, grad, every(params.size(), 7, &grad), h,
+                [&](const std::vector<float>& p) { return loss(p, in); }, fd, an);
   REQUIRE(fd.size() > 50);
   // Central differences: truncation O(h²·f''') ~1e-4, float rounding of L ~1e-6/h.
   CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 5e-3);
   fd.clear();
   an.clear();
-  for (size_t k = 0; k < in.size(); k += 3) {
-    auto xp = in, xm = in;
-    xp[k] += h;
-    xm[k] -= h;
-    fd.push_back(float((loss(params, xp) - loss(params, xm)) / (2.0 * h)));
-    an.push_back(din[k]);
-  }
+  central_diffs(in, din, every(in.size(), 3), h,
+                [&](const std::vector<float>& x) { return loss(params, x); }, fd, an);
   CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 5e-3);
 }
 
@@ -253,36 +263,21 @@ TEST_CASE("grouped-input MLP gradients agree with finite differences", "[field][
   };
   const float h = 1e-2f;
   std::vector<float> fd, an;
-  for (size_t k = 0; k < params.size(); k += 3) {
-    if (grad[k] == 0.0f) continue;  // padding
-    auto pp = params, pm = params;
-    pp[k] += h;
-    pm[k] -= h;
-    fd.push_back(float((loss(pp, x, y) - loss(pm, x, y)) / (2.0 * h)));
-    an.push_back(grad[k]);
-  }
+  central_diffs(params, grad, every(params.size(), 3, &grad), h,
+                [&](const std::vector<float>& p) { return loss(p, x, y); }, fd, an);
   REQUIRE(fd.size() > 40);
   CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 5e-3);
   fd.clear();
   an.clear();
+  std::vector<size_t> x_cols;  // the per-point columns 2..5 of each row
   for (int p = 0; p < n; ++p)
-    for (int c = 0; c < 4; ++c) {  // the per-point columns 2..5 of each row
-      const size_t k = size_t(p) * 6 + 2 + size_t(c);
-      auto xp = x, xm = x;
-      xp[k] += h;
-      xm[k] -= h;
-      fd.push_back(float((loss(params, xp, y) - loss(params, xm, y)) / (2.0 * h)));
-      an.push_back(dx[k]);
-    }
+    for (int c = 0; c < 4; ++c) x_cols.push_back(size_t(p) * 6 + 2 + size_t(c));
+  central_diffs(x, dx, x_cols, h, [&](const std::vector<float>& xv) { return loss(params, xv, y); },
+                fd, an);
   CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 5e-3);
   fd.clear();
   an.clear();
-  for (size_t k = 0; k < y.size(); ++k) {
-    auto yp = y, ym = y;
-    yp[k] += h;
-    ym[k] -= h;
-    fd.push_back(float((loss(params, x, yp) - loss(params, x, ym)) / (2.0 * h)));
-    an.push_back(dy[k]);
-  }
+  central_diffs(y, dy, every(y.size(), 1), h,
+                [&](const std::vector<float>& yv) { return loss(params, x, yv); }, fd, an);
   CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 5e-3);
 }
