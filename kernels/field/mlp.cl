@@ -23,6 +23,12 @@
 #ifndef GROUP_BIAS
 #define GROUP_BIAS 0
 #endif
+// d_in rows are whole padded vectors (full-width stores) only without stride or offset.
+#if DIN_STRIDE == IN_PAD && DIN_OFFSET == 0
+#define DIN_DENSE 1
+#else
+#define DIN_DENSE 0
+#endif
 #define ACT_NONE 0
 #define ACT_RELU 1
 #define ACT_TANH 2
@@ -217,8 +223,7 @@ __kernel void field_mlp_bwd_in(const int n, __global const float* wt, __global c
     if (p0 + p >= n) continue;
     const size_t row = (size_t)(p0 + p);
 #if PREV_ACT < 0
-    store_row(acc[p], d_in + row * DIN_STRIDE + DIN_OFFSET, i0, N_IN,
-              DIN_STRIDE == IN_PAD && DIN_OFFSET == 0);
+    store_row(acc[p], d_in + row * DIN_STRIDE + DIN_OFFSET, i0, N_IN, DIN_DENSE);
 #elif PREV_ACT == ACT_NONE
     vstore16(acc[p], 0, d_in + row * IN_PAD + i0);
 #elif PREV_PRE
