@@ -81,8 +81,25 @@ Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec) : rt_(rt), spec_(spec) {
   spec_.validate();
   const int n_layers = int(spec_.layers.size());
   const int n_group = spec_.n_in_group;
-  auto d = [](const char* k, int v) { return std::string(" -D") + k + "=" + std::to_string(v); };
-  const std::string f = "field/mlp.cl";
+  // Compiles a layer's kernels, specialised by -D defines (kernels/field/mlp.cl).
+  auto build = [&](Layer& L, int in_off, int prev_act, bool prev_pre, bool group_bias) {
+    auto d = [](const char* k, int v) { return std::string(" -D") + k + "=" + std::to_string(v); };
+    const std::string opt = d("N_IN", L.n_in) + d("IN_STRIDE", L.in_stride) +
+                            d("IN_OFFSET", in_off) + d("IN_PAD", pad16(L.n_in)) + d("OUT", L.out) +
+                            d("OUT_PAD", L.out_pad) + d("OUT_STRIDE", L.out_stride) +
+                            d("ACT", int(L.act)) + d("STORE_PRE", L.store_pre) +
+                            d("PREV_ACT", prev_act) + d("PREV_PRE", prev_pre) +
+                            d("DIN_STRIDE", L.in_stride) + d("DIN_OFFSET", in_off) +
+                            d("GROUP_BIAS", group_bias) + d("PTS", kPts) + d("ROWS", kRows);
+    const std::string f = "field/mlp.cl";
+    L.fwd = rt_.kernel(f, "field_mlp_fwd", opt);
+    L.bwd_out = rt_.kernel(f, "field_mlp_bwd_out", opt);
+    L.wgt = rt_.kernel(f, "field_mlp_bwd_wgt", opt);
+    L.reduce = rt_.kernel(f, "field_mlp_bwd_reduce", opt);
+    L.transpose = rt_.kernel(f, "field_mlp_transpose", opt);
+    L.bwd_in = rt_.kernel(f, "field_mlp_bwd_in", opt);
+    if (group_bias) L.group_sum = rt_.kernel(f, "field_mlp_group_sum", opt);
+  };
   int n_in = spec_.n_in;
   for (int l = 0; l < n_layers; ++l) {
     const auto& ls = spec_.layers[size_t(l)];
@@ -100,45 +117,16 @@ Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec) : rt_(rt), spec_(spec) {
     n_params_ += size_t(L.n_rows + 1) * size_t(L.out_pad);
     const bool prev_pre = l > 0 && layers_.back().store_pre;
     const int prev_act = l > 0 ? int(layers_.back().act) : -1;
-    const int in_off = l == 0 ? spec_.in_offset : 0;
-    const std::string opt = d("N_IN", n_in) + d("IN_STRIDE", L.in_stride) +
-                            d("IN_OFFSET", in_off) + d("IN_PAD", pad16(n_in)) + d("OUT", L.out) +
-                            d("OUT_PAD", L.out_pad) + d("OUT_STRIDE", L.out_stride) +
-                            d("ACT", int(L.act)) + d("STORE_PRE", L.store_pre) +
-                            d("PREV_ACT", prev_act) + d("PREV_PRE", prev_pre) +
-                            d("DIN_STRIDE", L.in_stride) + d("DIN_OFFSET", in_off) +
-                            d("GROUP_BIAS", l == 0 && n_group > 0) + d("PTS", kPts) +
-                            d("ROWS", kRows);
-    L.fwd = rt_.kernel(f, "field_mlp_fwd", opt);
-    L.bwd_out = rt_.kernel(f, "field_mlp_bwd_out", opt);
-    L.wgt = rt_.kernel(f, "field_mlp_bwd_wgt", opt);
-    L.reduce = rt_.kernel(f, "field_mlp_bwd_reduce", opt);
-    L.transpose = rt_.kernel(f, "field_mlp_transpose", opt);
-    L.bwd_in = rt_.kernel(f, "field_mlp_bwd_in", opt);
+    build(L, l == 0 ? spec_.in_offset : 0, prev_act, prev_pre, l == 0 && n_group > 0);
     if (l == 0 && n_group > 0) {
-      L.group_sum = rt_.kernel(f, "field_mlp_group_sum", opt);
       // The grouped part: a linear layer of n_group inputs whose weights are rows n_in .. of
       // layer 0 and whose bias is layer 0's bias (both follow at n_in · out_pad).
-      Layer G{};
-      G.n_in = G.n_rows = n_group;
-      G.in_stride = n_group;
-      G.out = L.out;
-      G.out_pad = L.out_pad;
-      G.out_stride = L.out_pad;
-      G.act = Activation::None;
-      G.store_pre = false;
-      const std::string gopt = d("N_IN", n_group) + d("IN_STRIDE", n_group) + d("IN_OFFSET", 0) +
-                               d("IN_PAD", pad16(n_group)) + d("OUT", G.out) +
-                               d("OUT_PAD", G.out_pad) + d("OUT_STRIDE", G.out_pad) +
-                               d("ACT", 0) + d("STORE_PRE", 0) + d("PREV_ACT", -1) +
-                               d("PREV_PRE", 0) + d("DIN_STRIDE", n_group) + d("DIN_OFFSET", 0) +
-                               d("GROUP_BIAS", 0) + d("PTS", kPts) + d("ROWS", kRows);
-      G.fwd = rt_.kernel(f, "field_mlp_fwd", gopt);
-      G.wgt = rt_.kernel(f, "field_mlp_bwd_wgt", gopt);
-      G.reduce = rt_.kernel(f, "field_mlp_bwd_reduce", gopt);
-      G.transpose = rt_.kernel(f, "field_mlp_transpose", gopt);
-      G.bwd_in = rt_.kernel(f, "field_mlp_bwd_in", gopt);
-      group_ = std::move(G);
+      group_.n_in = group_.n_rows = group_.in_stride = n_group;
+      group_.out = L.out;
+      group_.out_pad = group_.out_stride = L.out_pad;
+      group_.act = Activation::None;
+      group_.store_pre = false;
+      build(group_, 0, -1, false, false);
     }
     layers_.push_back(std::move(L));
     n_in = ls.width;
