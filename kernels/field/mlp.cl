@@ -12,8 +12,9 @@
 //   PREV_PRE (1: previous layer's derivative from its pre-activations), DIN_STRIDE,
 //   PTS (points per work-item), ROWS (weight rows per work-item in the weight gradient),
 //   IN_OFFSET / DIN_OFFSET (first column of the input / of d_in within its row),
-//   GROUP_BIAS (1: the pre-activation starts from a per-group row gbias[point / group] instead
-//   of the bias: layer 0 of an MLP with grouped inputs, see runtime/field/mlp.hpp).
+//   GROUP_BIAS (1: the pre-activation starts from a per-group row gbias[point / group], or
+//   gbias[gidx[point]] when `indexed`, instead of the bias: layer 0 of an MLP with grouped
+//   inputs, see runtime/field/mlp.hpp).
 #ifndef IN_OFFSET
 #define IN_OFFSET 0
 #endif
@@ -73,11 +74,13 @@ inline void store_row(float16 v, __global float* row, int o0, int width, int pad
   }
 }
 
-// Forward: out = act(in · W_t + b), or with GROUP_BIAS act(in · W_t + gbias[point / group]).
+// Forward: out = act(in · W_t + b), or with GROUP_BIAS act(in · W_t + gbias[g]), g = point /
+// group (indexed = 0) or gidx[point] (indexed = 1: groups of varying size).
 // Work-item = PTS points × 16 outputs.
 __kernel void field_mlp_fwd(const int n, __global const float* params, const uint w_off,
                             __global const float* in, __global float* out,
-                            __global float* pre, __global const float* gbias, const int group) {
+                            __global float* pre, __global const float* gbias, const int group,
+                            __global const int* gidx, const int indexed) {
   const int p0 = get_global_id(0) * PTS;
   const int o0 = get_global_id(1) * 16;
   if (p0 >= n) return;
@@ -90,7 +93,8 @@ __kernel void field_mlp_fwd(const int n, __global const float* params, const uin
 #pragma unroll
   for (int p = 0; p < PTS; ++p) {
 #if GROUP_BIAS
-    acc[p] = vload16(0, gbias + (size_t)(min(p0 + p, n - 1) / group) * OUT_PAD + o0);
+    const int pp = min(p0 + p, n - 1);
+    acc[p] = vload16(0, gbias + (size_t)(indexed ? gidx[pp] : pp / group) * OUT_PAD + o0);
 #else
     acc[p] = b;
 #endif
@@ -236,15 +240,18 @@ __kernel void field_mlp_bwd_in(const int n, __global const float* wt, __global c
   }
 }
 
-// Grouped inputs, backward: d_group[g] = Σ_{k < group} d_pre[g·group + k] (OUT_PAD wide, in
-// order: deterministic). Work-item = group × 16 outputs.
+// Grouped inputs, backward: d_group[g] = Σ_{k in group g} d_pre[k] (OUT_PAD wide, in order:
+// deterministic); group g holds points [g·group, (g + 1)·group), or [goff[g], goff[g + 1])
+// when `indexed` (possibly none: a zero row). Work-item = group × 16 outputs.
 __kernel void field_mlp_group_sum(const int n_groups, const int group,
-                                  __global const float* d_pre, __global float* d_group) {
+                                  __global const float* d_pre, __global float* d_group,
+                                  __global const int* goff, const int indexed) {
   const int g = get_global_id(0);
   const int o0 = get_global_id(1) * 16;
   if (g >= n_groups) return;
   float16 acc = (float16)(0.0f);
-  for (int k = 0; k < group; ++k)
-    acc += vload16(0, d_pre + ((size_t)g * group + k) * OUT_PAD + o0);
+  const int k0 = indexed ? goff[g] : g * group, k1 = indexed ? goff[g + 1] : (g + 1) * group;
+  for (int k = k0; k < k1; ++k)
+    acc += vload16(0, d_pre + (size_t)k * OUT_PAD + o0);
   vstore16(acc, 0, d_group + (size_t)g * OUT_PAD + o0);
 }

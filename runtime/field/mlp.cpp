@@ -164,12 +164,21 @@ void Mlp::ensure(MlpContext& ctx, int n) const {
 }
 
 void Mlp::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& in, int n,
-                  cl::Buffer& out, MlpContext& ctx, const cl::Buffer* group_in, int group) {
+                  cl::Buffer& out, MlpContext& ctx, const cl::Buffer* group_in, int group,
+                  const GroupIndex* index) {
   check_bytes(params, offset + n_params_, "params");
   check_bytes(in, size_t(std::max(n, 0)) * spec_.row_stride(), "in");
   check_bytes(out, size_t(std::max(n, 0)) * spec_.n_out(), "out");
   const bool grouped = spec_.n_in_group > 0;
-  if (grouped) {
+  const bool indexed = grouped && index != nullptr;
+  if (index && !grouped) throw Error("Mlp::forward: a group index given, the MLP has no grouped inputs");
+  if (indexed) {
+    if (!group_in || !index->point_group || !index->offsets || index->n_groups < 1)
+      throw Error("Mlp::forward: a group index needs group_in, point_group, offsets and n_groups >= 1");
+    check_bytes(*index->point_group, size_t(std::max(n, 0)), "point_group");
+    check_bytes(*index->offsets, size_t(index->n_groups) + 1, "offsets");
+    check_bytes(*group_in, size_t(index->n_groups) * spec_.n_in_group, "group_in");
+  } else if (grouped) {
     if (!group_in || group < 1 || n % group != 0)
       throw Error("Mlp::forward: grouped inputs need group_in and a group size dividing n = " +
                   std::to_string(n) + " (group " + std::to_string(group) + ")");
@@ -178,16 +187,17 @@ void Mlp::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& in,
   ctx.n = n;
   ctx.in = &in;
   ctx.group_in = grouped ? group_in : nullptr;
-  ctx.group = grouped ? group : 0;
+  ctx.group = grouped ? (indexed ? 1 : group) : 0;
+  ctx.index = indexed ? *index : GroupIndex{};
   if (n <= 0) return;
   ensure(ctx, n);
   const size_t groups = cl::round_up(ceil_div(size_t(n), kPts), kLocal);
   if (grouped) {
-    const int ng = n / group;
+    const int ng = indexed ? index->n_groups : n / group;
     const size_t need = size_t(ng) * group_.out_pad * sizeof(float);
     if (ctx.group_pre.bytes() < need) ctx.group_pre = cl::Buffer(rt_, need);
     group_.fwd.set_args(ng, params, uint32_t(offset + layer_off_[0] + size_t(spec_.n_in) * group_.out_pad),
-                        *group_in, ctx.group_pre, ctx.group_pre, ctx.group_pre, 1);
+                        *group_in, ctx.group_pre, ctx.group_pre, ctx.group_pre, 1, ctx.group_pre, 0);
     group_.fwd.launch({cl::round_up(ceil_div(size_t(ng), kPts), kLocal), size_t(group_.out_pad / 16)},
                       {kLocal, size_t(group_.out_pad / 16)});
   }
@@ -197,8 +207,9 @@ void Mlp::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& in,
     cl::Buffer& dst = l + 1 == layers_.size() ? out : ctx.post[l];
     cl::Buffer& pre = L.store_pre ? ctx.pre[l] : dst;
     const cl::Buffer& gbias = l == 0 && grouped ? ctx.group_pre : dst;  // unused without groups
+    const cl::Buffer& gidx = indexed && l == 0 ? *index->point_group : dst;  // unused otherwise
     L.fwd.set_args(n, params, uint32_t(offset + layer_off_[l]), src, dst, pre, gbias,
-                   std::max(group, 1));
+                   std::max(ctx.group, 1), gidx, int(indexed && l == 0));
     // One work-group covers all output tiles of its points: input rows are read once.
     L.fwd.launch({groups, size_t(L.out_pad / 16)}, {kLocal, size_t(L.out_pad / 16)});
   }
@@ -237,7 +248,8 @@ void Mlp::backward(const cl::Buffer& params, size_t offset, const MlpContext& ct
   if (d_group_in && !grouped) throw Error("Mlp::backward: d_group_in given, the MLP has no grouped inputs");
   check_bytes(d_out, size_t(n) * spec_.n_out(), "d_out");
   if (d_in) check_bytes(*d_in, size_t(n) * spec_.row_stride(), "d_in");
-  const int ng = grouped ? n / ctx.group : 0;
+  const bool indexed = grouped && ctx.index.offsets != nullptr;
+  const int ng = grouped ? (indexed ? ctx.index.n_groups : n / ctx.group) : 0;
   if (d_group_in) check_bytes(*d_group_in, size_t(ng) * spec_.n_in_group, "d_group_in");
   ensure_scratch(n);
   const size_t groups = cl::round_up(ceil_div(size_t(n), kPts), kLocal);
@@ -271,7 +283,8 @@ void Mlp::backward(const cl::Buffer& params, size_t offset, const MlpContext& ct
     if (l == 0 && grouped) {
       const size_t need = size_t(ng) * group_.out_pad * sizeof(float);
       if (d_group_.bytes() < need) d_group_ = cl::Buffer(rt_, need);
-      L.group_sum.set_args(ng, ctx.group, d_pre_[cur], d_group_);
+      L.group_sum.set_args(ng, ctx.group, d_pre_[cur], d_group_,
+                           indexed ? *ctx.index.offsets : d_group_, int(indexed));
       L.group_sum.launch({cl::round_up(size_t(ng), 16), size_t(L.out_pad / 16)},
                          {16, size_t(L.out_pad / 16)});
       const size_t y_rows = size_t(spec_.n_in) * group_.out_pad;

@@ -14,6 +14,9 @@
 // layout of an MLP with n_in + n_in_group inputs (rows of x, then rows of y, then the bias) and
 // computes the same function, but the y part once per group: y_g · W_y + b, added to every
 // point's x_p · W_x. Its backward sums the pre-activation gradient over each group first.
+// Groups of varying size (GroupIndex): group g holds the consecutive points [offsets[g],
+// offsets[g + 1]) and point_group[k] names each point's group (e.g. the live samples of each
+// ray after early ray termination; a group may be empty).
 // The per-point input may be a column range of a wider row (in_stride, in_offset); d_in is then
 // written into the same columns of a buffer with that layout, other columns untouched.
 #pragma once
@@ -54,6 +57,14 @@ struct MlpSpec {
 MlpSpec make_mlp_spec(int n_in, int width, int hidden, int n_out, Activation act,
                       Activation out_act = Activation::None);
 
+// Groups of varying size for grouped inputs: int32 device buffers, point_group (N entries) and
+// offsets (n_groups + 1 entries, offsets[0] = 0, offsets[n_groups] = N, non-decreasing).
+struct GroupIndex {
+  const cl::Buffer* point_group = nullptr;
+  const cl::Buffer* offsets = nullptr;
+  int n_groups = 0;
+};
+
 // What forward keeps for backward. Buffers grow on demand and are reused across calls.
 // The input buffer given to forward() must stay alive and unchanged until backward().
 struct MlpContext {
@@ -61,6 +72,7 @@ struct MlpContext {
   const cl::Buffer* in = nullptr;
   const cl::Buffer* group_in = nullptr;  // grouped inputs: the per-group input and group size
   int group = 0;
+  GroupIndex index;                      // varying groups (index.offsets set), else `group`
   cl::Buffer group_pre;                  // y_g · W_y + b per group
   std::vector<cl::Buffer> post;  // hidden layer outputs, N × out_pad
   std::vector<cl::Buffer> pre;   // pre-activations where the derivative needs them
@@ -81,12 +93,13 @@ class Mlp {
   void init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) const;
 
   // out (N × n_out) = MLP(in (N × row_stride)). With grouped inputs, group_in holds N / group
-  // rows of n_in_group (N a multiple of group). Enqueued, no wait.
+  // rows of n_in_group (N a multiple of group), or index->n_groups rows when `index` is given
+  // (then `group` is ignored). Enqueued, no wait.
   void forward(const cl::Buffer& params, size_t offset, const cl::Buffer& in, int n,
                cl::Buffer& out, MlpContext& ctx, const cl::Buffer* group_in = nullptr,
-               int group = 0);
+               int group = 0, const GroupIndex* index = nullptr);
   // From d_out (N × n_out): overwrites grad[grad_offset, + n_params()); writes d_in (the
-  // input's layout, its columns only) and d_group_in (N / group × n_in_group) when given.
+  // input's layout, its columns only) and d_group_in (one row of n_in_group per group) when given.
   // `out` is the forward output. Enqueued, no wait.
   void backward(const cl::Buffer& params, size_t offset, const MlpContext& ctx,
                 const cl::Buffer& out, const cl::Buffer& d_out, cl::Buffer& grad,

@@ -9,6 +9,8 @@ namespace {
 
 constexpr int kDensStride = 16;  // density MLP output: σ logit + 15 geometric features
 constexpr float kSceneBound = 1.0f;  // normalised scene box (protocol §2)
+// σ logit of samples behind early ray termination: σ = exp(−100) ≈ 4e-44, α = 0 in float.
+constexpr float kDeadLogit = -100.0f;
 
 field::HashGridConfig grid_config(const FieldSizes& f) {
   field::HashGridConfig g;
@@ -73,6 +75,10 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
   clamp_ = rt.kernel("pipeline/glue.cl", "pipeline_clamp_fwd");
   fine_points_ = rt.kernel("pipeline/glue.cl", "pipeline_fine_points");
   merge_ = rt.kernel("pipeline/glue.cl", "pipeline_merge_encodings");
+  live_count_ = rt.kernel("pipeline/glue.cl", "pipeline_live_count");
+  compact_rows_ = rt.kernel("pipeline/glue.cl", "pipeline_compact_rows");
+  expand_ = rt.kernel("pipeline/glue.cl", "pipeline_expand_outputs");
+  row_ray_k_ = rt.kernel("pipeline/glue.cl", "pipeline_row_ray");
 
   const size_t R = size_t(max_rays), S = size_t(c.render.n_samples),
                M = S + size_t(c.render.n_importance), N = R * M;
@@ -93,6 +99,11 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
   g_h0_ = floats(rt, N), g_head_ = floats(rt, N * 2);
   g_dens_ = floats(rt, N * kDensStride), g_enc_ = floats(rt, N * lf);
   g_dir_enc_ = floats(rt, R * enc_dim);
+  if (c.render.stop_transmittance > 0.0f && c.render.n_importance > 0) {
+    count_ = floats(rt, R), offset_ = floats(rt, R + 1), row_ray_ = floats(rt, N);
+    x_l_ = floats(rt, N * 3), enc_l_ = floats(rt, N * lf), head_l_ = floats(rt, N * 2);
+    g_h0_l_ = floats(rt, N), g_head_l_ = floats(rt, N * 2);
+  }
   loss_buf_.fill_zero();
 }
 
@@ -109,6 +120,8 @@ int LidarNerfModel::sample(int n_rays, bool jitter, uint64_t seed, uint32_t step
   const int S = cfg_.render.n_samples, I = cfg_.render.n_importance;
   const int n_c = n_rays * S;
   encoded_ = false;
+  compacted_ = false;
+  n_live_ = long(n_rays) * (S + I);
   if (I == 0) {
     sampler_.uniform(o_, d_, n_rays, jitter, seed, step, t_, x_);
     clamp_.set_args(n_c * 3, kSceneBound, x_);
@@ -141,11 +154,60 @@ int LidarNerfModel::sample(int n_rays, bool jitter, uint64_t seed, uint32_t step
   merge_.set_args(n_rays, S, M, lf, src_, x_c_, enc_c_, enc_f_, x_, enc_);
   merge_.launch({global}, {64});
   encoded_ = reuse_coarse_;
+  if (cfg_.render.stop_transmittance > 0.0f) compact(n_rays, M);
   return M;
+}
+
+void LidarNerfModel::compact(int n_rays, int M) {
+  const int S = cfg_.render.n_samples;
+  live_count_.set_args(n_rays, S, M, cfg_.render.stop_transmittance, t_c_, w_c_, t_, count_);
+  live_count_.launch({cl::round_up(size_t(n_rays), 64)}, {64});
+  // The one host sync of the step before the loss: kernel sizes below depend on the total.
+  const std::vector<int32_t> count = count_.read_vec<int32_t>(size_t(n_rays));
+  std::vector<int32_t> offset(size_t(n_rays) + 1, 0);
+  for (int r = 0; r < n_rays; ++r) offset[size_t(r) + 1] = offset[size_t(r)] + count[size_t(r)];
+  n_live_ = offset.back();
+  offset_.write_vec(offset);
+  row_ray_k_.set_args(n_rays, offset_, row_ray_);
+  row_ray_k_.launch({cl::round_up(size_t(n_rays), 64)}, {64});
+  const size_t global = cl::round_up(size_t(n_rays) * M, 64);
+  compact_rows_.set_args(n_rays, M, 3, offset_, x_, x_l_);
+  compact_rows_.launch({global}, {64});
+  const int n = int(n_live_);
+  if (encoded_) {
+    const int lf = cfg_.field.levels * cfg_.field.features_per_level;
+    compact_rows_.set_args(n_rays, M, lf, offset_, enc_, enc_l_);
+    compact_rows_.launch({global}, {64});
+  } else {
+    grid_.forward(params_, off_grid_, x_l_, n, enc_l_);
+  }
+  compacted_ = true;
+}
+
+std::vector<int> LidarNerfModel::live_counts() const {
+  if (!compacted_) throw Error("LidarNerfModel::live_counts: the last pass did not terminate rays early");
+  const auto offset = offset_.read_vec<int32_t>(size_t(ray_count_) + 1);
+  std::vector<int> c(static_cast<size_t>(ray_count_), 0);
+  for (size_t r = 0; r < c.size(); ++r) c[r] = offset[r + 1] - offset[r];
+  return c;
 }
 
 void LidarNerfModel::field_forward(int n_rays, int samples) {
   const int n = n_rays * samples;
+  ray_count_ = n_rays;
+  if (compacted_) {
+    // Live rows only; the renderer sees the full layout with dead samples at zero density.
+    const int nl = int(n_live_);
+    density_.forward(params_, off_density_, enc_l_, nl, dens_, density_ctx_);
+    dirs_.forward(d_, n_rays, dir_enc_);
+    const field::GroupIndex index{&row_ray_, &offset_, n_rays};
+    head_.forward(params_, off_head_, dens_, nl, head_l_, head_ctx_, &dir_enc_, 1, &index);
+    expand_.set_args(n_rays, samples, kDensStride, kDeadLogit, offset_, dens_, head_l_, h0_,
+                     head_out_);
+    expand_.launch({cl::round_up(size_t(n), 64)}, {64});
+    renderer_.forward(t_, h0_, head_out_, n_rays, samples, out_, weights_);
+    return;
+  }
   if (!encoded_) grid_.forward(params_, off_grid_, x_, n, enc_);
   density_.forward(params_, off_density_, enc_, n, dens_, density_ctx_);
   col_get_.set_args(n, kDensStride, 0, dens_, h0_);
@@ -181,6 +243,26 @@ void LidarNerfModel::train_step(const RayBatch& b, uint64_t seed, long step, flo
   // Backward chain: renderer → head MLP (into columns 1..15 of g_dens_, and per ray into
   // g_dir_enc_) → density MLP → hash grid.
   renderer_.backward(t_, h0_, head_out_, weights_, grad_out_, R, M, g_h0_, g_head_);
+  if (compacted_) {
+    // Same chain on the live rows: the dead samples' gradients are dropped (they do not exist
+    // in the truncated field).
+    const int nl = int(n_live_);
+    const size_t global = cl::round_up(size_t(n), 64);
+    compact_rows_.set_args(R, M, 1, offset_, g_h0_, g_h0_l_);
+    compact_rows_.launch({global}, {64});
+    compact_rows_.set_args(R, M, 2, offset_, g_head_, g_head_l_);
+    compact_rows_.launch({global}, {64});
+    head_.backward(params_, off_head_, head_ctx_, head_l_, g_head_l_, grad_, off_head_, &g_dens_,
+                   &g_dir_enc_);
+    col_set_.set_args(nl, kDensStride, 0, g_h0_l_, g_dens_);
+    col_set_.launch({cl::round_up(size_t(std::max(nl, 1)), 64)}, {64});
+    density_.backward(params_, off_density_, density_ctx_, dens_, g_dens_, grad_, off_density_,
+                      &g_enc_);
+    grid_.backward(params_, off_grid_, x_l_, nl, g_enc_, grad_, off_grid_);
+    adam_->begin_step();
+    adam_->update(params_, grad_, 0, layout_.total(), lr);
+    return;
+  }
   head_.backward(params_, off_head_, head_ctx_, head_out_, g_head_, grad_, off_head_, &g_dens_,
                  &g_dir_enc_);
   col_set_.set_args(n, kDensStride, 0, g_h0_, g_dens_);

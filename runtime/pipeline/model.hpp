@@ -53,6 +53,12 @@ class LidarNerfModel {
   // for tests and benchmarks); the results are bit-identical.
   void set_reuse_coarse_encodings(bool on) { reuse_coarse_ = on; }
 
+  // Early ray termination (render.stop_transmittance > 0 with importance sampling): merged
+  // samples behind the point where the coarse pass's transmittance fell below the threshold
+  // are not evaluated (zero density). Live samples of the last sample()/train_step/render call:
+  std::vector<int> live_counts() const;  // per ray (blocking read)
+  long live_samples() const { return n_live_; }
+
   ModelState state() const;
   void set_state(const ModelState& s);
 
@@ -61,6 +67,9 @@ class LidarNerfModel {
   void field_forward(int n_rays, int samples);
   // Samples (uniform + importance) for n_rays rays from o_/d_; returns samples per ray.
   int sample(int n_rays, bool jitter, uint64_t seed, uint32_t step);
+  // Early termination: counts the live merged samples per ray (one blocking read of n_rays
+  // ints), then gathers their positions and encodings into x_l_/enc_l_.
+  void compact(int n_rays, int M);
 
   cl::Runtime& rt_;
   TrainConfig cfg_;
@@ -73,14 +82,20 @@ class LidarNerfModel {
   render::RaySampler sampler_;
   render::VolumeRenderer renderer_;
   render::RangeLoss loss_;
-  cl::Kernel col_get_, col_set_, clamp_, fine_points_, merge_;
-  bool reuse_coarse_ = true, encoded_ = false;
+  cl::Kernel col_get_, col_set_, clamp_, fine_points_, merge_, live_count_, compact_rows_,
+      expand_, row_ray_k_;
+  bool reuse_coarse_ = true, encoded_ = false, compacted_ = false;
+  long n_live_ = 0;
+  int ray_count_ = 0;
   size_t off_grid_, off_density_, off_head_;
   field::MlpContext density_ctx_, head_ctx_;
   cl::Buffer params_, grad_;
   cl::Buffer o_, d_, target_, t_c_, x_c_, w_c_, enc_c_, src_, x_f_, enc_f_, t_, x_, enc_, dens_, h0_, dir_enc_,
       head_out_, out_, weights_, grad_out_, terms_, loss_buf_, g_h0_, g_head_, g_dens_,
       g_enc_, g_dir_enc_;
+  // Early termination: per-ray live counts and offsets (int32), each live row's ray, and the
+  // compact (live rows only) positions, encodings, head outputs and their gradients.
+  cl::Buffer count_, offset_, row_ray_, x_l_, enc_l_, head_l_, g_h0_l_, g_head_l_;
 };
 
 }  // namespace sgnlf::pipeline

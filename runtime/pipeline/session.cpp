@@ -78,6 +78,7 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
          {"load_seconds", load_s},
          {"steps_per_s", s.steps_per_s},
          {"samples_per_s", s.samples_per_s},
+         {"live_fraction", s.live_fraction},
          {"first_loss", loss_json(s.first_loss)},
          {"last_loss", loss_json(s.last_loss)},
          {"device", rt.device().describe()}};

@@ -100,10 +100,12 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
   Progress progress("train " + cfg.method + "-" + cfg.preset, total);
   const auto t0 = std::chrono::steady_clock::now();
   bool first = true;
+  double live_sum = 0.0;
   for (long step = sum.start_step; step < end; ++step) {
     const RayBatch batch = draw_ray_batch(scene, cfg, opt.seed, step);
     const float lr = float(cfg.optim.lr_at(step, total));
     model.train_step(batch, opt.seed, step, lr);
+    live_sum += double(model.live_samples()) / double(long(batch.n_rays) * (cfg.render.n_samples + cfg.render.n_importance));
     const long done = step + 1;
     const bool ck_due = (cfg.schedule.checkpoint_every > 0 && done % cfg.schedule.checkpoint_every == 0) ||
                         done == end;
@@ -129,6 +131,8 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
       sum.last_loss = loss;
       const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       append_line(log_path, Json{{"step", done}, {"lr", lr}, {"elapsed_s", el},
+                                 {"live_fraction", double(model.live_samples()) /
+                                                       double(long(batch.n_rays) * (cfg.render.n_samples + cfg.render.n_importance))},
                                  {"loss", loss_json(loss)}});
       char extra[96];
       std::snprintf(extra, sizeof extra, "loss %.5f  lr %.2e", total_loss, double(lr));
@@ -142,6 +146,7 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
   const long ran = sum.end_step - sum.start_step;
   sum.steps_per_s = sum.seconds > 0 ? ran / sum.seconds : 0.0;
   sum.samples_per_s = sum.steps_per_s * double(samples_per_step);
+  sum.live_fraction = ran > 0 ? live_sum / double(ran) : 1.0;
   sum.finished = sum.end_step >= total;
   if (opt.show_progress) progress.finish("");
   return sum;

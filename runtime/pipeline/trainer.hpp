@@ -35,6 +35,8 @@ struct TrainSummary {
   double seconds = 0.0;
   double steps_per_s = 0.0;
   double samples_per_s = 0.0;  // rays × (uniform + importance) per second
+  // Mean fraction of those samples evaluated (< 1 with early ray termination).
+  double live_fraction = 1.0;
   render::LossValues first_loss, last_loss;  // first and last logged losses of this run
   bool finished = false;      // reached config.schedule.iterations
 };

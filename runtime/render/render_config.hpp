@@ -27,6 +27,11 @@ struct RenderConfig {
   // samples may render its test views with more (closer to the paper's 768).
   int eval_samples = 0;
   int eval_importance = -1;
+  // Early ray termination (instant-ngp / torch-ngp's transmittance threshold), with importance
+  // sampling only: merged samples behind the point where the coarse pass's transmittance drops
+  // below this (plus one coarse bin) are not evaluated; their weight is below it. 0: off, every
+  // sample evaluated (exact). Applies to training and rendering.
+  float stop_transmittance = 0.0f;
   RangeLossWeights weights;
   // Gradient loss on patch batches (LiDAR-NeRF: 2 × 8 patches, L1, GT steps ≥ 1 cm ignored).
   int patch_rows = 2;
@@ -40,7 +45,7 @@ struct RenderConfig {
   // Reads the keys of this struct (all optional, unknown keys rejected) and validates.
   static RenderConfig from_json(const Json& j, const std::string& where);
   static RenderConfig from_json(const Json& j, const std::string& where, RenderConfig defaults);
-  // eval_samples / eval_importance appear only when set, so configs without them keep their
+  // eval_samples / eval_importance / stop_transmittance appear only when set, so configs without them keep their
   // JSON and hash (run folders and baselines written before they existed still load).
   Json to_json() const;
   // Uniform bin width in normalised units: also the last sample's δ (see kernels/render/volume.cl).

@@ -281,3 +281,119 @@ TEST_CASE("grouped-input MLP gradients agree with finite differences", "[field][
                 [&](const std::vector<float>& yv) { return loss(params, x, yv); }, fd, an);
   CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 5e-3);
 }
+
+TEST_CASE("groups of varying size (a group index) compute the plain MLP on [x, y]",
+          "[field][mlp]") {
+  auto& rt = test::runtime();
+  // The LiDAR head after early ray termination: each ray keeps a varying number of samples
+  // (possibly none), the direction encoding is shared by a ray's live samples.
+  field::MlpSpec gs = field::make_mlp_spec(15, 64, 3, 2, Activation::Relu);
+  gs.n_in_group = 72;
+  gs.in_stride = 16;
+  gs.in_offset = 1;
+  const field::MlpSpec ps = field::make_mlp_spec(87, 64, 3, 2, Activation::Relu);
+  field::Mlp grouped(rt, gs), plain(rt, ps);
+  const std::vector<int> sizes = {5, 0, 17, 1, 9, 0, 33, 2, 8, 21, 3};
+  const int G = int(sizes.size()), no = 2;
+  std::vector<int32_t> offsets{0}, point_group;
+  for (int g = 0; g < G; ++g) {
+    offsets.push_back(offsets.back() + sizes[size_t(g)]);
+    for (int k = 0; k < sizes[size_t(g)]; ++k) point_group.push_back(g);
+  }
+  const int n = offsets.back();
+  std::vector<float> params(plain.n_params());
+  plain.init_params(params, 0, 31);
+  for (int o = 0; o < 64; ++o) params[size_t(87) * 64 + o] = 0.02f * (o % 5 - 2);  // bias
+  const auto wide = uniform(size_t(n) * 16, -1.0f, 1.0f, 32);
+  const auto y = uniform(size_t(G) * 72, -1.0f, 1.0f, 33);
+  std::vector<float> cat(size_t(n) * 87);
+  for (int p = 0; p < n; ++p) {
+    for (int c = 0; c < 15; ++c) cat[size_t(p) * 87 + c] = wide[size_t(p) * 16 + 1 + c];
+    for (int c = 0; c < 72; ++c)
+      cat[size_t(p) * 87 + 15 + c] = y[size_t(point_group[size_t(p)]) * 72 + c];
+  }
+  const auto d_out = uniform(size_t(n) * no, -1.0f, 1.0f, 34);
+  auto b_p = cl::Buffer::from(rt, params), b_dout = cl::Buffer::from(rt, d_out);
+  auto b_wide = cl::Buffer::from(rt, wide), b_y = cl::Buffer::from(rt, y);
+  auto b_cat = cl::Buffer::from(rt, cat);
+  auto b_pg = cl::Buffer::from(rt, point_group), b_off = cl::Buffer::from(rt, offsets);
+  const field::GroupIndex index{&b_pg, &b_off, G};
+  cl::Buffer b_out_g(rt, size_t(n) * no * 4), b_out_p(rt, size_t(n) * no * 4);
+  cl::Buffer b_grad_g(rt, params.size() * 4), b_grad_p(rt, params.size() * 4);
+  cl::Buffer b_din_g(rt, size_t(n) * 16 * 4), b_din_p(rt, size_t(n) * 87 * 4);
+  auto b_dy = cl::Buffer::from(rt, std::vector<float>(size_t(G) * 72, 5.0f));
+  field::MlpContext cg, cp;
+  grouped.forward(b_p, 0, b_wide, n, b_out_g, cg, &b_y, 0, &index);
+  grouped.backward(b_p, 0, cg, b_out_g, b_dout, b_grad_g, 0, &b_din_g, &b_dy);
+  plain.forward(b_p, 0, b_cat, n, b_out_p, cp);
+  plain.backward(b_p, 0, cp, b_out_p, b_dout, b_grad_p, 0, &b_din_p);
+  CHECK(norm_err(b_out_g.read_vec<float>(size_t(n) * no), b_out_p.read_vec<float>(size_t(n) * no)) < 1e-5);
+  CHECK(norm_err(b_grad_g.read_vec<float>(params.size()), b_grad_p.read_vec<float>(params.size())) < 1e-5);
+  const auto din_p = b_din_p.read_vec<float>(size_t(n) * 87);
+  const auto din_g = b_din_g.read_vec<float>(size_t(n) * 16);
+  std::vector<float> dx_g, dx_p, dy_ref(size_t(G) * 72, 0.0f);
+  for (int p = 0; p < n; ++p) {
+    for (int c = 0; c < 15; ++c) {
+      dx_g.push_back(din_g[size_t(p) * 16 + 1 + c]);
+      dx_p.push_back(din_p[size_t(p) * 87 + c]);
+    }
+    for (int c = 0; c < 72; ++c)
+      dy_ref[size_t(point_group[size_t(p)]) * 72 + c] += din_p[size_t(p) * 87 + 15 + c];
+  }
+  CHECK(norm_err(dx_g, dx_p) < 1e-5);
+  const auto dy = b_dy.read_vec<float>(dy_ref.size());
+  CHECK(norm_err(dy, dy_ref) < 1e-5);
+  for (int c = 0; c < 72; ++c) {  // empty groups get a zero gradient row, not stale memory
+    CHECK(dy[size_t(1) * 72 + c] == 0.0f);
+    CHECK(dy[size_t(5) * 72 + c] == 0.0f);
+  }
+  // Finite differences of the device forward (a smooth MLP: ReLU kinks would break them) with
+  // respect to the parameters and the shared inputs y, with the same varying groups.
+  field::MlpSpec ss;
+  ss.n_in = 4;
+  ss.n_in_group = 5;
+  ss.in_stride = 6;
+  ss.in_offset = 2;
+  ss.layers = {{12, Activation::Tanh}, {7, Activation::Softplus}, {3, Activation::None}};
+  field::Mlp smooth(rt, ss);
+  std::vector<float> sp(smooth.n_params(), 0.0f);
+  smooth.init_params(sp, 0, 36);
+  const auto sx = uniform(size_t(n) * 6, -1.0f, 1.0f, 37);
+  const auto sy = uniform(size_t(G) * 5, -1.0f, 1.0f, 38);
+  const auto r = uniform(size_t(n) * 3, -1.0f, 1.0f, 39);  // L = Σ r · out
+  auto b_sp = cl::Buffer::from(rt, sp), b_sx = cl::Buffer::from(rt, sx);
+  auto b_sy = cl::Buffer::from(rt, sy), b_r = cl::Buffer::from(rt, r);
+  cl::Buffer b_sout(rt, size_t(n) * 3 * 4), b_sgrad(rt, sp.size() * 4), b_sdy(rt, sy.size() * 4);
+  field::MlpContext cr;
+  smooth.forward(b_sp, 0, b_sx, n, b_sout, cr, &b_sy, 0, &index);
+  smooth.backward(b_sp, 0, cr, b_sout, b_r, b_sgrad, 0, nullptr, &b_sdy);
+  const auto sgrad = b_sgrad.read_vec<float>(sp.size());
+  const auto sdy = b_sdy.read_vec<float>(sy.size());
+  auto loss = [&](const std::vector<float>& p, const std::vector<float>& yv) {
+    b_sp.write_vec(p);
+    b_sy.write_vec(yv);
+    field::MlpContext c2;
+    smooth.forward(b_sp, 0, b_sx, n, b_sout, c2, &b_sy, 0, &index);
+    return dot(b_sout.read_vec<float>(size_t(n) * 3), r);
+  };
+  std::vector<float> fd, an;
+  central_diffs(sp, sgrad, every(sp.size(), 3, &sgrad), 1e-2f,
+                [&](const std::vector<float>& p) { return loss(p, sy); }, fd, an);
+  REQUIRE(fd.size() > 40);
+  CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 5e-3);
+  fd.clear();
+  an.clear();
+  std::vector<size_t> which;
+  for (size_t k = 0; k < sy.size(); ++k)
+    if (k / 5 != 1 && k / 5 != 5) which.push_back(k);
+  central_diffs(sy, sdy, which, 1e-2f, [&](const std::vector<float>& yv) { return loss(sp, yv); },
+                fd, an);
+  REQUIRE(fd.size() > 40);
+  CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 5e-3);
+  for (int c = 0; c < 5; ++c) CHECK(sdy[size_t(5) + c] == 0.0f);  // group 1 is empty
+  // A group index on an MLP without grouped inputs, or without offsets, is refused.
+  field::MlpContext bad;
+  CHECK_THROWS(plain.forward(b_p, 0, b_cat, n, b_out_p, bad, nullptr, 0, &index));
+  const field::GroupIndex no_offsets{&b_pg, nullptr, G};
+  CHECK_THROWS(grouped.forward(b_p, 0, b_wide, n, b_out_g, bad, &b_y, 0, &no_offsets));
+}

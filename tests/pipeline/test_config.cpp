@@ -60,6 +60,9 @@ TEST_CASE("bad values are named", "[pipeline][config]") {
   j = preset_json("lidar-nerf", "smoke");
   j["schedule"]["rays_per_batch"] = 100;  // not a multiple of the 2×8 patch
   CHECK(error_of([&] { train_config_from_json(j, "c"); }).find("rays_per_batch") != std::string::npos);
+  j = preset_json("lidar-nerf", "smoke");
+  j["render"]["stop_transmittance"] = 0.9;  // a threshold that would cut visible surfaces
+  CHECK(error_of([&] { train_config_from_json(j, "c"); }).find("stop_transmittance") != std::string::npos);
   CHECK(error_of([&] { preset_json("lidar-nerf", "huge"); }).find("huge") != std::string::npos);
 }
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "field/mlp.hpp"
 #include "pipeline/checkpoint.hpp"
 #include "pipeline/ray_batch.hpp"
 #include "pipeline/render_view.hpp"
@@ -153,4 +154,68 @@ TEST_CASE("training lowers the loss and renders full images", "[pipeline][train]
   CHECK(img.height == 16);
   CHECK(img.width == 128);
   for (float v : img.range) REQUIRE(std::isfinite(v));
+}
+
+TEST_CASE("early ray termination: exact while no ray terminates, within its threshold after",
+          "[pipeline][train][device]") {
+  const Dataset& d = test::tiny_dataset();
+  const Scene scene = make_scene(d);
+  // At initialisation no ray is opaque enough to terminate: the compacted path must then give
+  // the exact path's parameters bit for bit (it runs every kernel of the compaction).
+  const TrainConfig exact = test::tiny_config();
+  const TrainConfig early = test::tiny_config(Json{{"render", {{"stop_transmittance", 1e-4}}}});
+  const auto p_exact = train_params(scene, exact, 7, test::temp_dir("ert_exact"));
+  const auto p_early = train_params(scene, early, 7, test::temp_dir("ert_early"));
+  REQUIRE(p_exact.size() == p_early.size());
+  CHECK(p_exact == p_early);
+
+  // A trained field terminates rays; rendering with the threshold then drops at most about
+  // that much weight per ray (coarse transmittance below eps, one more coarse bin of margin).
+  const TrainConfig c = test::tiny_config(
+      Json{{"schedule", {{"iterations", 150}, {"checkpoint_every", 0}}}});
+  LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
+  TrainOptions opt;
+  opt.run_dir = test::temp_dir("ert_trained");
+  opt.seed = 3;
+  opt.show_progress = false;
+  train(model, scene, c, opt);
+  // 150 tiny steps leave the field translucent: raise every density (the σ logit's output
+  // bias + 4, σ × 55) so that rays become opaque and terminate.
+  ModelState st = model.state();
+  const auto& f = c.field;
+  const field::Mlp dens(test::runtime(),
+                        field::make_mlp_spec(f.levels * f.features_per_level, f.density_hidden, 1,
+                                             1 + f.geo_features, field::Activation::Relu));
+  const size_t sigma_bias = model.layout().slice("density_mlp").offset + dens.layer_offset(1) +
+                            size_t(f.density_hidden) * size_t(field::Mlp::pad16(1 + f.geo_features));
+  st.params[sigma_bias] += 4.0f;
+  model.set_state(st);
+  const float eps = 1e-3f;
+  TrainConfig ce = c;
+  ce.render.stop_transmittance = eps;
+  LidarNerfModel cut(test::runtime(), ce, float(scene.norm.scale), 512);
+  cut.set_state(st);
+  // 512 rays of the test frame (13), in the normalised frame.
+  std::vector<float> o, dir;
+  image_rays(scene, normalize_pose(d.frames[13].T_world_lidar, scene.norm), 600, 1112, o, dir);
+  const auto full = model.render_rays(o, dir, 512);
+  const auto part = cut.render_rays(o, dir, 512);
+  const auto live = cut.live_counts();
+  const int M = c.render.n_samples + c.render.n_importance;
+  long n_live = 0, cut_rays = 0;
+  for (int v : live) {
+    n_live += v;
+    cut_rays += v < M;
+  }
+  INFO("rays cut " << cut_rays << " of 512, live samples " << n_live << " of " << 512 * M);
+  CHECK(cut_rays > 50);
+  const float far = c.render.far_m * float(scene.norm.scale);
+  double worst_depth = 0, worst_prob = 0;
+  for (int k = 0; k < 512; ++k) {
+    worst_depth = std::max(worst_depth, double(std::fabs(full[3 * size_t(k)] - part[3 * size_t(k)])));
+    worst_prob = std::max(worst_prob, double(std::fabs(full[3 * size_t(k) + 1] - part[3 * size_t(k) + 1])));
+  }
+  INFO("worst |depth diff| " << worst_depth << " (far " << far << "), worst |prob diff| " << worst_prob);
+  CHECK(worst_depth <= 4 * eps * far);
+  CHECK(worst_prob <= 4 * eps);
 }
