@@ -166,11 +166,14 @@ TEST_CASE("MLP gradients agree with finite differences of the device forward",
   CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 5e-3);
 }
 
-TEST_CASE("grouped inputs compute the plain MLP on [x, y] with the same gradients",
-          "[field][mlp]") {
+namespace {
+// The LiDAR head's shape: 15 geometric features read from columns 1..15 of the density output
+// (stride 16), the 72-dim direction encoding shared by the samples of a ray (a group). Runs the
+// grouped MLP (groups of sizes[g] consecutive points; through a group index when `indexed`,
+// else all sizes must be equal) against the plain 87-input MLP on the concatenation and checks
+// outputs, parameter gradients, d_in and d_group_in. Returns d_group_in.
+std::vector<float> check_grouped_head(const std::vector<int>& sizes, bool indexed, uint64_t seed) {
   auto& rt = test::runtime();
-  // The LiDAR head's shape: 15 geometric features read from columns 1..15 of the density
-  // output (stride 16), the 72-dim direction encoding shared by the samples of a ray.
   field::MlpSpec gs = field::make_mlp_spec(15, 64, 3, 2, Activation::Relu);
   gs.n_in_group = 72;
   gs.in_stride = 16;
@@ -178,38 +181,48 @@ TEST_CASE("grouped inputs compute the plain MLP on [x, y] with the same gradient
   const field::MlpSpec ps = field::make_mlp_spec(87, 64, 3, 2, Activation::Relu);
   field::Mlp grouped(rt, gs), plain(rt, ps);
   REQUIRE(grouped.n_params() == plain.n_params());
-  const int G = 37, group = 13, n = G * group, no = 2;
+  const int G = int(sizes.size()), no = 2;
+  std::vector<int32_t> offsets{0}, point_group;
+  for (int g = 0; g < G; ++g) {
+    offsets.push_back(offsets.back() + sizes[size_t(g)]);
+    for (int k = 0; k < sizes[size_t(g)]; ++k) point_group.push_back(g);
+  }
+  const int n = offsets.back();
   std::vector<float> params(plain.n_params());
-  plain.init_params(params, 0, 11);
+  plain.init_params(params, 0, seed);
   std::vector<float> params_g(grouped.n_params());
-  grouped.init_params(params_g, 0, 11);
+  grouped.init_params(params_g, 0, seed);
   CHECK(params_g == params);  // same layout and initialisation as the plain MLP
   for (int o = 0; o < 64; ++o) params[size_t(87) * 64 + o] = 0.03f * (o % 7 - 3);  // bias
-  const auto wide = uniform(size_t(n) * 16, -1.0f, 1.0f, 12);
-  const auto y = uniform(size_t(G) * 72, -1.0f, 1.0f, 13);
+  const auto wide = uniform(size_t(n) * 16, -1.0f, 1.0f, seed + 1);
+  const auto y = uniform(size_t(G) * 72, -1.0f, 1.0f, seed + 2);
   std::vector<float> cat(size_t(n) * 87);
   for (int p = 0; p < n; ++p) {
     for (int c = 0; c < 15; ++c) cat[size_t(p) * 87 + c] = wide[size_t(p) * 16 + 1 + c];
-    for (int c = 0; c < 72; ++c) cat[size_t(p) * 87 + 15 + c] = y[size_t(p / group) * 72 + c];
+    for (int c = 0; c < 72; ++c)
+      cat[size_t(p) * 87 + 15 + c] = y[size_t(point_group[size_t(p)]) * 72 + c];
   }
-  const auto d_out = uniform(size_t(n) * no, -1.0f, 1.0f, 14);
+  const auto d_out = uniform(size_t(n) * no, -1.0f, 1.0f, seed + 3);
   auto b_p = cl::Buffer::from(rt, params), b_dout = cl::Buffer::from(rt, d_out);
   auto b_wide = cl::Buffer::from(rt, wide), b_y = cl::Buffer::from(rt, y);
   auto b_cat = cl::Buffer::from(rt, cat);
+  auto b_pg = cl::Buffer::from(rt, point_group), b_off = cl::Buffer::from(rt, offsets);
+  const field::GroupIndex index{&b_pg, &b_off, G};
   cl::Buffer b_out_g(rt, size_t(n) * no * 4), b_out_p(rt, size_t(n) * no * 4);
   cl::Buffer b_grad_g(rt, params.size() * 4), b_grad_p(rt, params.size() * 4);
   auto b_din_g = cl::Buffer::from(rt, std::vector<float>(size_t(n) * 16, 7.0f));
-  cl::Buffer b_din_p(rt, size_t(n) * 87 * 4), b_dy(rt, size_t(G) * 72 * 4);
+  cl::Buffer b_din_p(rt, size_t(n) * 87 * 4);
+  auto b_dy = cl::Buffer::from(rt, std::vector<float>(size_t(G) * 72, 5.0f));
   field::MlpContext cg, cp;
-  grouped.forward(b_p, 0, b_wide, n, b_out_g, cg, &b_y, group);
+  grouped.forward(b_p, 0, b_wide, n, b_out_g, cg, &b_y, indexed ? 0 : sizes[0],
+                  indexed ? &index : nullptr);
   grouped.backward(b_p, 0, cg, b_out_g, b_dout, b_grad_g, 0, &b_din_g, &b_dy);
   plain.forward(b_p, 0, b_cat, n, b_out_p, cp);
   plain.backward(b_p, 0, cp, b_out_p, b_dout, b_grad_p, 0, &b_din_p);
-  const auto out_p = b_out_p.read_vec<float>(size_t(n) * no);
+  CHECK(norm_err(b_out_g.read_vec<float>(size_t(n) * no), b_out_p.read_vec<float>(size_t(n) * no)) < 1e-5);
+  CHECK(norm_err(b_grad_g.read_vec<float>(params.size()), b_grad_p.read_vec<float>(params.size())) < 1e-5);
   const auto din_p = b_din_p.read_vec<float>(size_t(n) * 87);
   const auto din_g = b_din_g.read_vec<float>(size_t(n) * 16);
-  CHECK(norm_err(b_out_g.read_vec<float>(size_t(n) * no), out_p) < 1e-5);
-  CHECK(norm_err(b_grad_g.read_vec<float>(params.size()), b_grad_p.read_vec<float>(params.size())) < 1e-5);
   std::vector<float> dx_g, dx_p, dy_ref(size_t(G) * 72, 0.0f);
   size_t untouched = 0;
   for (int p = 0; p < n; ++p) {
@@ -218,14 +231,27 @@ TEST_CASE("grouped inputs compute the plain MLP on [x, y] with the same gradient
       dx_g.push_back(din_g[size_t(p) * 16 + 1 + c]);
       dx_p.push_back(din_p[size_t(p) * 87 + c]);
     }
-    for (int c = 0; c < 72; ++c) dy_ref[size_t(p / group) * 72 + c] += din_p[size_t(p) * 87 + 15 + c];
+    for (int c = 0; c < 72; ++c)
+      dy_ref[size_t(point_group[size_t(p)]) * 72 + c] += din_p[size_t(p) * 87 + 15 + c];
   }
   CHECK(untouched == size_t(n));  // column 0 is not the MLP's input: left alone
   CHECK(norm_err(dx_g, dx_p) < 1e-5);
-  CHECK(norm_err(b_dy.read_vec<float>(dy_ref.size()), dy_ref) < 1e-5);
-  // A group size that does not divide n is refused.
+  const auto dy = b_dy.read_vec<float>(dy_ref.size());
+  CHECK(norm_err(dy, dy_ref) < 1e-5);
+  // Misuse is refused: a group size that does not divide n, a group index without offsets
+  // or on an MLP without grouped inputs.
   field::MlpContext bad;
-  CHECK_THROWS(grouped.forward(b_p, 0, b_wide, n, b_out_g, bad, &b_y, 10));
+  CHECK_THROWS(grouped.forward(b_p, 0, b_wide, n, b_out_g, bad, &b_y, n - 1));
+  const field::GroupIndex no_offsets{&b_pg, nullptr, G};
+  CHECK_THROWS(grouped.forward(b_p, 0, b_wide, n, b_out_g, bad, &b_y, 0, &no_offsets));
+  CHECK_THROWS(plain.forward(b_p, 0, b_cat, n, b_out_p, bad, nullptr, 0, &index));
+  return dy;
+}
+}  // namespace
+
+TEST_CASE("grouped inputs compute the plain MLP on [x, y] with the same gradients",
+          "[field][mlp]") {
+  check_grouped_head(std::vector<int>(37, 13), false, 11);
 }
 
 TEST_CASE("grouped-input MLP gradients agree with finite differences", "[field][mlp][fd]") {
@@ -286,67 +312,22 @@ TEST_CASE("groups of varying size (a group index) compute the plain MLP on [x, y
           "[field][mlp]") {
   auto& rt = test::runtime();
   // The LiDAR head after early ray termination: each ray keeps a varying number of samples
-  // (possibly none), the direction encoding is shared by a ray's live samples.
-  field::MlpSpec gs = field::make_mlp_spec(15, 64, 3, 2, Activation::Relu);
-  gs.n_in_group = 72;
-  gs.in_stride = 16;
-  gs.in_offset = 1;
-  const field::MlpSpec ps = field::make_mlp_spec(87, 64, 3, 2, Activation::Relu);
-  field::Mlp grouped(rt, gs), plain(rt, ps);
+  // (possibly none); the direction encoding is shared by a ray's live samples.
   const std::vector<int> sizes = {5, 0, 17, 1, 9, 0, 33, 2, 8, 21, 3};
-  const int G = int(sizes.size()), no = 2;
+  const auto dy = check_grouped_head(sizes, true, 31);
+  for (int c = 0; c < 72; ++c) {  // empty groups get a zero gradient row, not stale memory
+    CHECK(dy[size_t(1) * 72 + c] == 0.0f);
+    CHECK(dy[size_t(5) * 72 + c] == 0.0f);
+  }
+  const int G = int(sizes.size());
   std::vector<int32_t> offsets{0}, point_group;
   for (int g = 0; g < G; ++g) {
     offsets.push_back(offsets.back() + sizes[size_t(g)]);
     for (int k = 0; k < sizes[size_t(g)]; ++k) point_group.push_back(g);
   }
   const int n = offsets.back();
-  std::vector<float> params(plain.n_params());
-  plain.init_params(params, 0, 31);
-  for (int o = 0; o < 64; ++o) params[size_t(87) * 64 + o] = 0.02f * (o % 5 - 2);  // bias
-  const auto wide = uniform(size_t(n) * 16, -1.0f, 1.0f, 32);
-  const auto y = uniform(size_t(G) * 72, -1.0f, 1.0f, 33);
-  std::vector<float> cat(size_t(n) * 87);
-  for (int p = 0; p < n; ++p) {
-    for (int c = 0; c < 15; ++c) cat[size_t(p) * 87 + c] = wide[size_t(p) * 16 + 1 + c];
-    for (int c = 0; c < 72; ++c)
-      cat[size_t(p) * 87 + 15 + c] = y[size_t(point_group[size_t(p)]) * 72 + c];
-  }
-  const auto d_out = uniform(size_t(n) * no, -1.0f, 1.0f, 34);
-  auto b_p = cl::Buffer::from(rt, params), b_dout = cl::Buffer::from(rt, d_out);
-  auto b_wide = cl::Buffer::from(rt, wide), b_y = cl::Buffer::from(rt, y);
-  auto b_cat = cl::Buffer::from(rt, cat);
   auto b_pg = cl::Buffer::from(rt, point_group), b_off = cl::Buffer::from(rt, offsets);
   const field::GroupIndex index{&b_pg, &b_off, G};
-  cl::Buffer b_out_g(rt, size_t(n) * no * 4), b_out_p(rt, size_t(n) * no * 4);
-  cl::Buffer b_grad_g(rt, params.size() * 4), b_grad_p(rt, params.size() * 4);
-  cl::Buffer b_din_g(rt, size_t(n) * 16 * 4), b_din_p(rt, size_t(n) * 87 * 4);
-  auto b_dy = cl::Buffer::from(rt, std::vector<float>(size_t(G) * 72, 5.0f));
-  field::MlpContext cg, cp;
-  grouped.forward(b_p, 0, b_wide, n, b_out_g, cg, &b_y, 0, &index);
-  grouped.backward(b_p, 0, cg, b_out_g, b_dout, b_grad_g, 0, &b_din_g, &b_dy);
-  plain.forward(b_p, 0, b_cat, n, b_out_p, cp);
-  plain.backward(b_p, 0, cp, b_out_p, b_dout, b_grad_p, 0, &b_din_p);
-  CHECK(norm_err(b_out_g.read_vec<float>(size_t(n) * no), b_out_p.read_vec<float>(size_t(n) * no)) < 1e-5);
-  CHECK(norm_err(b_grad_g.read_vec<float>(params.size()), b_grad_p.read_vec<float>(params.size())) < 1e-5);
-  const auto din_p = b_din_p.read_vec<float>(size_t(n) * 87);
-  const auto din_g = b_din_g.read_vec<float>(size_t(n) * 16);
-  std::vector<float> dx_g, dx_p, dy_ref(size_t(G) * 72, 0.0f);
-  for (int p = 0; p < n; ++p) {
-    for (int c = 0; c < 15; ++c) {
-      dx_g.push_back(din_g[size_t(p) * 16 + 1 + c]);
-      dx_p.push_back(din_p[size_t(p) * 87 + c]);
-    }
-    for (int c = 0; c < 72; ++c)
-      dy_ref[size_t(point_group[size_t(p)]) * 72 + c] += din_p[size_t(p) * 87 + 15 + c];
-  }
-  CHECK(norm_err(dx_g, dx_p) < 1e-5);
-  const auto dy = b_dy.read_vec<float>(dy_ref.size());
-  CHECK(norm_err(dy, dy_ref) < 1e-5);
-  for (int c = 0; c < 72; ++c) {  // empty groups get a zero gradient row, not stale memory
-    CHECK(dy[size_t(1) * 72 + c] == 0.0f);
-    CHECK(dy[size_t(5) * 72 + c] == 0.0f);
-  }
   // Finite differences of the device forward (a smooth MLP: ReLU kinks would break them) with
   // respect to the parameters and the shared inputs y, with the same varying groups.
   field::MlpSpec ss;
@@ -391,9 +372,4 @@ TEST_CASE("groups of varying size (a group index) compute the plain MLP on [x, y
   REQUIRE(fd.size() > 40);
   CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 5e-3);
   for (int c = 0; c < 5; ++c) CHECK(sdy[size_t(5) + c] == 0.0f);  // group 1 is empty
-  // A group index on an MLP without grouped inputs, or without offsets, is refused.
-  field::MlpContext bad;
-  CHECK_THROWS(plain.forward(b_p, 0, b_cat, n, b_out_p, bad, nullptr, 0, &index));
-  const field::GroupIndex no_offsets{&b_pg, nullptr, G};
-  CHECK_THROWS(grouped.forward(b_p, 0, b_wide, n, b_out_g, bad, &b_y, 0, &no_offsets));
 }
