@@ -195,25 +195,23 @@ std::vector<int> LidarNerfModel::live_counts() const {
 void LidarNerfModel::field_forward(int n_rays, int samples) {
   const int n = n_rays * samples;
   ray_count_ = n_rays;
+  // With early termination the field runs on the live rows only (enc_l_); the renderer always
+  // sees the full layout, dead samples at zero density.
+  const int rows = compacted_ ? int(n_live_) : n;
+  if (!encoded_ && !compacted_) grid_.forward(params_, off_grid_, x_, n, enc_);
+  density_.forward(params_, off_density_, compacted_ ? enc_l_ : enc_, rows, dens_, density_ctx_);
+  dirs_.forward(d_, n_rays, dir_enc_);
   if (compacted_) {
-    // Live rows only; the renderer sees the full layout with dead samples at zero density.
-    const int nl = int(n_live_);
-    density_.forward(params_, off_density_, enc_l_, nl, dens_, density_ctx_);
-    dirs_.forward(d_, n_rays, dir_enc_);
     const field::GroupIndex index{&row_ray_, &offset_, n_rays};
-    head_.forward(params_, off_head_, dens_, nl, head_l_, head_ctx_, &dir_enc_, 1, &index);
+    head_.forward(params_, off_head_, dens_, rows, head_l_, head_ctx_, &dir_enc_, 1, &index);
     expand_.set_args(n_rays, samples, kDensStride, kDeadLogit, offset_, dens_, head_l_, h0_,
                      head_out_);
     expand_.launch({cl::round_up(size_t(n), 64)}, {64});
-    renderer_.forward(t_, h0_, head_out_, n_rays, samples, out_, weights_);
-    return;
+  } else {
+    col_get_.set_args(n, kDensStride, 0, dens_, h0_);
+    col_get_.launch({cl::round_up(size_t(n), 64)}, {64});
+    head_.forward(params_, off_head_, dens_, n, head_out_, head_ctx_, &dir_enc_, samples);
   }
-  if (!encoded_) grid_.forward(params_, off_grid_, x_, n, enc_);
-  density_.forward(params_, off_density_, enc_, n, dens_, density_ctx_);
-  col_get_.set_args(n, kDensStride, 0, dens_, h0_);
-  col_get_.launch({cl::round_up(size_t(n), 64)}, {64});
-  dirs_.forward(d_, n_rays, dir_enc_);
-  head_.forward(params_, off_head_, dens_, n, head_out_, head_ctx_, &dir_enc_, samples);
   renderer_.forward(t_, h0_, head_out_, n_rays, samples, out_, weights_);
 }
 
@@ -243,33 +241,26 @@ void LidarNerfModel::train_step(const RayBatch& b, uint64_t seed, long step, flo
   // Backward chain: renderer → head MLP (into columns 1..15 of g_dens_, and per ray into
   // g_dir_enc_) → density MLP → hash grid.
   renderer_.backward(t_, h0_, head_out_, weights_, grad_out_, R, M, g_h0_, g_head_);
+  // With early termination the chain runs on the live rows: the dead samples' gradients are
+  // dropped (they do not exist in the truncated field).
+  int rows = n;
+  const cl::Buffer *head_y = &head_out_, *g_head = &g_head_, *g_h0 = &g_h0_, *x = &x_;
   if (compacted_) {
-    // Same chain on the live rows: the dead samples' gradients are dropped (they do not exist
-    // in the truncated field).
-    const int nl = int(n_live_);
+    rows = int(n_live_);
     const size_t global = cl::round_up(size_t(n), 64);
     compact_rows_.set_args(R, M, 1, offset_, g_h0_, g_h0_l_);
     compact_rows_.launch({global}, {64});
     compact_rows_.set_args(R, M, 2, offset_, g_head_, g_head_l_);
     compact_rows_.launch({global}, {64});
-    head_.backward(params_, off_head_, head_ctx_, head_l_, g_head_l_, grad_, off_head_, &g_dens_,
-                   &g_dir_enc_);
-    col_set_.set_args(nl, kDensStride, 0, g_h0_l_, g_dens_);
-    col_set_.launch({cl::round_up(size_t(std::max(nl, 1)), 64)}, {64});
-    density_.backward(params_, off_density_, density_ctx_, dens_, g_dens_, grad_, off_density_,
-                      &g_enc_);
-    grid_.backward(params_, off_grid_, x_l_, nl, g_enc_, grad_, off_grid_);
-    adam_->begin_step();
-    adam_->update(params_, grad_, 0, layout_.total(), lr);
-    return;
+    head_y = &head_l_, g_head = &g_head_l_, g_h0 = &g_h0_l_, x = &x_l_;
   }
-  head_.backward(params_, off_head_, head_ctx_, head_out_, g_head_, grad_, off_head_, &g_dens_,
+  head_.backward(params_, off_head_, head_ctx_, *head_y, *g_head, grad_, off_head_, &g_dens_,
                  &g_dir_enc_);
-  col_set_.set_args(n, kDensStride, 0, g_h0_, g_dens_);
-  col_set_.launch({cl::round_up(size_t(n), 64)}, {64});
+  col_set_.set_args(rows, kDensStride, 0, *g_h0, g_dens_);
+  col_set_.launch({cl::round_up(size_t(rows), 64)}, {64});
   density_.backward(params_, off_density_, density_ctx_, dens_, g_dens_, grad_, off_density_,
                     &g_enc_);
-  grid_.backward(params_, off_grid_, x_, n, g_enc_, grad_, off_grid_);
+  grid_.backward(params_, off_grid_, *x, rows, g_enc_, grad_, off_grid_);
   adam_->begin_step();
   adam_->update(params_, grad_, 0, layout_.total(), lr);
 }
