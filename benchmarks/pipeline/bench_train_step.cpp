@@ -2,6 +2,10 @@
 // volume rendering, loss, backward chain, Adam) on a small synthetic sequence, for the smoke and
 // quick presets. Reports wall time per step (the step is enqueued whole and waited once) and
 // samples/s = rays × (uniform + importance) / step time.
+// The `trained` pair measures early ray termination where it matters, on a field trained for
+// 1000 steps first (untrained fields are translucent and terminate nothing): the same state is
+// stepped with and without `render.stop_transmittance`; live/sample reports the fraction of
+// merged samples the field evaluated.
 #include <benchmark/benchmark.h>
 
 #include "support/bench_support.hpp"
@@ -26,10 +30,13 @@ const Dataset& bench_dataset() {
   return d;
 }
 
-void BM_TrainStep(benchmark::State& state, const char* preset, bool reuse_coarse) {
+// stop_transmittance < 0 keeps the preset's.
+void BM_TrainStep(benchmark::State& state, const char* preset, bool reuse_coarse,
+                  float stop_transmittance = -1.0f) {
   bench::add_device_context();
   const Scene scene = make_scene(bench_dataset());
-  const TrainConfig c = resolve_config("lidar-nerf", preset);
+  TrainConfig c = resolve_config("lidar-nerf", preset);
+  if (stop_transmittance >= 0.0f) c.render.stop_transmittance = stop_transmittance;
   LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), c.schedule.rays_per_batch);
   model.set_reuse_coarse_encodings(reuse_coarse);
   model.init_params(1);
@@ -49,11 +56,56 @@ void BM_TrainStep(benchmark::State& state, const char* preset, bool reuse_coarse
                                                 benchmark::Counter::kIsRate);
 }
 
+// One quick-preset model trained for kWarmSteps (with termination; shared by the pair below).
+constexpr long kWarmSteps = 1000;
+const ModelState& trained_state() {
+  static const ModelState st = [] {
+    const Scene scene = make_scene(bench_dataset());
+    const TrainConfig c = resolve_config("lidar-nerf", "quick");
+    LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), c.schedule.rays_per_batch);
+    model.init_params(1);
+    for (long step = 0; step < kWarmSteps; ++step)
+      model.train_step(draw_ray_batch(scene, c, 1, step), 1, step, float(c.optim.lr_at(step, c.schedule.iterations)));
+    model.read_loss();
+    return model.state();
+  }();
+  return st;
+}
+
+void BM_TrainStepTrained(benchmark::State& state, float stop_transmittance) {
+  bench::add_device_context();
+  const Scene scene = make_scene(bench_dataset());
+  TrainConfig c = resolve_config("lidar-nerf", "quick");
+  c.render.stop_transmittance = stop_transmittance;
+  LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), c.schedule.rays_per_batch);
+  model.set_state(trained_state());
+  long step = kWarmSteps;
+  double live = 0.0;
+  const double samples = double(c.schedule.rays_per_batch) * (c.render.n_samples + c.render.n_importance);
+  for (auto _ : state) {
+    const RayBatch b = draw_ray_batch(scene, c, 1, step);
+    model.train_step(b, 1, step++, 1e-3f);
+    benchmark::DoNotOptimize(model.read_loss());
+    live += double(model.live_samples()) / samples;
+  }
+  state.counters["samples/s"] =
+      benchmark::Counter(samples * double(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["live/sample"] = live / double(std::max<int64_t>(state.iterations(), 1));
+}
+
 }  // namespace
 
 // `quick_reencode`: the merged pass encodes the coarse samples again instead of reusing the
 // coarse pass's encodings (the same result bit for bit; shows what the reuse saves).
 BENCHMARK_CAPTURE(BM_TrainStep, smoke, "smoke", true)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_TrainStep, quick, "quick", true)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
+// `quick_exact`: without early termination; at initialisation nothing terminates, so the
+// difference to `quick` is what the compaction costs when it saves nothing.
+BENCHMARK_CAPTURE(BM_TrainStep, quick_exact, "quick", true, 0.0f)
+    ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
 BENCHMARK_CAPTURE(BM_TrainStep, quick_reencode, "quick", false)
+    ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
+BENCHMARK_CAPTURE(BM_TrainStepTrained, quick_trained_exact, 0.0f)
+    ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
+BENCHMARK_CAPTURE(BM_TrainStepTrained, quick_trained_terminate, 1e-4f)
     ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
