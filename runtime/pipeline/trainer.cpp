@@ -105,7 +105,9 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
     const RayBatch batch = draw_ray_batch(scene, cfg, opt.seed, step);
     const float lr = float(cfg.optim.lr_at(step, total));
     model.train_step(batch, opt.seed, step, lr);
-    live_sum += double(model.live_samples()) / double(long(batch.n_rays) * (cfg.render.n_samples + cfg.render.n_importance));
+    const double live = double(model.live_samples()) /
+                        double(long(batch.n_rays) * (cfg.render.n_samples + cfg.render.n_importance));
+    live_sum += live;
     const long done = step + 1;
     const bool ck_due = (cfg.schedule.checkpoint_every > 0 && done % cfg.schedule.checkpoint_every == 0) ||
                         done == end;
@@ -131,8 +133,7 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
       sum.last_loss = loss;
       const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       append_line(log_path, Json{{"step", done}, {"lr", lr}, {"elapsed_s", el},
-                                 {"live_fraction", double(model.live_samples()) /
-                                                       double(long(batch.n_rays) * (cfg.render.n_samples + cfg.render.n_importance))},
+                                 {"live_fraction", live},
                                  {"loss", loss_json(loss)}});
       char extra[96];
       std::snprintf(extra, sizeof extra, "loss %.5f  lr %.2e", total_loss, double(lr));
