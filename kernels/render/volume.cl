@@ -200,3 +200,25 @@ __kernel void render_volume_bwd(const int n_rays, const int n_samples, const flo
     vstore16(gh, 0, grad_head + 2 * s);
   }
 }
+
+// Median depth (evaluation only; not differentiable, no backward): per ray, the t of the first
+// sample at which the accumulated weight sum_{j<=i} w_j reaches 1/2, i.e. where the
+// transmittance falls to one half; a ray whose weights never reach 1/2 gets its last sample's
+// t (nerfstudio's "median" depth). Overwrites out[3 r] (depth) only; weights as written by
+// render_volume_fwd for the same rays. Sequential sum in sample order: deterministic.
+__kernel void render_median_depth(const int n_rays, const int n_samples, __global const float* t,
+                                  __global const float* weights, __global float* out) {
+  const int r = get_global_id(0);
+  if (r >= n_rays) return;
+  const int base = r * n_samples;
+  float acc = 0.0f;
+  int k = n_samples - 1;
+  for (int i = 0; i < n_samples; ++i) {
+    acc += weights[base + i];
+    if (acc >= 0.5f) {
+      k = i;
+      break;
+    }
+  }
+  out[3 * r] = t[base + k];
+}

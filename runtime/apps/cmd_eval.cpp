@@ -1,5 +1,5 @@
 // `sgnlf eval --run <run dir> [--json] [--data <dataset>] [--device SPEC] [--samples N]
-// [--importance M]`: protocol §4 metrics of a trained run's test frames and of the naive
+// [--importance M] [--depth expected|median]`: protocol §4 metrics of a trained run's test frames and of the naive
 // baseline; writes <run>/metrics.json.
 #include <cmath>
 #include <cstdio>
@@ -33,6 +33,11 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
                  "Uniform samples per ray when rendering (default: the config's render.eval_samples, else as trained)");
   sub.add_option("--importance", a->sampling.n_importance,
                  "Importance samples per ray when rendering (default: the config's render.eval_importance, else as trained)");
+  sub.add_option("--depth", a->sampling.depth,
+                 "Rendered depth: expected (sum of w_i t_i, as trained and published) or median "
+                 "(where the accumulated weight reaches 1/2; a diagnostic). Default: the config's "
+                 "render.eval_depth, else expected")
+      ->check(CLI::IsMember({"expected", "median"}));
   sub.add_flag("--json", a->json, "Print the metrics JSON");
   return std::function<int()>([a] {
     cl::Runtime rt(a->device);

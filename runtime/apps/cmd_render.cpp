@@ -29,6 +29,11 @@ const Registrar reg("render", "Render the test frames of a trained run", [](CLI:
                  "Uniform samples per ray when rendering (default: the config's render.eval_samples, else as trained)");
   sub.add_option("--importance", a->sampling.n_importance,
                  "Importance samples per ray when rendering (default: the config's render.eval_importance, else as trained)");
+  sub.add_option("--depth", a->sampling.depth,
+                 "Rendered depth: expected (sum of w_i t_i, as trained and published) or median "
+                 "(where the accumulated weight reaches 1/2; a diagnostic). Default: the config's "
+                 "render.eval_depth, else expected")
+      ->check(CLI::IsMember({"expected", "median"}));
   return std::function<int()>([a] {
     // Poses first: a bad trajectory file fails before the run is loaded.
     const std::vector<Pose> poses =

@@ -275,6 +275,7 @@ std::vector<float> LidarNerfModel::render_rays(const std::vector<float>& origins
   d_.write_vec(directions);
   const int M = sample(n, false, 0, 0);
   field_forward(n, M);
+  if (cfg_.render.eval_depth == "median") renderer_.median_depth(t_, weights_, n, M, out_);
   return out_.read_vec<float>(size_t(n) * 3);
 }
 

@@ -44,7 +44,8 @@ class LidarNerfModel {
   render::LossValues read_loss() const;
 
   // Renders rays (n ≤ max_rays; origins/directions n × 3, normalised frame) without jitter:
-  // returns n × 3 (depth normalised, return probability, intensity). Blocking.
+  // returns n × 3 (depth normalised, return probability, intensity). Blocking. The depth is the
+  // expected depth, or the median depth when the config's render.eval_depth is "median".
   std::vector<float> render_rays(const std::vector<float>& origins,
                                  const std::vector<float>& directions, int n);
 

@@ -54,6 +54,10 @@ LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
                       " (samples >= 1, importance >= 0)");
   if (sampling.n_samples > 0) run.manifest.config.render.n_samples = sampling.n_samples;
   if (sampling.n_importance >= 0) run.manifest.config.render.n_importance = sampling.n_importance;
+  if (!sampling.depth.empty()) {
+    run.manifest.config.render.eval_depth = sampling.depth;
+    run.manifest.config.render.validate("render depth override");
+  }
   const std::string data = dataset_override.empty() ? run.manifest.dataset : dataset_override;
   run.dataset = std::make_unique<Dataset>(load_dataset(data));
   run.scene = std::make_unique<Scene>(make_scene(*run.dataset));

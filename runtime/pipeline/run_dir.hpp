@@ -40,11 +40,12 @@ struct LoadedRun {
 struct RenderSampling {
   int n_samples = 0;
   int n_importance = -1;
+  std::string depth;  // "expected" or "median" (render.eval_depth); empty keeps the config's
 };
 
 // `dataset_override` replaces the manifest's dataset path when not empty. The checkpoint is
 // checked against the run's config as trained; `sampling`, else the config's eval_samples /
-// eval_importance, then changes the model's render sampling (LoadedRun::manifest.config shows
+// eval_importance (and `sampling.depth`, else eval_depth), then changes the model's render sampling (LoadedRun::manifest.config shows
 // the sampling in use).
 LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
                    const std::string& dataset_override = "", const RenderSampling& sampling = {});

@@ -148,7 +148,8 @@ Json eval_run(LoadedRun& run, const std::string& run_dir) {
          {"step", run.step},
          {"render_eval_seconds", render_s},
          {"render_sampling", {{"n_samples", run.manifest.config.render.n_samples},
-                              {"n_importance", run.manifest.config.render.n_importance}}},
+                              {"n_importance", run.manifest.config.render.n_importance},
+                              {"depth", run.manifest.config.render.eval_depth}}},
          {"metrics", model.mean},
          {"per_frame", model.per_frame},
          {"naive_baseline", {{"metrics", naive.mean}, {"per_frame", naive.per_frame}}}};

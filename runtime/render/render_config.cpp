@@ -26,6 +26,9 @@ void RenderConfig::validate(const std::string& where) const {
   check_range(where, "n_importance", n_importance, 0, 1 << 16);
   check_range(where, "eval_samples", eval_samples, 0, 1 << 16);
   check_range(where, "eval_importance", eval_importance, -1, 1 << 16);
+  if (eval_depth != "expected" && eval_depth != "median")
+    throw ConfigError(where + ": 'eval_depth' = '" + eval_depth +
+                      "' (expected \"expected\" or \"median\")");
   check_range(where, "stop_transmittance", stop_transmittance, 0.0f, 0.5f);
   check_range(where, "weights.depth", weights.depth, 0.0f, 1e9f);
   check_range(where, "weights.ret", weights.ret, 0.0f, 1e9f);
@@ -43,7 +46,7 @@ RenderConfig RenderConfig::from_json(const Json& j, const std::string& where, Re
   r.get("near_m", c.near_m).get("far_m", c.far_m).get("n_samples", c.n_samples);
   r.get("n_importance", c.n_importance).get("jitter", c.jitter);
   r.get("eval_samples", c.eval_samples).get("eval_importance", c.eval_importance);
-  r.get("stop_transmittance", c.stop_transmittance);
+  r.get("stop_transmittance", c.stop_transmittance).get("eval_depth", c.eval_depth);
   r.get("patch_rows", c.patch_rows).get("patch_cols", c.patch_cols);
   r.get("grad_l1", c.grad_l1).get("grad_clip_m", c.grad_clip_m);
   if (r.has("weights")) {
@@ -78,6 +81,7 @@ Json RenderConfig::to_json() const {
                 {"grad", weights.grad}}}};
   if (eval_samples != 0) j["eval_samples"] = eval_samples;
   if (eval_importance != -1) j["eval_importance"] = eval_importance;
+  if (eval_depth != "expected") j["eval_depth"] = eval_depth;
   if (stop_transmittance != 0.0f) j["stop_transmittance"] = stop_transmittance;
   return j;
 }

@@ -27,6 +27,11 @@ struct RenderConfig {
   // samples may render its test views with more (closer to the paper's 768).
   int eval_samples = 0;
   int eval_importance = -1;
+  // Depth of a rendered (evaluated) ray: "expected" = sum w_i t_i (method.md §0, what every
+  // method here trains with and the tables report) or "median" = the t where the accumulated
+  // weight reaches 1/2 (a diagnostic: it cannot blend a foreground edge with the background).
+  // Training always uses the expected depth.
+  std::string eval_depth = "expected";
   // Early ray termination (instant-ngp / torch-ngp's transmittance threshold), with importance
   // sampling only: merged samples behind the point where the coarse pass's transmittance drops
   // below this (plus one coarse bin) are not evaluated; their weight is below it. 0: off, every
@@ -45,7 +50,7 @@ struct RenderConfig {
   // Reads the keys of this struct (all optional, unknown keys rejected) and validates.
   static RenderConfig from_json(const Json& j, const std::string& where);
   static RenderConfig from_json(const Json& j, const std::string& where, RenderConfig defaults);
-  // eval_samples / eval_importance / stop_transmittance appear only when set, so configs without them keep their
+  // eval_samples / eval_importance / eval_depth / stop_transmittance appear only when set, so configs without them keep their
   // JSON and hash (run folders and baselines written before they existed still load).
   Json to_json() const;
   // Uniform bin width in normalised units: also the last sample's δ (see kernels/render/volume.cl).

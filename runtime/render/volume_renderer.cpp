@@ -11,7 +11,8 @@ VolumeRenderer::VolumeRenderer(cl::Runtime& rt, const RenderConfig& cfg, float s
     : last_delta_(cfg.bin_width(scene_scale)),
       fwd_k_(rt.kernel("render/volume.cl", "render_volume_fwd")),
       weights_k_(rt.kernel("render/volume.cl", "render_volume_weights")),
-      bwd_k_(rt.kernel("render/volume.cl", "render_volume_bwd")) {
+      bwd_k_(rt.kernel("render/volume.cl", "render_volume_bwd")),
+      median_k_(rt.kernel("render/volume.cl", "render_median_depth")) {
   cfg.validate("VolumeRenderer");
   require(scene_scale > 0.0f, "VolumeRenderer: scene_scale must be positive");
 }
@@ -60,6 +61,18 @@ cl::Event VolumeRenderer::backward(const cl::Buffer& t, const cl::Buffer& h0,
   bwd_k_.set_args(n_rays, n_samples, last_delta_, t, h0, head, weights, grad_out, grad_h0,
                   grad_head);
   return launch_1d(bwd_k_, size_t(n_rays));
+}
+
+cl::Event VolumeRenderer::median_depth(const cl::Buffer& t, const cl::Buffer& weights, int n_rays,
+                                       int n_samples, cl::Buffer& out) {
+  require(n_rays >= 0 && n_samples > 0 && size_t(n_rays) * n_samples < (size_t(1) << 31),
+          "VolumeRenderer::median_depth: bad shape n_rays = " + std::to_string(n_rays) +
+              ", n_samples = " + std::to_string(n_samples));
+  check_floats(t, size_t(n_rays) * n_samples, "VolumeRenderer::median_depth t");
+  check_floats(weights, size_t(n_rays) * n_samples, "VolumeRenderer::median_depth weights");
+  check_floats(out, 3 * size_t(n_rays), "VolumeRenderer::median_depth out");
+  median_k_.set_args(n_rays, n_samples, t, weights, out);
+  return launch_1d(median_k_, size_t(n_rays));
 }
 
 }  // namespace sgnlf::render

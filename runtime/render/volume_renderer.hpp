@@ -26,12 +26,17 @@ class VolumeRenderer {
   cl::Event backward(const cl::Buffer& t, const cl::Buffer& h0, const cl::Buffer& head,
                      const cl::Buffer& weights, const cl::Buffer& grad_out, int n_rays,
                      int n_samples, cl::Buffer& grad_h0, cl::Buffer& grad_head);
+  // Evaluation only (no backward): replaces each ray's depth in `out` by its median depth, the
+  // t of the first sample where the accumulated weight reaches 1/2 (the last sample's t if it
+  // never does). `weights` must be forward()'s for the same rays.
+  cl::Event median_depth(const cl::Buffer& t, const cl::Buffer& weights, int n_rays,
+                         int n_samples, cl::Buffer& out);
 
  private:
   void check(const char* what, const cl::Buffer& t, const cl::Buffer& h0, int n_rays,
              int n_samples) const;
   float last_delta_;
-  cl::Kernel fwd_k_, weights_k_, bwd_k_;
+  cl::Kernel fwd_k_, weights_k_, bwd_k_, median_k_;
 };
 
 }  // namespace sgnlf::render

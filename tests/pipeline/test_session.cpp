@@ -9,6 +9,7 @@
 #include "datasets/simulate.hpp"
 #include "io/range_array.hpp"
 #include "pipeline/evaluate.hpp"
+#include "pipeline/render_view.hpp"
 #include "pipeline/session.hpp"
 #include "support/test_device.hpp"
 #include "tiny_scene.hpp"
@@ -81,14 +82,28 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
 
   // A finer render sampling than training's loads the same checkpoint and is recorded.
   const int trained_samples = run.manifest.config.render.n_samples;
-  LoadedRun fine = load_run(test::runtime(), run_dir, "", RenderSampling{2 * trained_samples, 8});
+  LoadedRun fine = load_run(test::runtime(), run_dir, "", RenderSampling{2 * trained_samples, 8, ""});
   CHECK(fine.step == 12);
   CHECK(fine.manifest.config.render.n_samples == 2 * trained_samples);
   const Json mf = eval_run(fine, run_dir);
   CHECK(mf.at("render_sampling").at("n_samples").get<int>() == 2 * trained_samples);
   CHECK(mf.at("render_sampling").at("n_importance").get<int>() == 8);
   CHECK(std::isfinite(mf.at("metrics").at("depth_rmse").get<double>()));
-  CHECK_THROWS_AS(load_run(test::runtime(), run_dir, "", RenderSampling{-1, -1}), ConfigError);
+  CHECK_THROWS_AS(load_run(test::runtime(), run_dir, "", RenderSampling{-1, -1, ""}), ConfigError);
+
+  // The median-depth diagnostic changes the rendered depth only, and is recorded.
+  LoadedRun med = load_run(test::runtime(), run_dir, "", RenderSampling{0, -1, "median"});
+  CHECK(med.manifest.config.render.eval_depth == "median");
+  const Json mm = eval_run(med, run_dir);
+  CHECK(mm.at("render_sampling").at("depth") == "median");
+  CHECK(mf.at("render_sampling").at("depth") == "expected");
+  const RangeImage med_img = render_view(*med.model, *med.scene, T_test,
+                                         med.manifest.config.schedule.render_chunk_rays);
+  CHECK(med_img.ray_drop == from_run.ray_drop);
+  CHECK(med_img.intensity == from_run.intensity);
+  CHECK(med_img.range != from_run.range);
+  CHECK_THROWS_AS(load_run(test::runtime(), run_dir, "", RenderSampling{0, -1, "mean"}),
+                  ConfigError);
 
   // A config's eval sampling is what eval uses unless overridden; training does not see it.
   TrainRequest ev = req;
@@ -100,7 +115,7 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
   CHECK(by_config.manifest.config.render.n_samples == 3 * trained_samples);
   CHECK(by_config.manifest.config.render.n_importance == 5);
   CHECK(by_config.model->state().params == run.model->state().params);  // same training
-  LoadedRun overridden = load_run(test::runtime(), ev.run_dir, "", RenderSampling{0, 2});
+  LoadedRun overridden = load_run(test::runtime(), ev.run_dir, "", RenderSampling{0, 2, ""});
   CHECK(overridden.manifest.config.render.n_samples == 3 * trained_samples);
   CHECK(overridden.manifest.config.render.n_importance == 2);
 

@@ -109,6 +109,25 @@ void ref_volume_fwd(int n_rays, int S, T last_delta, const Vec<T>& t, const Vec<
   }
 }
 
+// render_median_depth: per ray the index of the first sample where the running weight sum
+// (double, in sample order) reaches 1/2, else the last sample; also the running sum there.
+inline void ref_median_index(int n_rays, int S, const Vec<float>& w, std::vector<int>& index,
+                             std::vector<double>& cum_at) {
+  index.assign(size_t(n_rays), S - 1);
+  cum_at.assign(size_t(n_rays), 0.0);
+  for (int r = 0; r < n_rays; ++r) {
+    double acc = 0;
+    for (int i = 0; i < S; ++i) {
+      acc += w[size_t(r) * S + i];
+      cum_at[size_t(r)] = acc;
+      if (acc >= 0.5) {
+        index[size_t(r)] = i;
+        break;
+      }
+    }
+  }
+}
+
 // render_volume_bwd, written independently of the kernel: dL/dτ_i by explicit suffix sums.
 template <typename T>
 void ref_volume_bwd(int n_rays, int S, T last_delta, const Vec<T>& t, const Vec<T>& h0,

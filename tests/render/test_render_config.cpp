@@ -36,5 +36,13 @@ TEST_CASE("Render config presets, JSON round trip and rejection of bad values",
   CHECK(k.grad_l1);
   CHECK(render::RenderConfig::from_json(Json::object(), "test").to_json() ==
         render::RenderConfig().to_json());
+  // eval_depth: "expected" (default, absent from the JSON) or "median"; anything else rejected.
+  CHECK_FALSE(k.to_json().contains("eval_depth"));
+  auto m = k;
+  m.eval_depth = "median";
+  CHECK(render::RenderConfig::from_json(m.to_json(), "test").eval_depth == "median");
+  CHECK(m.to_json().at("eval_depth") == "median");
+  CHECK_THROWS_WITH(render::RenderConfig::from_json(Json{{"eval_depth", "mean"}}, "test"),
+                    Catch::Contains("eval_depth") && Catch::Contains("mean"));
   CHECK(k.bin_width(0.5f) == Approx(80.0 * 0.5 / 64));
 }

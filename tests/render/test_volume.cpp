@@ -1,6 +1,7 @@
 // Volume rendering kernels: device vs reference, physical checks (opaque wall, weights sum),
 // determinism, and the backward against finite differences of the double-precision forward.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <numeric>
 
 #include "render/volume_renderer.hpp"
@@ -95,6 +96,91 @@ TEST_CASE("An opaque wall at distance D renders depth D and the head's values",
     CHECK(std::abs(dev.out[3 * r] - wall[r]) <= bin);  // the first sample behind the wall
     CHECK(dev.out[3 * r + 1] == Approx(test::ref_sigmoid(logit_p[r])).epsilon(1e-4));
     CHECK(dev.out[3 * r + 2] == Approx(test::ref_sigmoid(logit_i[r])).epsilon(1e-4));
+  }
+}
+
+TEST_CASE("Median depth equals the reference: the first sample where the weights reach 1/2",
+          "[render][volume]") {
+  render::RenderConfig cfg;
+  cfg.n_samples = 67;
+  render::VolumeRenderer vr(test::runtime(), cfg, kScale);
+  const int n_rays = 257, S = 67;
+  const auto t = make_t(n_rays, S, cfg.near_m * kScale, cfg.far_m * kScale, 11);
+  // Densities from transparent to opaque, so that some rays never reach 1/2.
+  auto h0 = test::make_uniform(t.size(), -6.f, 3.f, 12);
+  for (int r = 0; r < n_rays; ++r)
+    for (int i = 0; i < S; ++i) h0[size_t(r) * S + i] -= 0.05f * float(r % 40);
+  const auto head = test::make_uniform(2 * t.size(), -4.f, 4.f, 13);
+  auto& rt = test::runtime();
+  auto bt = cl::Buffer::from(rt, t), bh = cl::Buffer::from(rt, h0),
+       bhead = cl::Buffer::from(rt, head);
+  cl::Buffer out(rt, size_t(n_rays) * 12), w(rt, t.size() * 4);
+  vr.forward(bt, bh, bhead, n_rays, S, out, w).wait();
+  const auto expected_out = out.read_vec<float>(size_t(n_rays) * 3);
+  const auto weights = w.read_vec<float>(t.size());
+  vr.median_depth(bt, w, n_rays, S, out).wait();
+  const auto med = out.read_vec<float>(size_t(n_rays) * 3);
+  std::vector<int> index;
+  std::vector<double> cum;
+  test::ref_median_index(n_rays, S, weights, index, cum);
+  int never = 0, checked = 0;
+  for (int r = 0; r < n_rays; ++r) {
+    INFO("ray " << r << " reference index " << index[size_t(r)] << " running sum "
+                << cum[size_t(r)]);
+    // Prob and intensity untouched.
+    CHECK(med[3 * r + 1] == expected_out[3 * r + 1]);
+    CHECK(med[3 * r + 2] == expected_out[3 * r + 2]);
+    if (cum[size_t(r)] < 0.5) ++never;
+    // Where the float and double running sums could straddle 1/2, the index may differ by one.
+    if (std::abs(cum[size_t(r)] - 0.5) < 1e-5) continue;
+    ++checked;
+    CHECK(med[3 * r] == t[size_t(r) * S + size_t(index[size_t(r)])]);
+  }
+  CHECK(never > 10);            // rays whose weights stay below 1/2: the last sample's t
+  CHECK(n_rays - never > 100);  // and rays with a crossing
+  CHECK(checked > n_rays - 5);
+}
+
+TEST_CASE("Median depth: a half-opaque foreground never blends with the wall behind it",
+          "[render][volume]") {
+  // Expected depth averages a translucent edge with the background; the median picks one.
+  render::RenderConfig cfg;
+  cfg.n_samples = 256;
+  render::VolumeRenderer vr(test::runtime(), cfg, kScale);
+  const int n_rays = 8, S = 256;
+  const float near = cfg.near_m * kScale, far = cfg.far_m * kScale, bin = (far - near) / S;
+  const auto t = make_t(n_rays, S, near, far, 14);
+  std::vector<float> h0(t.size(), -12.f), head(2 * t.size(), 0.f);
+  const float fg = 10.f * kScale, bg = 30.f * kScale;
+  std::vector<float> opacity(n_rays);
+  for (int r = 0; r < n_rays; ++r) {
+    opacity[r] = 0.1f + 0.8f * float(r) / float(n_rays - 1);  // 0.1 .. 0.9
+    bool first = true;
+    for (int i = 0; i < S; ++i) {
+      const size_t s = size_t(r) * S + i;
+      const float delta = i + 1 < S ? t[s + 1] - t[s] : vr.last_delta();
+      if (t[s] >= fg && first) {  // one sample with α = opacity
+        h0[s] = std::log(-std::log(1.f - opacity[r]) / delta);
+        first = false;
+      } else if (t[s] >= bg) {
+        h0[s] = 12.f;
+      }
+    }
+  }
+  auto& rt = test::runtime();
+  auto bt = cl::Buffer::from(rt, t), bh = cl::Buffer::from(rt, h0),
+       bhead = cl::Buffer::from(rt, head);
+  cl::Buffer out(rt, size_t(n_rays) * 12), w(rt, t.size() * 4);
+  vr.forward(bt, bh, bhead, n_rays, S, out, w).wait();
+  const auto mean = out.read_vec<float>(size_t(n_rays) * 3);
+  vr.median_depth(bt, w, n_rays, S, out).wait();
+  const auto med = out.read_vec<float>(size_t(n_rays) * 3);
+  for (int r = 0; r < n_rays; ++r) {
+    INFO("ray " << r << " opacity " << opacity[r] << ": expected depth " << mean[3 * r] / kScale
+                << " m, median " << med[3 * r] / kScale << " m");
+    const float expected = opacity[r] * fg + (1.f - opacity[r]) * bg;
+    CHECK(std::abs(mean[3 * r] - expected) <= 2 * bin);
+    CHECK(std::abs(med[3 * r] - (opacity[r] >= 0.5f ? fg : bg)) <= 2 * bin);  // jittered t
   }
 }
 
