@@ -201,24 +201,33 @@ __kernel void render_volume_bwd(const int n_rays, const int n_samples, const flo
   }
 }
 
-// Median depth (evaluation only; not differentiable, no backward): per ray, the t of the first
-// sample at which the accumulated weight sum_{j<=i} w_j reaches 1/2, i.e. where the
-// transmittance falls to one half; a ray whose weights never reach 1/2 gets its last sample's
-// t (nerfstudio's "median" depth). Overwrites out[3 r] (depth) only; weights as written by
-// render_volume_fwd for the same rays. Sequential sum in sample order: deterministic.
-__kernel void render_median_depth(const int n_rays, const int n_samples, __global const float* t,
-                                  __global const float* weights, __global float* out) {
+// Median depth (evaluation only; not differentiable, no backward): per ray, the range at which
+// the transmittance falls to 1/2. With the density constant over each sample's interval
+// [t_i, t_i + delta_i) (the quadrature of render_volume_fwd), the crossing lies in the interval
+// of the first sample k whose accumulated weight sum_{j<=k} w_j reaches 1/2, at
+//   t_k + delta_k * ln(2 T_k) / (-ln(1 - alpha_k)),  T_k = 1 - sum_{j<k} w_j,  alpha_k = w_k / T_k
+// (clamped to the interval). A ray whose weights never reach 1/2 gets its last sample's t.
+// Overwrites out[3 r] (depth) only; weights as written by render_volume_fwd for the same rays.
+// Sequential sum in sample order: deterministic.
+__kernel void render_median_depth(const int n_rays, const int n_samples, const float last_delta,
+                                  __global const float* t, __global const float* weights,
+                                  __global float* out) {
   const int r = get_global_id(0);
   if (r >= n_rays) return;
   const int base = r * n_samples;
-  float acc = 0.0f;
-  int k = n_samples - 1;
+  float before = 0.0f, depth = t[base + n_samples - 1];
   for (int i = 0; i < n_samples; ++i) {
-    acc += weights[base + i];
-    if (acc >= 0.5f) {
-      k = i;
+    const float w = weights[base + i];
+    if (before + w >= 0.5f) {
+      const int s = base + i;
+      const float delta = i + 1 < n_samples ? t[s + 1] - t[s] : last_delta;
+      const float T = 1.0f - before, alpha = fmin(w / fmax(T, 1e-30f), 1.0f);
+      const float tau = -log1p(-fmin(alpha, 1.0f - 1e-7f));  // sigma_k delta_k > 0
+      const float frac = fmin(fmax(log(2.0f * T) / tau, 0.0f), 1.0f);
+      depth = t[s] + frac * delta;
       break;
     }
+    before += w;
   }
-  out[3 * r] = t[base + k];
+  out[3 * r] = depth;
 }

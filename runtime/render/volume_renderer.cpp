@@ -71,7 +71,7 @@ cl::Event VolumeRenderer::median_depth(const cl::Buffer& t, const cl::Buffer& we
   check_floats(t, size_t(n_rays) * n_samples, "VolumeRenderer::median_depth t");
   check_floats(weights, size_t(n_rays) * n_samples, "VolumeRenderer::median_depth weights");
   check_floats(out, 3 * size_t(n_rays), "VolumeRenderer::median_depth out");
-  median_k_.set_args(n_rays, n_samples, t, weights, out);
+  median_k_.set_args(n_rays, n_samples, last_delta_, t, weights, out);
   return launch_1d(median_k_, size_t(n_rays));
 }
 

@@ -27,8 +27,9 @@ class VolumeRenderer {
                      const cl::Buffer& weights, const cl::Buffer& grad_out, int n_rays,
                      int n_samples, cl::Buffer& grad_h0, cl::Buffer& grad_head);
   // Evaluation only (no backward): replaces each ray's depth in `out` by its median depth, the
-  // t of the first sample where the accumulated weight reaches 1/2 (the last sample's t if it
-  // never does). `weights` must be forward()'s for the same rays.
+  // range where the transmittance falls to 1/2 (exact for a density constant over each sample's
+  // interval; the last sample's t if the weights never reach 1/2). `weights` must be
+  // forward()'s for the same rays.
   cl::Event median_depth(const cl::Buffer& t, const cl::Buffer& weights, int n_rays,
                          int n_samples, cl::Buffer& out);
 

@@ -109,23 +109,40 @@ void ref_volume_fwd(int n_rays, int S, T last_delta, const Vec<T>& t, const Vec<
   }
 }
 
-// render_median_depth: per ray the index of the first sample where the running weight sum
-// (double, in sample order) reaches 1/2, else the last sample; also the running sum there.
-inline void ref_median_index(int n_rays, int S, const Vec<float>& w, std::vector<int>& index,
-                             std::vector<double>& cum_at) {
-  index.assign(size_t(n_rays), S - 1);
-  cum_at.assign(size_t(n_rays), 0.0);
+// render_median_depth, in double from the forward's weights: per ray the index of the first
+// sample where the running weight sum reaches 1/2 (else the last sample), the running sum just
+// before it, and the range where the transmittance falls to 1/2 inside that sample's interval.
+struct RefMedian {
+  std::vector<int> index;
+  std::vector<double> before, depth;
+  std::vector<char> crossed;  // the running sum reached 1/2
+};
+inline RefMedian ref_median_depth(int n_rays, int S, double last_delta, const Vec<float>& t,
+                                  const Vec<float>& w) {
+  RefMedian m;
+  m.index.assign(size_t(n_rays), S - 1);
+  m.before.assign(size_t(n_rays), 0.0);
+  m.depth.assign(size_t(n_rays), 0.0);
+  m.crossed.assign(size_t(n_rays), 0);
   for (int r = 0; r < n_rays; ++r) {
+    const size_t b = size_t(r) * S;
     double acc = 0;
+    m.depth[size_t(r)] = t[b + S - 1];
     for (int i = 0; i < S; ++i) {
-      acc += w[size_t(r) * S + i];
-      cum_at[size_t(r)] = acc;
-      if (acc >= 0.5) {
-        index[size_t(r)] = i;
+      if (acc + w[b + i] >= 0.5) {
+        const double delta = i + 1 < S ? double(t[b + i + 1]) - t[b + i] : last_delta;
+        const double T = 1.0 - acc, alpha = std::min(1.0 - 1e-12, w[b + i] / T);
+        const double frac = std::clamp(std::log(2.0 * T) / -std::log1p(-alpha), 0.0, 1.0);
+        m.index[size_t(r)] = i;
+        m.before[size_t(r)] = acc;
+        m.depth[size_t(r)] = t[b + i] + frac * delta;
+        m.crossed[size_t(r)] = 1;
         break;
       }
+      acc += w[b + i];
     }
   }
+  return m;
 }
 
 // render_volume_bwd, written independently of the kernel: dL/dτ_i by explicit suffix sums.
