@@ -192,6 +192,30 @@ BENCHMARK(BM_VolumeBackward)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 
+// Median depth (evaluation diagnostic): reads t and the weights up to each ray's crossing; the
+// GB/s count the whole ray (8 B/sample), an upper bound of its traffic. The eval shape: a
+// 2048-ray render chunk with 128 + 32 samples.
+static void BM_MedianDepth(benchmark::State& state) {
+  auto& rt = bench::runtime();
+  const int n_rays = int(state.range(0)), S = int(state.range(1));
+  render::VolumeRenderer vr(rt, config(S), kScale);
+  auto v = volume_inputs(rt, n_rays, S);
+  vr.forward(v.t, v.h0, v.head, n_rays, S, v.out, v.w);
+  vr.median_depth(v.t, v.w, n_rays, S, v.out).wait();
+  double ms = 0;
+  for (auto _ : state) {
+    const double e = vr.median_depth(v.t, v.w, n_rays, S, v.out).elapsed_ms();
+    ms += e;
+    state.SetIterationTime(e * 1e-3);
+  }
+  const size_t n = size_t(n_rays) * S;
+  report(state, ms, n_rays, n, 8.0 * n);
+}
+BENCHMARK(BM_MedianDepth)
+    ->Args({2048, 160})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
 // Ray-gradient reduction: reads t and dL/dx (16 B/sample).
 static void BM_RayGradReduce(benchmark::State& state) {
   auto& rt = bench::runtime();
