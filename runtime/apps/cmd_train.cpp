@@ -1,6 +1,8 @@
 // `sgnlf train --method lidar-nerf --preset <name> --data <dataset> --out <run dir> [--seed N]
-// [--config overrides.json] [--device SPEC] [--no-resume] [--stop-at STEP]`: trains a run folder
-// (resumes an interrupted one by default) and writes run.json, checkpoints and summary.json.
+// [--config overrides.json] [--device SPEC] [--no-resume] [--stop-at STEP] [--sequence S]
+// [--start ID] [--frames N] [--test-frames P,...]`: trains a run folder (resumes an interrupted
+// one by default) and writes run.json (with the dataset options, which eval and render reuse),
+// checkpoints and summary.json.
 #include <iostream>
 
 #include "apps/command.hpp"
@@ -15,6 +17,7 @@ struct TrainArgs {
   uint64_t seed = 1;
   bool no_resume = false;
   long stop_at = -1;
+  LoadOptions load;
 };
 
 const Registrar reg("train", "Train a method on a dataset into a run folder", [](CLI::App& sub) {
@@ -28,13 +31,21 @@ const Registrar reg("train", "Train a method on a dataset into a run folder", []
   sub.add_option("--device", a->device, "OpenCL device index or name substring");
   sub.add_flag("--no-resume", a->no_resume, "Start from scratch even if a checkpoint exists");
   sub.add_option("--stop-at", a->stop_at, "Stop after this step (checkpointed; resumable)");
+  sub.add_option("--sequence", a->load.sequence, "Sequence / drive / scene of a real layout");
+  sub.add_option("--start", a->load.start, "First frame id of the window");
+  sub.add_option("--frames", a->load.frames, "Frames in the window (default: the protocol's 64 / 36)");
+  sub.add_option("--test-frames", a->load.test_frames,
+                 "Test views as positions in the window, comma-separated (default: the protocol's split)")
+      ->delimiter(',');
   return std::function<int()>([a] {
+    a->load.validate();
     pipeline::TrainRequest req;
     req.manifest.method = a->method;
     req.manifest.preset = a->preset;
     req.manifest.dataset = a->data;
     req.manifest.device = a->device;
     req.manifest.seed = a->seed;
+    req.manifest.data_options = a->load;
     const Json overrides = a->config.empty() ? Json::object() : load_json_file(a->config);
     req.manifest.config = pipeline::resolve_config(a->method, a->preset, overrides);
     req.run_dir = a->out;

@@ -18,7 +18,77 @@ void LoadOptions::validate() const {
   if (frames == 0 || frames < -1) throw ConfigError("load options: frames = " + std::to_string(frames));
   if (stride == 0 || stride < -1) throw ConfigError("load options: stride = " + std::to_string(stride));
   if (start < -1) throw ConfigError("load options: start = " + std::to_string(start));
+  for (size_t k = 0; k < test_frames.size(); ++k) {
+    if (test_frames[k] < 0)
+      throw ConfigError("load options: test_frames[" + std::to_string(k) +
+                        "] = " + std::to_string(test_frames[k]) + " (positions in the window are >= 0)");
+    for (size_t q = 0; q < k; ++q)
+      if (test_frames[q] == test_frames[k])
+        throw ConfigError("load options: test_frames lists position " +
+                          std::to_string(test_frames[k]) + " twice");
+  }
 }
+
+bool LoadOptions::is_default() const { return to_json().empty(); }
+
+Json LoadOptions::to_json() const {
+  Json j = Json::object();
+  if (!sequence.empty()) j["sequence"] = sequence;
+  if (!frequency.empty()) j["frequency"] = frequency;
+  if (start != -1) j["start"] = start;
+  if (frames != -1) j["frames"] = frames;
+  if (stride != -1) j["stride"] = stride;
+  if (!sensor.empty()) j["sensor"] = sensor;
+  if (!test_frames.empty()) j["test_frames"] = test_frames;
+  return j;
+}
+
+LoadOptions LoadOptions::from_json(const Json& j, const std::string& where) {
+  LoadOptions o;
+  ConfigReader r(j, where);
+  r.get("sequence", o.sequence).get("frequency", o.frequency).get("start", o.start);
+  r.get("frames", o.frames).get("stride", o.stride).get("sensor", o.sensor);
+  Json tf = Json::array();
+  r.get("test_frames", tf);
+  r.finish();
+  if (!tf.is_array())
+    throw ConfigError(where + ": key 'test_frames' has invalid value " + tf.dump() + " (a list of frame positions)");
+  for (const auto& v : tf) {
+    if (!v.is_number_integer())
+      throw ConfigError(where + ": key 'test_frames' has invalid element " + v.dump() + " (integers)");
+    o.test_frames.push_back(v.get<int>());
+  }
+  try {
+    o.validate();
+  } catch (const ConfigError& e) {
+    throw ConfigError(where + ": " + e.what());
+  }
+  return o;
+}
+
+bool operator==(const LoadOptions& a, const LoadOptions& b) { return a.to_json() == b.to_json(); }
+
+namespace {
+// The split of `opt.test_frames` over the loaded window, replacing the protocol's.
+void apply_test_frames(Dataset& d, const LoadOptions& opt) {
+  if (opt.test_frames.empty()) return;
+  const int n = int(d.frames.size());
+  Split s;
+  for (int p : opt.test_frames)
+    if (p >= n)
+      throw ConfigError(d.path + ": test frame position " + std::to_string(p) + " but the window holds " +
+                        std::to_string(n) + " frames (positions 0.." + std::to_string(n - 1) + ")");
+  for (int f = 0; f < n; ++f) {
+    const bool test = std::find(opt.test_frames.begin(), opt.test_frames.end(), f) != opt.test_frames.end();
+    (test ? s.test : s.train).push_back(f);
+  }
+  if (s.train.empty())
+    throw ConfigError(d.path + ": test_frames leave no training frame among the " + std::to_string(n));
+  d.split = std::move(s);
+  log::info(d.path, ": test frames (positions) replaced by the load options: ", d.split.test.size(),
+            " test, ", d.split.train.size(), " train");
+}
+}  // namespace
 
 std::string detect_layout(const std::string& path) {
   const fs::path p(path);
@@ -42,11 +112,13 @@ Dataset load_dataset(const std::string& path, const LoadOptions& opt) {
   opt.validate();
   const std::string layout = detect_layout(path);
   log::info("loading ", path, " (layout ", layout, ")");
-  if (layout == "synthetic") return detail::load_kitti360(path, opt, true);
-  if (layout == "kitti360") return detail::load_kitti360(path, opt, false);
-  if (layout == "kitti-odometry") return detail::load_kitti_odometry(path, opt);
-  if (layout == "nuscenes") return detail::load_nuscenes(path, opt);
-  return detail::load_scans(path, opt);
+  Dataset d = layout == "synthetic"        ? detail::load_kitti360(path, opt, true)
+              : layout == "kitti360"       ? detail::load_kitti360(path, opt, false)
+              : layout == "kitti-odometry" ? detail::load_kitti_odometry(path, opt)
+              : layout == "nuscenes"       ? detail::load_nuscenes(path, opt)
+                                           : detail::load_scans(path, opt);
+  apply_test_frames(d, opt);
+  return d;
 }
 
 namespace detail {

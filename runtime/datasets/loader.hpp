@@ -4,7 +4,9 @@
 // protocol split (protocol §3).
 #pragma once
 #include <string>
+#include <vector>
 
+#include "core/config.hpp"
 #include "datasets/dataset.hpp"
 
 namespace sgnlf {
@@ -17,9 +19,21 @@ struct LoadOptions {
   int stride = -1;        // −1 = 1 standard, native rate / 2 Hz for low (KITTI 5, nuScenes 10)
   std::string sensor;     // "" = the layout's sensor; else a preset name or a sensor JSON file
   bool load_points = true;
+  // Test views as positions in the loaded window (0 = its first frame), replacing the protocol
+  // split (protocol §3), e.g. for a short real slice that holds none of frames 13, 26, 39, 52.
+  // Empty = the protocol split. At least one frame must stay for training.
+  std::vector<int> test_frames;
 
   void validate() const;
+  bool is_default() const;
+  // The keys set away from their defaults (sequence, frequency, start, frames, stride, sensor,
+  // test_frames; load_points is not data selection and is not written).
+  Json to_json() const;
+  // Keys as written by to_json(), all optional, unknown keys rejected; validated.
+  static LoadOptions from_json(const Json& j, const std::string& where);
 };
+
+bool operator==(const LoadOptions& a, const LoadOptions& b);
 
 // "synthetic", "kitti360", "kitti-odometry", "nuscenes", "scans"; IoError when none matches.
 std::string detect_layout(const std::string& path);

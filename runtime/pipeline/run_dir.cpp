@@ -12,11 +12,11 @@ namespace fs = std::filesystem;
 
 void write_manifest(const std::string& run_dir, const RunManifest& m) {
   fs::create_directories(run_dir);
-  write_json_file((fs::path(run_dir) / "run.json").string(),
-                  Json{{"method", m.method}, {"preset", m.preset}, {"dataset", m.dataset},
-                       {"device", m.device}, {"seed", m.seed},
-                       {"config_hash", hex64(m.config.hash())},
-                       {"config", train_config_to_json(m.config)}});
+  Json j{{"method", m.method},   {"preset", m.preset}, {"dataset", m.dataset},
+         {"device", m.device},   {"seed", m.seed},     {"config_hash", hex64(m.config.hash())},
+         {"config", train_config_to_json(m.config)}};
+  if (!m.data_options.is_default()) j["dataset_options"] = m.data_options.to_json();
+  write_json_file((fs::path(run_dir) / "run.json").string(), j);
 }
 
 RunManifest read_manifest(const std::string& run_dir) {
@@ -26,10 +26,12 @@ RunManifest read_manifest(const std::string& run_dir) {
   RunManifest m;
   ConfigReader r(j, path);
   std::string hash;
-  Json cfg;
+  Json cfg, data_options = Json::object();
   r.require("method", m.method).require("preset", m.preset).require("dataset", m.dataset);
   r.get("device", m.device).require("seed", m.seed).get("config_hash", hash).require("config", cfg);
+  r.get("dataset_options", data_options);
   r.finish();
+  m.data_options = LoadOptions::from_json(data_options, path + ": dataset_options");
   m.config = train_config_from_json(cfg, path + ": config");
   return m;
 }
@@ -59,7 +61,7 @@ LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
     run.manifest.config.render.validate("render depth override");
   }
   const std::string data = dataset_override.empty() ? run.manifest.dataset : dataset_override;
-  run.dataset = std::make_unique<Dataset>(load_dataset(data));
+  run.dataset = std::make_unique<Dataset>(load_dataset(data, run.manifest.data_options));
   run.scene = std::make_unique<Scene>(make_scene(*run.dataset));
   const TrainConfig& c = run.manifest.config;
   run.model = std::make_unique<LidarNerfModel>(rt, c, float(run.scene->norm.scale),

@@ -10,6 +10,7 @@
 
 #include "cl/runtime.hpp"
 #include "core/config.hpp"
+#include "datasets/loader.hpp"
 #include "pipeline/model.hpp"
 #include "pipeline/scene.hpp"
 #include "pipeline/train_config.hpp"
@@ -20,6 +21,9 @@ struct RunManifest {
   std::string method = "lidar-nerf", preset, dataset, device;
   uint64_t seed = 1;
   TrainConfig config;
+  // How `dataset` is loaded (window, sensor, test frames); in run.json as "dataset_options" only
+  // when set, so run folders written before it existed still load. eval/render reuse it.
+  LoadOptions data_options;
 };
 
 void write_manifest(const std::string& run_dir, const RunManifest& m);

@@ -45,12 +45,14 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
   const fs::path run(req.run_dir);
   if (fs::exists(run / "run.json")) {
     const RunManifest old = read_manifest(req.run_dir);
-    if (old.config.hash() != req.manifest.config.hash() || old.seed != req.manifest.seed)
+    if (old.config.hash() != req.manifest.config.hash() || old.seed != req.manifest.seed ||
+        !(old.data_options == req.manifest.data_options))
       throw ConfigError((run / "run.json").string() +
-                        ": the folder holds a run with another config or seed; use a new --out");
+                        ": the folder holds a run with another config, seed or dataset options; use a new --out");
   }
+  // The dataset first: a bad path or option leaves no run folder behind.
+  const Dataset d = load_dataset(req.manifest.dataset, req.manifest.data_options);
   write_manifest(req.run_dir, req.manifest);
-  const Dataset d = load_dataset(req.manifest.dataset);
   const Scene scene = make_scene(d);
   const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_load).count();
   const TrainConfig& c = req.manifest.config;

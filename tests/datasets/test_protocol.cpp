@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/rng.hpp"
+#include "datasets/loader.hpp"
 #include "datasets/protocol.hpp"
 
 using namespace sgnlf;
@@ -64,4 +65,31 @@ TEST_CASE("pose noise: T_gt · Exp(ξ) with ξ from Rng(seed), right-multiplied"
   const auto id = identity_poses(4);
   CHECK(id.size() == 4);
   CHECK(id[3].matrix() == Pose::Identity().matrix());
+}
+
+TEST_CASE("Load options: JSON round trip of the set keys, rejection of bad ones", "[protocol]") {
+  LoadOptions o;
+  CHECK(o.is_default());
+  CHECK(o.to_json() == Json::object());
+  o.sequence = "00";
+  o.start = 40;
+  o.frames = 10;
+  o.test_frames = {3, 6};
+  const Json j = o.to_json();
+  CHECK(j.size() == 4);
+  const LoadOptions back = LoadOptions::from_json(j, "test");
+  CHECK(back == o);
+  CHECK_FALSE(back.is_default());
+  CHECK(back.test_frames == std::vector<int>{3, 6});
+  CHECK_THROWS_WITH(LoadOptions::from_json(Json{{"test_frame", {1}}}, "where"),
+                    Catch::Contains("test_frame"));
+  CHECK_THROWS_WITH(LoadOptions::from_json(Json{{"test_frames", {1, 1}}}, "where"),
+                    Catch::Contains("twice"));
+  CHECK_THROWS_WITH(LoadOptions::from_json(Json{{"test_frames", {-2}}}, "where"),
+                    Catch::Contains("-2"));
+  CHECK_THROWS_WITH(LoadOptions::from_json(Json{{"test_frames", {1.5}}}, "where"),
+                    Catch::Contains("1.5"));
+  CHECK_THROWS_WITH(LoadOptions::from_json(Json{{"test_frames", 3}}, "where"),
+                    Catch::Contains("test_frames"));
+  CHECK_THROWS_AS(LoadOptions::from_json(Json{{"frames", 0}}, "where"), ConfigError);
 }

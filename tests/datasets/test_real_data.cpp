@@ -62,3 +62,25 @@ TEST_CASE("KITTI odometry slice: 10 frames, LiDAR poses inv(Tr)·P·Tr", "[real]
   CHECK(mean == Approx(1.03).margin(0.02));
   CHECK(d.split.test.empty());  // 10 frames: no standard-frequency test frame before 13
 }
+
+TEST_CASE("KITTI odometry slice: test frames chosen by position replace the protocol split",
+          "[real]") {
+  const std::string root = test::shared_dir() + "/data/real/kitti-odometry-00-slice";
+  LoadOptions o;
+  o.test_frames = {6, 3};
+  const Dataset d = load_dataset(root, o);
+  CHECK(d.split.test == std::vector<int>{3, 6});
+  CHECK(d.split.train == std::vector<int>{0, 1, 2, 4, 5, 7, 8, 9});
+  // A window: frames 42.. of the slice, positions relative to it.
+  o.start = 42;
+  o.frames = 5;
+  o.test_frames = {2};
+  const Dataset w = load_dataset(root, o);
+  REQUIRE(w.frames.size() == 5);
+  CHECK(w.frames[size_t(w.split.test.at(0))].id == 44);
+  // Positions past the window, or every frame held out: errors naming the value.
+  o.test_frames = {5};
+  CHECK_THROWS_WITH(load_dataset(root, o), Catch::Contains("position 5") && Catch::Contains("0..4"));
+  o.test_frames = {0, 1, 2, 3, 4};
+  CHECK_THROWS_WITH(load_dataset(root, o), Catch::Contains("no training frame"));
+}

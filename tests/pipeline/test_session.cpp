@@ -122,4 +122,29 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
   TrainRequest other = req;
   other.manifest.seed = 6;
   CHECK_THROWS_AS(train_run(test::runtime(), other), ConfigError);
+
+  // Dataset options (here test frames by position) are recorded in run.json and reused by eval;
+  // a folder trained with other options is refused, and a bad option leaves no folder behind.
+  TrainRequest split = req;
+  split.run_dir = test::temp_dir("session_run_test_frames");
+  split.manifest.data_options.test_frames = {3, 9};
+  train_run(test::runtime(), split);
+  CHECK(load_json_file(split.run_dir + "/run.json").at("dataset_options") ==
+        Json{{"test_frames", {3, 9}}});
+  CHECK_FALSE(load_json_file(run_dir + "/run.json").contains("dataset_options"));
+  LoadedRun by_position = load_run(test::runtime(), split.run_dir);
+  CHECK(by_position.dataset->split.test == std::vector<int>{3, 9});
+  const Json ms = eval_run(by_position, split.run_dir);
+  REQUIRE(ms.at("per_frame").size() == 2);
+  CHECK(ms.at("per_frame")[0].at("frame").get<int>() == by_position.dataset->frames[3].id);
+  CHECK(ms.at("per_frame")[1].at("frame").get<int>() == by_position.dataset->frames[9].id);
+  TrainRequest changed = split;
+  changed.manifest.data_options.test_frames = {4};
+  CHECK_THROWS_WITH(train_run(test::runtime(), changed), Catch::Contains("dataset options"));
+  TrainRequest bad = req;
+  bad.run_dir = test::temp_dir("session_run_bad_option");
+  fs::remove_all(bad.run_dir);
+  bad.manifest.data_options.test_frames = {40};
+  CHECK_THROWS_WITH(train_run(test::runtime(), bad), Catch::Contains("position 40"));
+  CHECK_FALSE(fs::exists(fs::path(bad.run_dir) / "run.json"));
 }
