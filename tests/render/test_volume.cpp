@@ -36,6 +36,24 @@ Fwd run_fwd(render::VolumeRenderer& vr, const std::vector<float>& t, const std::
   vr.forward(bt, bh, bhead, n_rays, S, out, w).wait();
   return {out.read_vec<float>(size_t(n_rays) * 3), w.read_vec<float>(t.size())};
 }
+
+// The forward, then the median depth on the forward's own weights and outputs.
+struct Median {
+  Fwd fwd;                 // expected depth, prob, intensity; weights
+  std::vector<float> out;  // the same with the median depth
+};
+Median run_median(render::VolumeRenderer& vr, const std::vector<float>& t,
+                  const std::vector<float>& h0, const std::vector<float>& head, int n_rays, int S) {
+  auto& rt = test::runtime();
+  auto bt = cl::Buffer::from(rt, t), bh = cl::Buffer::from(rt, h0),
+       bhead = cl::Buffer::from(rt, head);
+  cl::Buffer out(rt, size_t(n_rays) * 12), w(rt, t.size() * 4);
+  vr.forward(bt, bh, bhead, n_rays, S, out, w).wait();
+  Median m{{out.read_vec<float>(size_t(n_rays) * 3), w.read_vec<float>(t.size())}, {}};
+  vr.median_depth(bt, w, n_rays, S, out).wait();
+  m.out = out.read_vec<float>(size_t(n_rays) * 3);
+  return m;
+}
 }  // namespace
 
 TEST_CASE(
@@ -111,15 +129,10 @@ TEST_CASE("Median depth equals the reference: where the transmittance falls to 1
   for (int r = 0; r < n_rays; ++r)
     for (int i = 0; i < S; ++i) h0[size_t(r) * S + i] -= 0.05f * float(r % 40);
   const auto head = test::make_uniform(2 * t.size(), -4.f, 4.f, 13);
-  auto& rt = test::runtime();
-  auto bt = cl::Buffer::from(rt, t), bh = cl::Buffer::from(rt, h0),
-       bhead = cl::Buffer::from(rt, head);
-  cl::Buffer out(rt, size_t(n_rays) * 12), w(rt, t.size() * 4);
-  vr.forward(bt, bh, bhead, n_rays, S, out, w).wait();
-  const auto expected_out = out.read_vec<float>(size_t(n_rays) * 3);
-  const auto weights = w.read_vec<float>(t.size());
-  vr.median_depth(bt, w, n_rays, S, out).wait();
-  const auto med = out.read_vec<float>(size_t(n_rays) * 3);
+  const auto run = run_median(vr, t, h0, head, n_rays, S);
+  const auto& expected_out = run.fwd.out;
+  const auto& weights = run.fwd.w;
+  const auto& med = run.out;
   const auto ref = test::ref_median_depth(n_rays, S, vr.last_delta(), t, weights);
   int never = 0, checked = 0;
   for (int r = 0; r < n_rays; ++r) {
@@ -162,13 +175,7 @@ TEST_CASE("Median depth in a homogeneous medium is ln 2 / sigma behind its start
     half[r] = (3.0 + 7.3 * r) * kScale;  // transmittance 1/2 at 3 m .. 39.5 m into the medium
     for (int i = 0; i < S; ++i) h0[size_t(r) * S + i] = float(std::log(std::log(2.0) / half[r]));
   }
-  auto& rt = test::runtime();
-  auto bt = cl::Buffer::from(rt, t), bh = cl::Buffer::from(rt, h0),
-       bhead = cl::Buffer::from(rt, head);
-  cl::Buffer out(rt, size_t(n_rays) * 12), w(rt, t.size() * 4);
-  vr.forward(bt, bh, bhead, n_rays, S, out, w).wait();
-  vr.median_depth(bt, w, n_rays, S, out).wait();
-  const auto med = out.read_vec<float>(size_t(n_rays) * 3);
+  const auto med = run_median(vr, t, h0, head, n_rays, S).out;
   for (int r = 0; r < n_rays; ++r) {
     INFO("ray " << r);
     // The medium starts at the first sample; between samples the quadrature is exact.
@@ -202,14 +209,9 @@ TEST_CASE("Median depth: a half-opaque foreground never blends with the wall beh
       }
     }
   }
-  auto& rt = test::runtime();
-  auto bt = cl::Buffer::from(rt, t), bh = cl::Buffer::from(rt, h0),
-       bhead = cl::Buffer::from(rt, head);
-  cl::Buffer out(rt, size_t(n_rays) * 12), w(rt, t.size() * 4);
-  vr.forward(bt, bh, bhead, n_rays, S, out, w).wait();
-  const auto mean = out.read_vec<float>(size_t(n_rays) * 3);
-  vr.median_depth(bt, w, n_rays, S, out).wait();
-  const auto med = out.read_vec<float>(size_t(n_rays) * 3);
+  const auto run = run_median(vr, t, h0, head, n_rays, S);
+  const auto& mean = run.fwd.out;
+  const auto& med = run.out;
   for (int r = 0; r < n_rays; ++r) {
     INFO("ray " << r << " opacity " << opacity[r] << ": expected depth " << mean[3 * r] / kScale
                 << " m, median " << med[3 * r] / kScale << " m");
