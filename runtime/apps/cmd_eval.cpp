@@ -49,9 +49,12 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
     }
     const Json& m = j.at("metrics");
     const Json& n = j.at("naive_baseline").at("metrics");
-    std::printf("%s (%s) on %s, step %ld, %zu test frames\n", j["method"].get<std::string>().c_str(),
-                j["preset"].get<std::string>().c_str(), j["dataset"].get<std::string>().c_str(),
-                j["step"].get<long>(), j["per_frame"].size());
+    const Json& rs = j.at("render_sampling");
+    std::printf("%s (%s) on %s, step %ld, %zu test frames, rendered with %d + %d samples, %s depth\n",
+                j["method"].get<std::string>().c_str(), j["preset"].get<std::string>().c_str(),
+                j["dataset"].get<std::string>().c_str(), j["step"].get<long>(),
+                j["per_frame"].size(), rs.at("n_samples").get<int>(), rs.at("n_importance").get<int>(),
+                rs.at("depth").get<std::string>().c_str());
     std::printf("%-18s %12s %12s\n", "metric", "model", "naive");
     for (auto it = m.begin(); it != m.end(); ++it)
       std::printf("%-18s %12s %12s\n", it.key().c_str(), num(it.value()).c_str(),
