@@ -18,11 +18,29 @@ using bench::set_counters;
 using bench::uniform;
 using field::Activation;
 
+// Gather model of the hash-grid kernels: 4 random reads per point on every level whose table is
+// larger than 1 MiB (the coarse levels stay in the 2 MiB L2 of this CPU and cost little); the 8
+// corners form 4 x-pairs whose two entries are adjacent (dense index gx + ..., hash gx ^ ...), so
+// a pair costs one cache-missing read. Reported as gathers/s beside the probe's random-gather
+// rate measured in this run (peak_gathers_per_s, kernels/field/probe.cl).
+static void set_gather_counters(benchmark::State& state, const field::HashGrid& grid,
+                                int features, double secs, double points) {
+  int big = 0;
+  for (const auto& lv : grid.levels())
+    if (double(lv.size) * features * 4 > 1024.0 * 1024.0) ++big;
+  const double g = points * 4 * big * double(state.iterations()) / std::max(secs, 1e-12);
+  const double peak = bench::roofline().gathers;
+  state.counters["gathers_per_s"] = g;
+  state.counters["peak_gathers_per_s"] = peak;
+  state.counters["frac_gather_peak"] = g / peak;
+}
 
-static void hash_fwd(benchmark::State& state, bool half, bool rays = false) {
+static void hash_fwd(benchmark::State& state, bool half, bool rays = false,
+                     const char* schedule = "auto") {
   auto& rt = bench::runtime();
   field::HashGridConfig cfg;
   cfg.half_table = half;
+  cfg.schedule = schedule;
   field::HashGrid grid(rt, cfg);
   const int n = int(state.range(0));
   std::vector<float> params(grid.n_params());
@@ -35,12 +53,17 @@ static void hash_fwd(benchmark::State& state, bool half, bool rays = false) {
   // Bytes: 8 corner gathers of F values per level, x read, encoding written.
   const double bytes = double(n) * (16 * 8 * 2 * (half ? 2 : 4) + 12 + grid.n_output() * 4);
   set_counters(state, secs, n, 0, bytes);
+  set_gather_counters(state, grid, cfg.features, secs, n);
 }
 static void BM_HashGridFwd(benchmark::State& s) { hash_fwd(s, false); }
 static void BM_HashGridFwdHalfTable(benchmark::State& s) { hash_fwd(s, true); }
 // Ray-coherent points (64 samples per ray) instead of uniform random ones.
 static void BM_HashGridFwdRays(benchmark::State& s) { hash_fwd(s, false, true); }
 static void BM_HashGridFwdRaysHalfTable(benchmark::State& s) { hash_fwd(s, true, true); }
+static void BM_HashGridFwdRaysPerPoint(benchmark::State& s) { hash_fwd(s, false, true, "per_point"); }
+static void BM_HashGridFwdRaysHalfPerPoint(benchmark::State& s) { hash_fwd(s, true, true, "per_point"); }
+BENCHMARK(BM_HashGridFwdRaysPerPoint)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HashGridFwdRaysHalfPerPoint)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HashGridFwdRays)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HashGridFwdRaysHalfTable)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HashGridFwd)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
@@ -81,6 +104,7 @@ static void hash_bwd(benchmark::State& state, bool deterministic, bool with_dx, 
       state, [&] { grid.backward(b_p, 0, b_x, n, b_d, b_g, 0, with_dx ? &b_dx : nullptr); });
   const double bytes = double(n) * (16 * 8 * 2 * 4 * (with_dx ? 3 : 2)) + double(params.size()) * 4;
   set_counters(state, secs, n, 0, bytes);
+  set_gather_counters(state, grid, cfg.features, secs, double(n) * (with_dx ? 2 : 1));
 }
 static void BM_HashGridBwdDeterministic(benchmark::State& s) { hash_bwd(s, true, false); }
 static void BM_HashGridBwdAtomic(benchmark::State& s) { hash_bwd(s, false, false); }

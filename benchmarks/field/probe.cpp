@@ -31,6 +31,17 @@ const Roofline& roofline() {
       for (int rep = 0; rep < 4; ++rep) best = std::min(best, k.launch({size_t(n4)}, {64}).elapsed_ms());
       out.gbs = double(n4) * 32.0 / (best * 1e-3) * 1e-9;
     }
+    {
+      const uint32_t entries = 1u << 23;  // 64 MiB of float2, far beyond the caches
+      const int items = 1 << 18, per_item = 16;
+      cl::Buffer table(rt, size_t(entries) * 8), sink(rt, size_t(items) * 4);
+      table.fill_zero();
+      auto k = rt.kernel("field/probe.cl", "field_probe_gather");
+      k.set_args(per_item, entries - 1u, table, sink);
+      double best = 1e30;
+      for (int rep = 0; rep < 4; ++rep) best = std::min(best, k.launch({size_t(items)}, {64}).elapsed_ms());
+      out.gathers = double(items) * per_item / (best * 1e-3);
+    }
     return out;
   }();
   return r;

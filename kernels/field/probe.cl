@@ -20,3 +20,17 @@ __kernel void field_probe_copy(const int n4, __global const float4* src, __globa
   const int i = get_global_id(0);
   if (i < n4) dst[i] = src[i];
 }
+
+// Random float2 gathers from a table of mask + 1 entries (a power of two, sized beyond the
+// caches): each work-item sums `per_item` reads at hashed, independent positions. The device's
+// rate of cache-missing 8-byte reads, the roof of the hash-grid kernels' fine levels.
+__kernel void field_probe_gather(const int per_item, const uint mask,
+                                 __global const float2* table, __global float* out) {
+  const uint i = get_global_id(0);
+  float2 acc = (float2)(0.0f);
+  for (int k = 0; k < per_item; ++k) {
+    const uint h = (i * 2654435761u) ^ ((uint)k * 805459861u) ^ ((uint)k << 20);
+    acc += table[h & mask];
+  }
+  out[i] = acc.x + acc.y;
+}
