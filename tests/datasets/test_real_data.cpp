@@ -12,6 +12,7 @@ using namespace sgnlf;
 
 TEST_CASE("nuScenes LIDAR_TOP frame: 34 688 points, rings 0-31", "[real]") {
   const std::string dir = test::shared_dir() + "/data/real/nuscenes-lidar-top-single";
+  if (!test::have_real_data(dir)) return;
   const std::string file = dir + "/n015-2018-07-24-11-22-45+0800__LIDAR_TOP__1532402927647951.pcd.bin";
   std::vector<uint8_t> rings;
   io::ScanReadStats st;
@@ -36,6 +37,7 @@ TEST_CASE("nuScenes LIDAR_TOP frame: 34 688 points, rings 0-31", "[real]") {
 
 TEST_CASE("KITTI odometry slice: 10 frames, LiDAR poses inv(Tr)·P·Tr", "[real]") {
   const std::string root = test::shared_dir() + "/data/real/kitti-odometry-00-slice";
+  if (!test::have_real_data(root)) return;
   const Dataset d = load_dataset(root);
   CHECK(d.source == "kitti-odometry");
   REQUIRE(d.frames.size() == 10);
@@ -66,6 +68,7 @@ TEST_CASE("KITTI odometry slice: 10 frames, LiDAR poses inv(Tr)·P·Tr", "[real]
 TEST_CASE("KITTI odometry slice: test frames chosen by position replace the protocol split",
           "[real]") {
   const std::string root = test::shared_dir() + "/data/real/kitti-odometry-00-slice";
+  if (!test::have_real_data(root)) return;
   LoadOptions o;
   o.test_frames = {6, 3};
   const Dataset d = load_dataset(root, o);

@@ -1,6 +1,7 @@
 #include "support/test_device.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 
@@ -21,7 +22,20 @@ cl::Runtime& runtime() {
 }
 
 std::string source_dir() { return SGNLF_SOURCE_DIR; }
-std::string shared_dir() { return SGNLF_SHARED_DIR; }
+std::string shared_dir() {
+  const char* env = std::getenv("SGNLF_SHARED_DIR");
+  return env && *env ? std::string(env) : std::string(SGNLF_SHARED_DIR);
+}
+
+bool have_real_data(const std::string& path) {
+  if (std::filesystem::exists(path)) return true;
+  const char* ci = std::getenv("CI");
+  const std::string msg = "real data not found: " + path +
+                          " (set SGNLF_SHARED_DIR to the folder holding data/real)";
+  if (ci && std::string(ci) == "true") FAIL(msg);
+  WARN(msg + "; skipped");
+  return false;
+}
 
 std::string temp_dir(const std::string& name) {
   namespace fs = std::filesystem;
