@@ -22,7 +22,7 @@ using field::Activation;
 // larger than 1 MiB (the coarse levels stay in the 2 MiB L2 of this CPU and cost little); the 8
 // corners form 4 x-pairs whose two entries are adjacent (dense index gx + ..., hash gx ^ ...), so
 // a pair costs one cache-missing read. Reported as gathers/s beside the probe's random-gather
-// rate measured in this run (peak_gathers_per_s, kernels/field/probe.cl).
+// rate measured in this run (peak_gathers_per_s, kernels/roofline/roofline.cl).
 static void set_gather_counters(benchmark::State& state, const field::HashGrid& grid,
                                 int features, double secs, double points) {
   int big = 0;

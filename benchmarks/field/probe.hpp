@@ -1,6 +1,6 @@
 // Device roofline measured in the benchmark run itself: peak GFLOP/s of a float16-vector FMA
-// loop, streaming-copy GB/s and random float2 gathers/s (kernels/field/probe.cl). Measured
-// once per process.
+// loop, streaming-copy GB/s and random float2 gathers/s (the harness's probe kernels,
+// kernels/roofline/roofline.cl). Measured once per process.
 #pragma once
 
 namespace sgnlf::bench {

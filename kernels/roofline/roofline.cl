@@ -38,3 +38,17 @@ __kernel void roofline_triad_stream(const float s, __global float4* a, __global 
   const size_t i = get_global_id(0);
   a[i] = fma((float4)(s), c[i], b[i]);
 }
+
+// Random float2 reads from a table of mask + 1 entries (a power of two, sized beyond the
+// caches): each work-item sums `per_item` reads at hashed, independent positions. The rate of
+// cache-missing 8-byte reads, the roof of the hash-grid kernels' fine levels.
+__kernel void roofline_gather_random(const int per_item, const uint mask,
+                                     __global const float2* table, __global float* out) {
+  const uint i = get_global_id(0);
+  float2 acc = (float2)(0.0f);
+  for (int k = 0; k < per_item; ++k) {
+    const uint h = (i * 2654435761u) ^ ((uint)k * 805459861u) ^ ((uint)k << 20);
+    acc += table[h & mask];
+  }
+  out[i] = acc.x + acc.y;
+}

@@ -226,6 +226,11 @@ std::string render_markdown(const Json& r) {
                   rf["peak_gflops"].value("median", 0.0), rf["triad_gbs"].value("median", 0.0),
                   rf["copy_gbs"].value("median", 0.0));
     o << buf;
+    if (rf.contains("gathers_per_s_best")) {
+      std::snprintf(buf, sizeof buf, "- random float2 reads (measured, best): %.0f M/s\n",
+                    rf.value("gathers_per_s_best", 0.0) * 1e-6);
+      o << buf;
+    }
   }
   if (r.contains("peak_rss_kib"))
     o << "- peak host memory: " << r["peak_rss_kib"].get<long>() / 1024 << " MiB\n";

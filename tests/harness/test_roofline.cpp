@@ -67,12 +67,44 @@ TEST_CASE("roofline copy and triad match the host reference", "[harness][device]
   CHECK_THROWS_AS(probe.alloc_stream(6), Error);
 }
 
+TEST_CASE("roofline gather sums the hashed entries of the table", "[harness][device]") {
+  harness::RooflineProbe probe(test::runtime());
+  // 2^22 entries (32 MiB): the mask keeps every bit the hash sets, k << 20 included.
+  const uint32_t entries = 1u << 22, mask = entries - 1;
+  std::vector<float> table(size_t(entries) * 2);
+  for (uint32_t e = 0; e < entries; ++e) {
+    table[2 * e] = float(e % 4093) * 0.25f;
+    table[2 * e + 1] = -float(e % 37);
+  }
+  probe.alloc_gather(table);
+  const size_t items = 300;
+  probe.run_gather(items);
+  const auto out = probe.gather_output(items);
+  int mismatches = 0;
+  for (uint32_t i = 0; i < items; ++i) {
+    float ax = 0.0f, ay = 0.0f;
+    for (uint32_t k = 0; k < uint32_t(harness::kGatherPerItem); ++k) {
+      const uint32_t e = harness::gather_entry(i, k, mask);
+      ax += table[2 * e];
+      ay += table[2 * e + 1];
+    }
+    if (out[i] != ax + ay) ++mismatches;
+  }
+  CHECK(mismatches == 0);
+  CHECK_THROWS_AS(probe.alloc_gather_zero(1000), Error);  // not a power of two
+}
+
 TEST_CASE("measure_roofline returns positive summaries", "[harness][device]") {
   harness::RooflineOptions o;
   o.target_launch_ms = 5;
   o.repetitions = 3;
   o.stream_floats = 1 << 20;
+  o.gather_entries = 1 << 20;
+  o.gather_items = 1 << 14;
   const Json r = harness::measure_roofline(test::runtime(), o);
+  CHECK(r["gathers_per_s"]["n"] == 3);
+  CHECK(r["gathers_per_s_best"].get<double>() >= r["gathers_per_s"]["median"].get<double>());
+  CHECK(r["gathers_per_s_best"].get<double>() > 0);
   CHECK(r["peak_gflops"]["n"] == 3);
   CHECK(r["peak_gflops_best"].get<double>() > 0);
   CHECK(r["triad_gbs"]["median"].get<double>() > 0);
