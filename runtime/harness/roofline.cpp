@@ -61,9 +61,12 @@ void RooflineProbe::alloc_gather_zero(size_t entries) {
 }
 
 void RooflineProbe::alloc_gather(const std::vector<float>& table_float2) {
-  alloc_gather_zero(table_float2.size() / 2);
-  require(table_float2.size() == table_entries_ * 2, "roofline: gather table must hold float2 entries");
-  table_.write_vec(table_float2);
+  const size_t entries = table_float2.size() / 2;
+  require(table_float2.size() % 2 == 0 && entries >= 2 && (entries & (entries - 1)) == 0 &&
+              entries <= (size_t(1) << 31),
+          "roofline: gather table must hold a power of two of float2 entries in [2, 2^31]");
+  table_ = cl::Buffer::from(rt_, table_float2);
+  table_entries_ = entries;
 }
 
 double RooflineProbe::run_gather(size_t work_items) {
@@ -120,8 +123,9 @@ Json measure_roofline(cl::Runtime& rt, const RooflineOptions& opt) {
   std::vector<double> gathers;
   probe.alloc_gather_zero(opt.gather_entries);
   probe.run_gather(opt.gather_items);
+  const double reads = double(opt.gather_items) * kGatherPerItem;
   for (int r = 0; r < opt.repetitions; ++r)
-    gathers.push_back(double(opt.gather_items) * kGatherPerItem / (probe.run_gather(opt.gather_items) * 1e-3));
+    gathers.push_back(reads / (probe.run_gather(opt.gather_items) * 1e-3));
   // The roofline is the best the device reaches: on a shared machine other processes only
   // ever slow a launch down, so the maximum is the estimate and the median shows the noise.
   return Json{{"peak_gflops_best", *std::max_element(gflops.begin(), gflops.end())},
@@ -137,8 +141,8 @@ Json measure_roofline(cl::Runtime& rt, const RooflineOptions& opt) {
               {"fma_iters", iters},
               {"stream_floats", opt.stream_floats},
               {"method", "OpenCL event times; FLOP/s from float16 FMA chains, GB/s from float4 "
-                         "copy (2 arrays) and triad (3 arrays), no write-allocate counted; gathers/s from "
-                         "random float2 reads of a table of gather_entries"}};
+                         "copy (2 arrays) and triad (3 arrays), no write-allocate counted; "
+                         "gathers/s from random float2 reads of a table of gather_entries"}};
 }
 
 }  // namespace sgnlf::harness
