@@ -38,8 +38,8 @@ RangeImage street_frame(const Sensor& s, uint64_t seed, float noise) {
   return img;
 }
 
-std::vector<Point3f> points_of(const Sensor& s, const RangeImage& img) {
-  std::vector<Point3f> out;
+std::vector<geometry::Point3f> points_of(const Sensor& s, const RangeImage& img) {
+  std::vector<geometry::Point3f> out;
   for (const auto& p : unproject(s, img)) out.emplace_back(p.x, p.y, p.z);
   return out;
 }

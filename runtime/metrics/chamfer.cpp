@@ -25,7 +25,8 @@ void summarize(const std::vector<float>& d, double threshold_sq, double& mean, d
 
 }  // namespace
 
-ChamferResult chamfer_fscore(const std::vector<Point3f>& pred, const std::vector<Point3f>& gt,
+ChamferResult chamfer_fscore(const std::vector<geometry::Point3f>& pred,
+                             const std::vector<geometry::Point3f>& gt,
                              double threshold_sq) {
   require(threshold_sq > 0.0 && std::isfinite(threshold_sq),
           "chamfer_fscore: threshold_sq must be > 0, got " + std::to_string(threshold_sq));
@@ -37,7 +38,7 @@ ChamferResult chamfer_fscore(const std::vector<Point3f>& pred, const std::vector
     r.cd = r.cd_pred_to_gt = r.cd_gt_to_pred = std::numeric_limits<double>::quiet_NaN();
     return r;
   }
-  const KdTree tree_gt(gt), tree_pred(pred);
+  const geometry::KdTree tree_gt(gt), tree_pred(pred);
   std::vector<float> d1, d2;
   tree_gt.nearest_all(pred, d1);
   tree_pred.nearest_all(gt, d2);

@@ -8,7 +8,7 @@
 #pragma once
 #include <vector>
 
-#include "metrics/kdtree.hpp"
+#include "geometry/kdtree.hpp"
 
 namespace sgnlf::metrics {
 
@@ -24,7 +24,8 @@ struct ChamferResult {
   size_t n_pred = 0, n_gt = 0;
 };
 
-ChamferResult chamfer_fscore(const std::vector<Point3f>& pred, const std::vector<Point3f>& gt,
+ChamferResult chamfer_fscore(const std::vector<geometry::Point3f>& pred,
+                             const std::vector<geometry::Point3f>& gt,
                              double threshold_sq = kFscoreThresholdSq);
 
 }  // namespace sgnlf::metrics

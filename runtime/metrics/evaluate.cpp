@@ -34,8 +34,8 @@ void check_image(const Sensor& s, const RangeImage& img, const char* which) {
 
 // Pixels with range ≠ 0 → points in the LiDAR frame (protocol §1; the peers' pano_to_lidar
 // keeps every non-zero range).
-std::vector<Point3f> to_points(const Sensor& s, const std::vector<float>& range) {
-  std::vector<Point3f> pts;
+std::vector<geometry::Point3f> to_points(const Sensor& s, const std::vector<float>& range) {
+  std::vector<geometry::Point3f> pts;
   for (int r = 0; r < s.height; ++r)
     for (int c = 0; c < s.width; ++c) {
       const float d = range[size_t(r) * s.width + c];

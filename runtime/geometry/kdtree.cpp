@@ -1,7 +1,7 @@
 // k-d tree: median split on the axis of largest extent, leaves of ≤ leaf_size points,
 // depth-first search that visits the near child first and prunes the far child by the
 // distance to the splitting plane.
-#include "metrics/kdtree.hpp"
+#include "geometry/kdtree.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -9,7 +9,7 @@
 
 #include "core/error.hpp"
 
-namespace sgnlf::metrics {
+namespace sgnlf::geometry {
 
 KdTree::KdTree(const std::vector<Point3f>& points, int leaf_size)
     : points_(points), order_(points.size()), leaf_size_(std::max(1, leaf_size)) {
@@ -101,4 +101,4 @@ void KdTree::nearest_all(const std::vector<Point3f>& queries, std::vector<float>
   for (size_t i = 0; i < queries.size(); ++i) out_sq[i] = nearest(queries[i]);
 }
 
-}  // namespace sgnlf::metrics
+}  // namespace sgnlf::geometry

@@ -1,13 +1,13 @@
-// Exact nearest-neighbour search in 3-D (a k-d tree over float points), used by the Chamfer
-// distance and F-score (protocol §4). Exact: every query returns the true minimum squared
-// distance, computed in float as the peers' CUDA chamfer kernel does; tests compare it with a
-// brute-force search on random clouds.
+// Exact nearest-neighbour search in 3-D (a k-d tree over float points), shared by the Chamfer
+// distance and F-score (metrics, protocol §4) and the geometric pose optimiser (posegraph,
+// method.md §3). Exact: every query returns the true minimum squared distance, computed in
+// float as the peers' CUDA chamfer kernel does; tests compare it with a brute-force search.
 #pragma once
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
 
-namespace sgnlf::metrics {
+namespace sgnlf::geometry {
 
 using Point3f = Eigen::Vector3f;
 
@@ -45,4 +45,4 @@ class KdTree {
   int leaf_size_;
 };
 
-}  // namespace sgnlf::metrics
+}  // namespace sgnlf::geometry
