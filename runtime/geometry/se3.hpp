@@ -17,6 +17,11 @@ Vec3 log_so3(const Mat3& R);  // rotation vector, |ω| ≤ π
 // The pose-free methods' parameterisation (method.md §0): [Exp_SO3(ω) | u], the translation
 // used directly, without the left Jacobian.
 Pose exp_se3_decoupled(const Vec6& xi);
+// The corrected pose T_init · [Exp(ω) | u] of that parameterisation: R = R_init Exp(ω),
+// t = R_init u + t_init.
+Pose corrected_pose(const Pose& T_init, const Vec6& xi);
+// Right Jacobian of SO(3) at ω: Exp(ω + δ) ≈ Exp(ω) Exp(J_r(ω) δ) for small δ.
+Mat3 right_jacobian_so3(const Vec3& w);
 // Full SE(3) exponential/logarithm with the left Jacobian (for metrics and tests).
 Pose exp_se3(const Vec6& xi);
 Vec6 log_se3(const Pose& T);

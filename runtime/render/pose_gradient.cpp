@@ -8,23 +8,6 @@
 
 namespace sgnlf::render {
 
-Pose corrected_pose(const Pose& T_init, const Vec6& xi) { return T_init * exp_se3_decoupled(xi); }
-
-Mat3 right_jacobian_so3(const Vec3& w) {
-  const double th2 = w.squaredNorm();
-  const Mat3 W = hat(w);
-  double a, b;  // J_r = I − a W + b W²
-  if (th2 < 1e-8) {
-    a = 0.5 - th2 / 24.0;
-    b = 1.0 / 6.0 - th2 / 120.0;
-  } else {
-    const double th = std::sqrt(th2);
-    a = (1.0 - std::cos(th)) / th2;
-    b = (th - std::sin(th)) / (th2 * th);
-  }
-  return Mat3::Identity() - a * W + b * W * W;
-}
-
 Vec6 pose_gradient(const Pose& T_init, const Vec6& xi, const std::vector<float>& origins_lidar,
                    const std::vector<float>& dirs_lidar, const std::vector<float>& grad_o,
                    const std::vector<float>& grad_d) {

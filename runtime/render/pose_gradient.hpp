@@ -4,19 +4,14 @@
 // o_r = R p_r + t, d_r = R v_r. With the right Jacobian J_r of SO(3),
 // Exp(ω + δ) ≈ Exp(ω) Exp(J_r(ω) δ), so d(R q)/dω = −R [q]× J_r(ω) and
 //   dL/dω = J_r(ω)ᵀ Σ_r (p_r × Rᵀ g_o,r + v_r × Rᵀ g_d,r),   dL/du = R_initᵀ Σ_r g_o,r
-// exactly at the current ω (not only at ω = 0). Sums in double, in ray order.
+// exactly at the current ω (not only at ω = 0). Sums in double, in ray order. corrected_pose()
+// and right_jacobian_so3() live in geometry/se3.hpp.
 #pragma once
 #include <vector>
 
 #include "geometry/se3.hpp"
 
 namespace sgnlf::render {
-
-// The corrected pose T_init · [Exp(ω) | u].
-Pose corrected_pose(const Pose& T_init, const Vec6& xi);
-
-// Right Jacobian of SO(3) at ω.
-Mat3 right_jacobian_so3(const Vec3& w);
 
 // dL/dξ = (dL/dω, dL/du). origins_lidar may be empty (all rays start at the sensor origin);
 // otherwise every array is n x 3 floats.

@@ -54,7 +54,7 @@ TEST_CASE("Pose gradient matches finite differences in the decoupled parameteris
          {Vec6::Zero().eval(), (Vec6() << 0.4, -0.9, 0.6, 0.1, -0.2, 0.3).finished()}) {
       const std::vector<float> origins = with_origins ? p : std::vector<float>{};
       std::vector<Vec3> o, d;
-      world_rays(render::corrected_pose(T_init, xi), origins, v, o, d);
+      world_rays(sgnlf::corrected_pose(T_init, xi), origins, v, o, d);
       std::vector<float> go(3 * n), gd(3 * n);
       for (int r = 0; r < n; ++r) {
         const Vec3 e = o[r] + 2 * d[r] - Vec3(L.q[3 * r], L.q[3 * r + 1], L.q[3 * r + 2]);
@@ -69,9 +69,9 @@ TEST_CASE("Pose gradient matches finite differences in the decoupled parameteris
         Vec6 xp = xi, xm = xi;
         xp[k] += 1e-6;
         xm[k] -= 1e-6;
-        world_rays(render::corrected_pose(T_init, xp), origins, v, o, d);
+        world_rays(sgnlf::corrected_pose(T_init, xp), origins, v, o, d);
         const double lp = L.value(o, d);
-        world_rays(render::corrected_pose(T_init, xm), origins, v, o, d);
+        world_rays(sgnlf::corrected_pose(T_init, xm), origins, v, o, d);
         numeric[k] = (lp - L.value(o, d)) / 2e-6;
       }
       INFO("xi " << xi.transpose() << " origins " << with_origins << "\nanalytic "
@@ -87,7 +87,7 @@ TEST_CASE("The right Jacobian of SO(3) satisfies Exp(w + e) = Exp(w) Exp(J_r e)"
   for (const Vec3& w : {Vec3(0, 0, 0), Vec3(1e-5, 2e-5, -1e-5), Vec3(0.5, -1.2, 2.0)}) {
     const Vec3 e(1e-6, -2e-6, 1.5e-6);
     const Mat3 lhs = exp_so3(w + e);
-    const Mat3 rhs = exp_so3(w) * exp_so3(render::right_jacobian_so3(w) * e);
+    const Mat3 rhs = exp_so3(w) * exp_so3(sgnlf::right_jacobian_so3(w) * e);
     CHECK((lhs - rhs).norm() < 1e-11);
   }
 }
