@@ -1,4 +1,4 @@
-// `sgnlf train --method lidar-nerf --preset <name> --data <dataset> --out <run dir> [--seed N]
+// `sgnlf train --method lidar-nerf|geonlf|geonlf-frozen [--pose-init gt|noisy|identity] --preset <name> --data <dataset> --out <run dir> [--seed N]
 // [--config overrides.json] [--device SPEC] [--no-resume] [--stop-at STEP] [--sequence S]
 // [--start ID] [--frames N] [--test-frames P,...]`: trains a run folder (resumes an interrupted
 // one by default) and writes run.json (with the dataset options, which eval and render reuse),
@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "apps/command.hpp"
+#include "pipeline/method_registry.hpp"
 #include "pipeline/presets.hpp"
 #include "pipeline/session.hpp"
 
@@ -13,7 +14,7 @@ namespace sgnlf::app {
 namespace {
 
 struct TrainArgs {
-  std::string method = "lidar-nerf", preset = "quick", data, out, config, device;
+  std::string method = "lidar-nerf", preset = "quick", data, out, config, device, pose_init;
   uint64_t seed = 1;
   bool no_resume = false;
   long stop_at = -1;
@@ -22,7 +23,10 @@ struct TrainArgs {
 
 const Registrar reg("train", "Train a method on a dataset into a run folder", [](CLI::App& sub) {
   auto a = std::make_shared<TrainArgs>();
-  sub.add_option("--method", a->method, "Method (lidar-nerf)");
+  sub.add_option("--method", a->method, "Method (lidar-nerf, geonlf, geonlf-frozen)");
+  sub.add_option("--pose-init", a->pose_init,
+                 "Pose-free methods: initial poses gt, noisy (protocol §3, the presets' default) or "
+                 "identity (config key poses.init; recorded in run.json)");
   sub.add_option("--preset", a->preset, "Preset: paper, quick, smoke");
   sub.add_option("--data", a->data, "Dataset folder (synthetic or real layout)")->required();
   sub.add_option("--out", a->out, "Run folder")->required();
@@ -46,7 +50,12 @@ const Registrar reg("train", "Train a method on a dataset into a run folder", []
     req.manifest.device = a->device;
     req.manifest.seed = a->seed;
     req.manifest.data_options = a->load;
-    const Json overrides = a->config.empty() ? Json::object() : load_json_file(a->config);
+    Json overrides = a->config.empty() ? Json::object() : load_json_file(a->config);
+    if (!a->pose_init.empty()) {
+      if (!pipeline::method_spec(a->method).pose_free)
+        throw ConfigError("--pose-init: method '" + a->method + "' uses ground-truth poses");
+      overrides = pipeline::merge_config_json(overrides, Json{{"poses", {{"init", a->pose_init}}}});
+    }
     req.manifest.config = pipeline::resolve_config(a->method, a->preset, overrides);
     req.run_dir = a->out;
     req.resume = !a->no_resume;

@@ -21,12 +21,15 @@ void add_view(ViewSet& vs, std::vector<Json>& views, const Dataset& d, int f, Ra
 }  // namespace
 
 ViewSet evaluate_model(LidarNerfModel& model, const Dataset& d, const Scene& scene,
-                       int chunk_rays) {
+                       int chunk_rays, const std::vector<Pose>& T_world_lidar) {
   if (d.split.test.empty()) throw Error("dataset " + d.name + ": no test frames to evaluate");
+  require(T_world_lidar.size() == d.frames.size(),
+          "evaluate_model: " + std::to_string(T_world_lidar.size()) + " poses for " +
+              std::to_string(d.frames.size()) + " frames");
   ViewSet vs;
   std::vector<Json> views;
   for (int f : d.split.test)
-    add_view(vs, views, d, f, render_view(model, scene, d.frames[size_t(f)].T_world_lidar, chunk_rays));
+    add_view(vs, views, d, f, render_view(model, scene, T_world_lidar[size_t(f)], chunk_rays));
   vs.mean = metrics::mean_metrics(views);
   return vs;
 }

@@ -16,9 +16,11 @@ struct ViewSet {
   std::vector<RangeImage> images;  // the predictions, in test-frame order (metres)
 };
 
-// Renders every test frame at its ground-truth pose and scores it.
+// Renders every test frame at T_world_lidar[frame] (metres: the ground truth for the GT-pose
+// methods, the optimised pose for the pose-free ones, protocol §3) and scores it against the
+// frame's observed range image.
 ViewSet evaluate_model(LidarNerfModel& model, const Dataset& d, const Scene& scene,
-                       int chunk_rays);
+                       int chunk_rays, const std::vector<Pose>& T_world_lidar);
 // The naive baseline (nearest training scan moved with GT poses, metrics/naive_baseline.hpp).
 ViewSet evaluate_naive(const Dataset& d);
 

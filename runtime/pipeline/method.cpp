@@ -1,18 +1,28 @@
-// run_method() (method.hpp): the harness's entry point. "lidar-nerf" trains and evaluates a run
-// folder through session.hpp; the other rows report implemented = false for now.
+// run_method() (method.hpp): the harness's entry point. Every implemented method of the
+// registry (method_registry.hpp) trains and evaluates a run folder through session.hpp; the
+// others report implemented = false.
 #include "pipeline/method.hpp"
 
 #include <algorithm>
 #include <chrono>
 
+#include "pipeline/method_registry.hpp"
 #include "pipeline/presets.hpp"
 #include "pipeline/session.hpp"
 
 namespace sgnlf::pipeline {
 
-std::vector<std::string> known_methods() { return {"lidar-nerf", "lidar4d", "geonlf", "sg-nlf"}; }
+std::vector<std::string> known_methods() {
+  std::vector<std::string> names;
+  for (const auto& m : method_registry()) names.push_back(m.name);
+  return names;
+}
 
-bool method_implemented(const std::string& method) { return method == "lidar-nerf"; }
+bool method_implemented(const std::string& method) {
+  for (const auto& m : method_registry())
+    if (m.name == method) return m.implemented;
+  return false;
+}
 
 MethodResult run_method(const MethodRequest& req) {
   MethodResult res;
@@ -40,7 +50,7 @@ MethodResult run_method(const MethodRequest& req) {
   res.config = train_config_to_json(m.config);
   res.per_frame = ev.at("per_frame");
   res.metrics = ev.at("metrics");
-  res.pose_metrics = nullptr;
+  res.pose_metrics = ev.contains("pose_metrics") ? ev.at("pose_metrics") : Json(nullptr);
   res.timings = Json{{"load", summary.at("load_seconds")},
                      {"train", summary.at("train_seconds")},
                      {"eval", eval_s}};
@@ -48,6 +58,10 @@ MethodResult run_method(const MethodRequest& req) {
                    {"iterations", summary.at("end_step")},
                    {"samples_per_s", summary.at("samples_per_s")},
                    {"naive_baseline", ev.at("naive_baseline").at("metrics")}};
+  if (ev.contains("initial_pose_metrics")) {
+    res.extra["initial_pose_metrics"] = ev.at("initial_pose_metrics");
+    res.extra["pose_init"] = ev.at("pose_init");
+  }
   return res;
 }
 

@@ -63,7 +63,8 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
       dirs_(rt, c.field.dir_frequencies, c.field.geo_features, 1, 1 + c.field.geo_features),
       sampler_(rt, c.render, scene_scale),
       renderer_(rt, c.render, scene_scale),
-      loss_(rt, c.render, scene_scale) {
+      loss_(rt, c.render, scene_scale),
+      ray_grad_(rt) {
   if (1 + c.field.geo_features != kDensStride)
     throw ConfigError("config.field: 'geo_features' must be 15 (density output 1 + 15 = 16)");
   off_grid_ = layout_.add("hash_grid", grid_.n_params()).offset;
@@ -215,10 +216,12 @@ void LidarNerfModel::field_forward(int n_rays, int samples) {
   renderer_.forward(t_, h0_, head_out_, n_rays, samples, out_, weights_);
 }
 
-void LidarNerfModel::train_step(const RayBatch& b, uint64_t seed, long step, float lr) {
+void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long step,
+                                      bool ray_grads) {
   const int R = b.n_rays;
-  require(R > 0 && R <= max_rays_, "LidarNerfModel::train_step: batch of " + std::to_string(R) +
-                                       " rays, capacity " + std::to_string(max_rays_));
+  require(R > 0 && R <= max_rays_, "LidarNerfModel::forward_backward: batch of " +
+                                       std::to_string(R) + " rays, capacity " +
+                                       std::to_string(max_rays_));
   std::vector<float> target(size_t(R) * 3);
   for (int i = 0; i < R; ++i) {
     target[3 * size_t(i)] = b.range[size_t(i)];
@@ -260,9 +263,37 @@ void LidarNerfModel::train_step(const RayBatch& b, uint64_t seed, long step, flo
   col_set_.launch({cl::round_up(size_t(rows), 64)}, {64});
   density_.backward(params_, off_density_, density_ctx_, dens_, g_dens_, grad_, off_density_,
                     &g_enc_);
-  grid_.backward(params_, off_grid_, *x, rows, g_enc_, grad_, off_grid_);
+  if (!ray_grads) {
+    grid_.backward(params_, off_grid_, *x, rows, g_enc_, grad_, off_grid_);
+    return;
+  }
+  if (!g_x_) {  // allocated on the first pose-free step only
+    const size_t N = size_t(max_rays_) * size_t(cfg_.render.n_samples + cfg_.render.n_importance);
+    g_x_ = floats(rt_, N * 3);
+    g_o_ = floats(rt_, size_t(max_rays_) * 3), g_d_ = floats(rt_, size_t(max_rays_) * 3);
+    g_dir_ = floats(rt_, size_t(max_rays_) * 3);
+  }
+  grid_.backward(params_, off_grid_, *x, rows, g_enc_, grad_, off_grid_, &g_x_);
+  ray_grad_.reduce_rows(compacted_ ? &offset_ : nullptr, t_, o_, d_, g_x_, R, M, kSceneBound,
+                        g_o_, g_d_);
+  dirs_.backward(d_, R, g_dir_enc_, g_dir_);
+  grad_rays_ = R;
+}
+
+void LidarNerfModel::update(float lr) {
   adam_->begin_step();
   adam_->update(params_, grad_, 0, layout_.total(), lr);
+}
+
+LidarNerfModel::RayGrads LidarNerfModel::read_ray_grads() const {
+  if (grad_rays_ == 0) throw Error("LidarNerfModel::read_ray_grads: no step computed ray gradients");
+  RayGrads g;
+  const size_t n = size_t(grad_rays_) * 3;
+  g.origin = g_o_.read_vec<float>(n);
+  g.direction = g_d_.read_vec<float>(n);
+  const auto dir_enc = g_dir_.read_vec<float>(n);
+  for (size_t i = 0; i < n; ++i) g.direction[i] += dir_enc[i];
+  return g;
 }
 
 render::LossValues LidarNerfModel::read_loss() const { return render::RangeLoss::read_losses(loss_buf_); }

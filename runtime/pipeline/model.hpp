@@ -17,6 +17,7 @@
 #include "pipeline/ray_batch.hpp"
 #include "pipeline/train_config.hpp"
 #include "render/range_loss.hpp"
+#include "render/ray_gradient.hpp"
 #include "render/ray_sampler.hpp"
 #include "render/volume_renderer.hpp"
 
@@ -38,8 +39,30 @@ class LidarNerfModel {
   // Deterministic initialisation from `seed` (hash grid ±1e-4, MLP fan-in uniform).
   void init_params(uint64_t seed);
 
-  // Enqueues forward, loss, backward and the Adam update for one batch (no wait).
-  void train_step(const RayBatch& b, uint64_t seed, long step, float lr);
+  // One training step in two parts, composed by the trainer: forward_backward enqueues the
+  // sampling, forward, loss and backward of one batch into the gradient buffer (and, with
+  // `ray_grads`, dL/d(origin) and dL/d(direction) of every ray for the pose-free methods, read
+  // with read_ray_grads()); update() enqueues the Adam step of every parameter group. No wait.
+  void forward_backward(const RayBatch& b, uint64_t seed, long step, bool ray_grads = false);
+  void update(float lr);
+  // Both parts (the ground-truth-pose methods' step).
+  void train_step(const RayBatch& b, uint64_t seed, long step, float lr) {
+    forward_backward(b, seed, step);
+    update(lr);
+  }
+  // Per ray (n_rays × 3 each, normalised frame) of the last forward_backward(..., true):
+  // gradients of the loss with respect to the ray origins and directions, through every
+  // evaluated sample position (early-terminated samples carry none: they are not in the
+  // truncated field) and the direction encoding. Importance-sample depths are held fixed, as
+  // in the peers' code (they come from a no-gradient coarse pass). Blocking.
+  struct RayGrads {
+    std::vector<float> origin, direction;
+  };
+  RayGrads read_ray_grads() const;
+
+  // Coarse-to-fine mask of the hash-grid levels (field::barf_level_weights); all ones by default.
+  void set_level_weights(const std::vector<float>& w) { grid_.set_level_weights(w); }
+  int levels() const { return cfg_.field.levels; }
   // The four loss terms of the last train_step (blocks until it finished).
   render::LossValues read_loss() const;
 
@@ -83,6 +106,7 @@ class LidarNerfModel {
   render::RaySampler sampler_;
   render::VolumeRenderer renderer_;
   render::RangeLoss loss_;
+  render::RayGradReducer ray_grad_;
   cl::Kernel col_get_, col_set_, clamp_, fine_points_, merge_, live_count_, compact_rows_,
       expand_, row_ray_k_;
   bool reuse_coarse_ = true, encoded_ = false, compacted_ = false;
@@ -94,6 +118,10 @@ class LidarNerfModel {
   cl::Buffer o_, d_, target_, t_c_, x_c_, w_c_, enc_c_, src_, x_f_, enc_f_, t_, x_, enc_, dens_, h0_, dir_enc_,
       head_out_, out_, weights_, grad_out_, terms_, loss_buf_, g_h0_, g_head_, g_dens_,
       g_enc_, g_dir_enc_;
+  // Pose-free methods: dL/dx per evaluated sample, per-ray dL/do, dL/dd, and the direction
+  // encoding's share of dL/dd.
+  cl::Buffer g_x_, g_o_, g_d_, g_dir_;
+  int grad_rays_ = 0;
   // Early termination: per-ray live counts and offsets (int32), each live row's ray, and the
   // compact (live rows only) positions, encodings, head outputs and their gradients.
   cl::Buffer count_, offset_, row_ray_, x_l_, enc_l_, head_l_, g_h0_l_, g_head_l_;

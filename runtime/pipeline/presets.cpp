@@ -4,6 +4,8 @@
 #include <string_view>
 #include <utility>
 
+#include "pipeline/method_registry.hpp"
+
 namespace sgnlf::pipeline {
 
 // Defined in the generated presets_embedded.cpp: (name, JSON text) pairs.
@@ -32,7 +34,9 @@ Json preset_json(const std::string& method, const std::string& preset) {
 
 TrainConfig resolve_config(const std::string& method, const std::string& preset,
                            const Json& overrides) {
-  const Json merged = merge_config_json(preset_json(method, preset), overrides);
+  const MethodSpec& spec = method_spec(method);
+  const Json merged = merge_config_json(
+      merge_config_json(preset_json(spec.preset_family, preset), spec.overrides), overrides);
   return train_config_from_json(merged, "preset " + method + "-" + preset + " + overrides");
 }
 

@@ -46,7 +46,8 @@ void image_rays(const Scene& scene, const Pose& T, size_t begin, size_t end,
   }
 }
 
-RayBatch draw_ray_batch(const Scene& scene, const TrainConfig& c, uint64_t seed, long step) {
+RayBatch draw_ray_batch(const Scene& scene, const TrainConfig& c, uint64_t seed, long step,
+                        const std::function<Pose(int)>& pose_of) {
   RayBatch b;
   b.frame = batch_frame(scene, seed, step);
   b.patches = batch_uses_patches(scene, c, step);
@@ -67,7 +68,7 @@ RayBatch draw_ray_batch(const Scene& scene, const TrainConfig& c, uint64_t seed,
   } else {
     for (auto& px : b.pixels) px = int(rng.below(uint32_t(H * W)));
   }
-  const Pose& T = scene.T_world_lidar[size_t(b.frame)];
+  const Pose T = pose_of ? pose_of(b.frame) : scene.T_world_lidar[size_t(b.frame)];
   const RangeImage& img = scene.images[size_t(b.frame)];
   std::vector<float> o, d;
   b.origins.resize(size_t(b.n_rays) * 3);

@@ -7,6 +7,7 @@
 // the batch of a step does not depend on what was drawn before, so resume is exact.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "pipeline/scene.hpp"
@@ -26,7 +27,10 @@ struct RayBatch {
 // Frame visited at `step` (a permutation of scene.train per epoch).
 int batch_frame(const Scene& scene, uint64_t seed, long step);
 bool batch_uses_patches(const Scene& scene, const TrainConfig& c, long step);
-RayBatch draw_ray_batch(const Scene& scene, const TrainConfig& c, uint64_t seed, long step);
+// Rays start from `pose_of(frame)` (normalised frame) when given (the current estimate of a
+// pose-free run), else from scene.T_world_lidar.
+RayBatch draw_ray_batch(const Scene& scene, const TrainConfig& c, uint64_t seed, long step,
+                        const std::function<Pose(int)>& pose_of = {});
 
 // Rays of a whole range image of `frame_pose` (normalised frame), pixels [begin, end).
 void image_rays(const Scene& scene, const Pose& T_world_lidar, size_t begin, size_t end,

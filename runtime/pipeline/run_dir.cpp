@@ -4,7 +4,10 @@
 #include <filesystem>
 
 #include "datasets/loader.hpp"
+#include "datasets/protocol.hpp"
 #include "pipeline/checkpoint.hpp"
+#include "pipeline/pose_init.hpp"
+#include "pipeline/pose_set.hpp"
 #include "pipeline/trainer.hpp"
 
 namespace sgnlf::pipeline {
@@ -36,6 +39,16 @@ RunManifest read_manifest(const std::string& run_dir) {
   return m;
 }
 
+RunScene make_run_scene(const Dataset& d, const TrainConfig& c) {
+  if (!c.is_pose_free()) return RunScene{make_scene(d), gt_poses(d)};
+  if (d.split.test.empty())
+    throw ConfigError("dataset " + d.name + ": " + std::to_string(d.frames.size()) +
+                      " frames hold none of the protocol's test frames (4, 12, 20 of a 36-frame "
+                      "low-frequency window); a pose-free run needs at least one test view");
+  std::vector<Pose> init = initial_poses(d, c.pose_free.poses);
+  return RunScene{make_pose_free_scene(d, init), std::move(init)};
+}
+
 int model_capacity(const TrainConfig& c) {
   return std::max(c.schedule.rays_per_batch, c.schedule.render_chunk_rays);
 }
@@ -62,7 +75,9 @@ LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
   }
   const std::string data = dataset_override.empty() ? run.manifest.dataset : dataset_override;
   run.dataset = std::make_unique<Dataset>(load_dataset(data, run.manifest.data_options));
-  run.scene = std::make_unique<Scene>(make_scene(*run.dataset));
+  RunScene rs = make_run_scene(*run.dataset, run.manifest.config);
+  run.scene = std::make_unique<Scene>(std::move(rs.scene));
+  run.T_world_lidar_init = rs.T_world_lidar_init;
   const TrainConfig& c = run.manifest.config;
   run.model = std::make_unique<LidarNerfModel>(rt, c, float(run.scene->norm.scale),
                                                model_capacity(c));
@@ -75,6 +90,14 @@ LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
   st.adam_step = ck.step;
   run.model->set_state(st);
   run.step = ck.step;
+  run.pose_free = c.is_pose_free();
+  run.T_world_lidar = run.T_world_lidar_init;
+  if (run.pose_free) {
+    PoseSet poses(run.scene->T_world_lidar, c.pose_free.pose_optim);
+    poses.load_state([&](const std::string& name, size_t n) { return ck.array(name, n); });
+    for (size_t i = 0; i < poses.size(); ++i)
+      run.T_world_lidar[i] = denormalize_pose(poses.pose(i), run.scene->norm);
+  }
   return run;
 }
 

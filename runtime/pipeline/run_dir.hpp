@@ -29,13 +29,25 @@ struct RunManifest {
 void write_manifest(const std::string& run_dir, const RunManifest& m);
 RunManifest read_manifest(const std::string& run_dir);  // ConfigError/IoError naming the file
 
-// A run loaded for rendering or evaluation: dataset, scene and the model from the checkpoint.
+// The scene a run trains on: ground-truth poses, or for the pose-free methods the initial poses
+// its config asks for (pose_init.hpp), which also set the normalisation (protocol §2).
+struct RunScene {
+  Scene scene;
+  std::vector<Pose> T_world_lidar_init;  // per frame, metres (= ground truth for GT methods)
+};
+RunScene make_run_scene(const Dataset& d, const TrainConfig& c);
+
+// A run loaded for rendering or evaluation: dataset, scene, the model from the checkpoint and
+// the poses it was trained with (the pose provider of evaluation and rendering).
 struct LoadedRun {
   RunManifest manifest;
   std::unique_ptr<Dataset> dataset;
   std::unique_ptr<Scene> scene;
   std::unique_ptr<LidarNerfModel> model;
   long step = 0;
+  bool pose_free = false;
+  std::vector<Pose> T_world_lidar;       // per frame, metres: ground truth, or the optimised poses
+  std::vector<Pose> T_world_lidar_init;  // per frame, metres: the initial poses
 };
 
 // Sampling used when rendering a loaded run (a finer sampling than training's is allowed: the

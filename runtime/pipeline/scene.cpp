@@ -20,13 +20,17 @@ Pose denormalize_pose(const Pose& T, const SceneNormalization& n) {
   return out;
 }
 
-Scene make_scene(const Dataset& d) {
+namespace {
+
+Scene scene_with_poses(const Dataset& d, const std::vector<Pose>& poses) {
   if (d.split.train.empty()) throw Error("dataset " + d.name + ": no training frames");
+  if (poses.size() != d.frames.size())
+    throw Error("dataset " + d.name + ": " + std::to_string(poses.size()) + " poses for " +
+                std::to_string(d.frames.size()) + " frames");
   Scene s;
   s.sensor = d.sensor;
   s.train = d.split.train;
   s.test = d.split.test;
-  const auto poses = gt_poses(d);
   s.norm = compute_normalization(d, poses, d.split.train);
   if (!(s.norm.scale > 0.0) || !std::isfinite(s.norm.scale))
     throw NumericError("dataset " + d.name + ": degenerate scene normalisation (scale " +
@@ -44,6 +48,23 @@ Scene make_scene(const Dataset& d) {
     for (auto& r : img.range) r = float(r * s.norm.scale);
     s.images.push_back(std::move(img));
   }
+  return s;
+}
+
+}  // namespace
+
+Scene make_scene(const Dataset& d) { return scene_with_poses(d, gt_poses(d)); }
+
+Scene make_pose_free_scene(const Dataset& d, const std::vector<Pose>& T_world_lidar_init) {
+  for (size_t i = 0; i < T_world_lidar_init.size(); ++i)
+    if (!T_world_lidar_init[i].matrix().allFinite())
+      throw NumericError("dataset " + d.name + ": initial pose of frame " +
+                         std::to_string(i < d.frames.size() ? d.frames[i].id : int(i)) +
+                         " is not finite");
+  Scene s = scene_with_poses(d, T_world_lidar_init);
+  s.train.clear();
+  for (int i = 0; i < int(d.frames.size()); ++i) s.train.push_back(i);
+  s.pose_only = d.split.test;
   return s;
 }
 

@@ -15,12 +15,19 @@ struct Scene {
   std::vector<RangeImage> images;    // per dataset frame, ranges normalised
   std::vector<const RangeImage*> gt_images;  // per dataset frame, the dataset's own (metres)
   std::vector<float> directions;     // H×W×3 sensor-frame unit directions (protocol §1)
-  std::vector<int> train, test;      // indices into the dataset's frames
+  std::vector<int> train, test;      // indices into the dataset's frames; `train` = the frames
+                                     // ray batches come from
+  std::vector<int> pose_only;        // frames in `train` whose steps move only their pose
+                                     // (pose-free test frames, protocol §3): network lr 0
 };
 
 // Builds the scene with ground-truth poses (LiDAR-NeRF, LiDAR4D). Keeps pointers into `d`,
 // which must outlive the scene.
 Scene make_scene(const Dataset& d);
+// The pose-free methods' scene (protocol §2–3): `T_world_lidar_init` (metres, one per dataset
+// frame) gives the normalisation and the initial poses; ray batches visit every frame, the test
+// frames for their poses only (pose_only).
+Scene make_pose_free_scene(const Dataset& d, const std::vector<Pose>& T_world_lidar_init);
 
 // Pose `T_world_lidar` (metres) → normalised frame, and back.
 Pose normalize_pose(const Pose& T_world_lidar, const SceneNormalization& n);

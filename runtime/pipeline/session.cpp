@@ -11,6 +11,11 @@
 #include "io/range_array.hpp"
 #include "pipeline/evaluate.hpp"
 #include "pipeline/render_view.hpp"
+#include "datasets/protocol.hpp"
+#include "metrics/pose_errors.hpp"
+#include "pipeline/geometric_stage.hpp"
+#include "pipeline/pose_free_step.hpp"
+#include "pipeline/trajectory_files.hpp"
 
 namespace sgnlf::pipeline {
 namespace fs = std::filesystem;
@@ -40,6 +45,12 @@ io::RgbImage stack(const io::RgbImage& a, const io::RgbImage& b, int gap) {
 
 }  // namespace
 
+Json pose_metrics_json(const std::vector<Pose>& est, const std::vector<Pose>& gt) {
+  const metrics::PoseErrors e = metrics::compute_pose_errors(est, gt);
+  return Json{{"ate_m", e.ate_m}, {"rpe_t_cm", e.rpe_t_cm}, {"rpe_r_deg", e.rpe_r_deg},
+              {"frames", est.size()}};
+}
+
 Json train_run(cl::Runtime& rt, const TrainRequest& req) {
   const auto t_load = std::chrono::steady_clock::now();
   const fs::path run(req.run_dir);
@@ -53,9 +64,9 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
   // The dataset first: a bad path or option leaves no run folder behind.
   const Dataset d = load_dataset(req.manifest.dataset, req.manifest.data_options);
   write_manifest(req.run_dir, req.manifest);
-  const Scene scene = make_scene(d);
-  const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_load).count();
   const TrainConfig& c = req.manifest.config;
+  const RunScene rs = make_run_scene(d, c);
+  const Scene& scene = rs.scene;
   LidarNerfModel model(rt, c, float(scene.norm.scale), model_capacity(c));
   TrainOptions opt;
   opt.run_dir = req.run_dir;
@@ -63,7 +74,24 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
   opt.resume = req.resume;
   opt.stop_at = req.stop_at;
   opt.show_progress = req.show_progress;
-  opt.evaluate = [&](long) { return evaluate_model(model, d, scene, c.schedule.render_chunk_rays).mean; };
+  // Pose-free methods: the poses are parameters, and a geometric stage may run before epochs.
+  std::unique_ptr<PoseSet> poses;
+  std::unique_ptr<PoseFreeStep> pose_step;
+  if (c.is_pose_free()) {
+    const PoseFreeConfig& pf = c.pose_free;
+    poses = std::make_unique<PoseSet>(scene.T_world_lidar, pf.pose_optim,
+                                      pf.pose_optim.lr_scale(pf.poses.init));
+    pose_step = std::make_unique<PoseFreeStep>(scene, c, *poses, gt_poses(d), req.run_dir,
+                                               make_geometric_stage(d, scene, c));
+    opt.policy = pose_step.get();
+  }
+  auto current_poses = [&] { return pose_step ? pose_step->poses_world() : rs.T_world_lidar_init; };
+  const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_load).count();
+  opt.evaluate = [&](long) {
+    Json m = evaluate_model(model, d, scene, c.schedule.render_chunk_rays, current_poses()).mean;
+    if (pose_step) m["pose"] = pose_metrics_json(current_poses(), gt_poses(d));
+    return m;
+  };
   log::info("training ", c.method, "-", c.preset, " on ", d.name, " (", d.split.train.size(),
             " train / ", d.split.test.size(), " test frames, ", model.n_params(), " parameters, ",
             "device ", rt.device().describe(), ")");
@@ -84,6 +112,11 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
          {"first_loss", loss_json(s.first_loss)},
          {"last_loss", loss_json(s.last_loss)},
          {"device", rt.device().describe()}};
+  if (pose_step) {
+    j["pose_metrics"] = pose_metrics_json(current_poses(), gt_poses(d));
+    j["initial_pose_metrics"] = pose_metrics_json(rs.T_world_lidar_init, gt_poses(d));
+    j["trajectories"] = write_run_trajectories(req.run_dir, d, rs.T_world_lidar_init, current_poses());
+  }
   write_json_file((run / "summary.json").string(), j);
   return j;
 }
@@ -95,7 +128,7 @@ Json render_run(LoadedRun& run, const std::string& out_dir) {
   const ViewSet naive = evaluate_naive(d);  // one image per test frame, in split order
   for (size_t k = 0; k < d.split.test.size(); ++k) {
     const Frame& fr = d.frames[size_t(d.split.test[k])];
-    const RangeImage pred = render_view(*run.model, *run.scene, fr.T_world_lidar,
+    const RangeImage pred = render_view(*run.model, *run.scene, run.T_world_lidar[size_t(d.split.test[k])],
                                         run.manifest.config.schedule.render_chunk_rays);
     const std::string stem = (fs::path(out_dir) / std::to_string(fr.id)).string();
     io::write_range_npy(stem + "_pred.npy", pred);
@@ -139,7 +172,8 @@ Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
 Json eval_run(LoadedRun& run, const std::string& run_dir) {
   const auto t0 = std::chrono::steady_clock::now();
   const ViewSet model = evaluate_model(*run.model, *run.dataset, *run.scene,
-                                       run.manifest.config.schedule.render_chunk_rays);
+                                       run.manifest.config.schedule.render_chunk_rays,
+                                       run.T_world_lidar);
   const double render_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const ViewSet naive = evaluate_naive(*run.dataset);
   Json j{{"method", run.manifest.method},
@@ -155,6 +189,12 @@ Json eval_run(LoadedRun& run, const std::string& run_dir) {
          {"metrics", model.mean},
          {"per_frame", model.per_frame},
          {"naive_baseline", {{"metrics", naive.mean}, {"per_frame", naive.per_frame}}}};
+  if (run.pose_free) {
+    const auto gt = gt_poses(*run.dataset);
+    j["pose_metrics"] = pose_metrics_json(run.T_world_lidar, gt);
+    j["initial_pose_metrics"] = pose_metrics_json(run.T_world_lidar_init, gt);
+    j["pose_init"] = run.manifest.config.pose_free.poses.init;
+  }
   write_json_file((fs::path(run_dir) / "metrics.json").string(), j);
   return j;
 }

@@ -35,7 +35,11 @@ Json render_run(LoadedRun& run, const std::string& out_dir);
 Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
                   const std::string& out_dir);
 
-// Per-frame and mean metrics of the model and of the naive baseline; writes <run>/metrics.json.
+// ATE, RPE_t, RPE_r (protocol §4, SE(3) Umeyama alignment) of `est` against `gt`, as JSON.
+Json pose_metrics_json(const std::vector<Pose>& est, const std::vector<Pose>& gt);
+
+// Per-frame and mean metrics of the model and of the naive baseline (pose-free runs: with the
+// pose metrics of the optimised and the initial poses over all frames); writes <run>/metrics.json.
 Json eval_run(LoadedRun& run, const std::string& run_dir);
 
 }  // namespace sgnlf::pipeline

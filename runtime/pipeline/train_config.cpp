@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "pipeline/method_registry.hpp"
+
 namespace sgnlf::pipeline {
 
 void FieldSizes::validate(const std::string& w) const {
@@ -41,10 +43,20 @@ void ScheduleConfig::validate(const std::string& w) const {
   check_range(w, "render_chunk_rays", render_chunk_rays, 64, 1 << 22);
 }
 
+bool TrainConfig::is_pose_free() const { return method_spec(method).pose_free; }
+
 void TrainConfig::validate() const {
   const std::string w = "config";
-  if (method != "lidar-nerf")
-    throw ConfigError(w + ": 'method' = \"" + method + "\" is not a trainable method (lidar-nerf)");
+  std::string trainable;
+  for (const auto& m : method_registry())
+    if (m.implemented) trainable += (trainable.empty() ? "" : ", ") + m.name;
+  const MethodSpec* spec = nullptr;
+  for (const auto& m : method_registry())
+    if (m.name == method && m.implemented) spec = &m;
+  if (!spec)
+    throw ConfigError(w + ": 'method' = \"" + method + "\" is not a trainable method (" +
+                      trainable + ")");
+  if (spec->pose_free) pose_free.validate(w);
   field.validate(w + ".field");
   render.validate(w + ".render");
   optim.validate(w + ".optim");
@@ -90,13 +102,14 @@ TrainConfig train_config_from_json(const Json& j, const std::string& where) {
     s.get("patches_on_even_epochs", c.schedule.patches_on_even_epochs);
     s.finish();
   }
+  if (c.is_pose_free()) c.pose_free = PoseFreeConfig::from_json(r, where);
   r.finish();
   c.validate();
   return c;
 }
 
 Json train_config_to_json(const TrainConfig& c) {
-  return Json{
+  Json j{
       {"method", c.method},
       {"preset", c.preset},
       {"field",
@@ -126,6 +139,8 @@ Json train_config_to_json(const TrainConfig& c) {
         {"divergence_factor", c.schedule.divergence_factor},
         {"render_chunk_rays", c.schedule.render_chunk_rays},
         {"patches_on_even_epochs", c.schedule.patches_on_even_epochs}}}};
+  if (c.is_pose_free()) c.pose_free.to_json(j);
+  return j;
 }
 
 Json merge_config_json(Json base, const Json& overrides) {

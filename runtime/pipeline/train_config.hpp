@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/config.hpp"
+#include "pipeline/pose_free_config.hpp"
 #include "render/render_config.hpp"
 
 namespace sgnlf::pipeline {
@@ -58,7 +59,10 @@ struct TrainConfig {
   render::RenderConfig render;
   OptimConfig optim;
   ScheduleConfig schedule;
+  // Pose-free methods only (method_registry: pose_free); absent from the JSON of the others.
+  PoseFreeConfig pose_free;
 
+  bool is_pose_free() const;
   void validate() const;
   // Hash of the resolved config (checkpoints refuse to resume under a different config).
   uint64_t hash() const;

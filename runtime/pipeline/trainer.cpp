@@ -58,6 +58,8 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
   const uint64_t hash = cfg.hash();
   const long total = cfg.schedule.iterations;
 
+  GroundTruthPoseStep gt_step(scene, cfg);
+  StepPolicy& policy = opt.policy ? *opt.policy : gt_step;
   TrainSummary sum;
   Tracker tracker;
   long last_good = -1;
@@ -69,6 +71,7 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
     st.adam_v = ck.array("adam_v", model.n_params());
     st.adam_step = ck.step;
     model.set_state(st);
+    if (opt.policy) opt.policy->load_state(ck);
     tracker.best = ck.best_loss;
     tracker.smoothed = ck.smoothed_loss;
     sum.start_step = last_good = ck.step;
@@ -90,6 +93,7 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
     ck.best_loss = tracker.best;
     ck.smoothed_loss = tracker.smoothed;
     ck.arrays = {{"params", st.params}, {"adam_m", st.adam_m}, {"adam_v", st.adam_v}};
+    for (auto& a : policy.state()) ck.arrays.push_back(std::move(a));
     save_checkpoint(ck_path, ck);
     last_good = step;
   };
@@ -101,12 +105,12 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
   const auto t0 = std::chrono::steady_clock::now();
   bool first = true;
   double live_sum = 0.0;
+  const long epoch_len = long(scene.train.size());
   for (long step = sum.start_step; step < end; ++step) {
-    const RayBatch batch = draw_ray_batch(scene, cfg, opt.seed, step);
+    if (step % epoch_len == 0) policy.on_epoch(step / epoch_len, step);
     const float lr = float(cfg.optim.lr_at(step, total));
-    model.train_step(batch, opt.seed, step, lr);
-    const double live = double(model.live_samples()) /
-                        double(long(batch.n_rays) * (cfg.render.n_samples + cfg.render.n_importance));
+    policy.step(model, opt.seed, step, lr);
+    const double live = double(model.live_samples()) / double(samples_per_step);
     live_sum += live;
     const long done = step + 1;
     const bool ck_due = (cfg.schedule.checkpoint_every > 0 && done % cfg.schedule.checkpoint_every == 0) ||
@@ -132,12 +136,13 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
       first = false;
       sum.last_loss = loss;
       const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      append_line(log_path, Json{{"step", done}, {"lr", lr}, {"elapsed_s", el},
-                                 {"live_fraction", live},
-                                 {"loss", loss_json(loss)}});
+      Json line{{"step", done}, {"lr", lr}, {"elapsed_s", el}, {"live_fraction", live},
+                {"loss", loss_json(loss)}};
+      line.update(policy.log_fields());
+      append_line(log_path, line);
       char extra[96];
       std::snprintf(extra, sizeof extra, "loss %.5f  lr %.2e", total_loss, double(lr));
-      if (opt.show_progress) progress.update(done, extra);
+      if (opt.show_progress) progress.update(done, extra + policy.progress_text());
     }
     if (ck_due) save(done);
     if (eval_due) append_line(eval_path, Json{{"step", done}, {"metrics", opt.evaluate(done)}});

@@ -15,6 +15,7 @@
 #include "core/config.hpp"
 #include "pipeline/model.hpp"
 #include "pipeline/scene.hpp"
+#include "pipeline/step_policy.hpp"
 #include "pipeline/train_config.hpp"
 
 namespace sgnlf::pipeline {
@@ -27,6 +28,8 @@ struct TrainOptions {
   bool show_progress = true;
   // Called every eval_every steps with the step; returns metrics JSON written to eval_log.jsonl.
   std::function<Json(long)> evaluate;
+  // What a step does (hooks per step and per epoch); nullptr = GroundTruthPoseStep.
+  StepPolicy* policy = nullptr;
 };
 
 struct TrainSummary {

@@ -12,9 +12,16 @@ class RayGradReducer {
   // t: n_rays·S, grad_x: n_rays·S x 3 -> grad_o, grad_d: n_rays x 3. Only enqueues.
   cl::Event reduce(const cl::Buffer& t, const cl::Buffer& grad_x, int n_rays, int n_samples,
                    cl::Buffer& grad_o, cl::Buffer& grad_d);
+  // The reduction over each ray's first count[r] samples stored as rows offset[r] + i of
+  // grad_x (offset: n_rays + 1 int32, or nullptr for the full layout, count = M); t, o, d in the
+  // full R × M layout. Components of x = o + t·d outside [−bound, bound] (clamped before the
+  // field) contribute nothing. Only enqueues.
+  cl::Event reduce_rows(const cl::Buffer* offset, const cl::Buffer& t, const cl::Buffer& o,
+                        const cl::Buffer& d, const cl::Buffer& grad_x, int n_rays, int M,
+                        float bound, cl::Buffer& grad_o, cl::Buffer& grad_d);
 
  private:
-  cl::Kernel k_;
+  cl::Kernel k_, rows_;
 };
 
 }  // namespace sgnlf::render

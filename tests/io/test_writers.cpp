@@ -1,13 +1,17 @@
 // Writers: PLY, PCD, PNG pictures, the .npy range-image format.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 
 #include "core/error.hpp"
 #include "io/cloud_writers.hpp"
 #include "io/png_writer.hpp"
 #include "io/range_array.hpp"
 #include "io/scan_io.hpp"
+#include "io/trajectory_svg.hpp"
 #include "support/test_device.hpp"
 
 using namespace sgnlf;
@@ -83,4 +87,35 @@ TEST_CASE("PNG range picture: three stacked panels, turbo colormap", "[io]") {
   CHECK(std::memcmp(b.data(), "\x89PNG\r\n\x1a\n", 8) == 0);
   CHECK(uint8_t(b[19]) == 6);   // IHDR width (big-endian)
   CHECK(uint8_t(b[23]) == 26);  // IHDR height
+}
+
+TEST_CASE("trajectory SVG: one polyline per trajectory, links, errors", "[io][svg]") {
+  const std::string dir = test::temp_dir("io_svg");
+  std::vector<Pose> a, b;
+  for (int k = 0; k < 5; ++k) {
+    Pose T = Pose::Identity();
+    T.translation() = Vec3(2.0 * k, 0.5 * k, 0);
+    a.push_back(T);
+    T.translation().y() += 1.0;
+    b.push_back(T);
+  }
+  io::write_trajectory_svg(dir + "/t.svg", "test", {{"gt", "#000", a}, {"est", "#f00", b}}, {{0, 1}});
+  std::ifstream f(dir + "/t.svg");
+  const std::string s((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  auto count = [&](const std::string& what) {
+    size_t n = 0;
+    for (size_t p = s.find(what); p != std::string::npos; p = s.find(what, p + 1)) ++n;
+    return n;
+  };
+  CHECK(count("<polyline") == 2);
+  CHECK(count("<circle") == 10);
+  CHECK(count("stroke=\"#bbb\"") == 5);
+  CHECK(s.find("est") != std::string::npos);
+  std::vector<Pose> bad = a;
+  bad[2].translation().x() = std::nan("");
+  CHECK_THROWS_WITH(io::write_trajectory_svg(dir + "/bad.svg", "t", {{"x", "#000", bad}}),
+                    Catch::Contains("pose 2 is not finite"));
+  CHECK_THROWS_AS(io::write_trajectory_svg(dir + "/t2.svg", "t", {{"gt", "#000", a}, {"s", "#000", {a[0]}}}, {{0, 1}}),
+                  Error);
+  CHECK_THROWS_AS(io::write_trajectory_svg("/nonexistent-dir/x.svg", "t", {{"gt", "#000", a}}), IoError);
 }

@@ -194,6 +194,26 @@ void ref_raygrad(int n_rays, int S, const Vec<T>& t, const Vec<T>& grad_x, Vec<T
     }
 }
 
+// render_raygrad_reduce_rows: rows offset[r] + i (i < count[r]) of grad_x, t/o/d in the full
+// R × M layout; components of x = o + t d outside [−bound, bound] are skipped.
+template <typename T>
+void ref_raygrad_rows(int n_rays, int M, T bound, const std::vector<int>& offset, const Vec<T>& t,
+                      const Vec<T>& o, const Vec<T>& d, const Vec<T>& grad_x, Vec<T>& grad_o,
+                      Vec<T>& grad_d) {
+  grad_o.assign(size_t(n_rays) * 3, T(0));
+  grad_d.assign(size_t(n_rays) * 3, T(0));
+  for (int r = 0; r < n_rays; ++r)
+    for (int i = 0; i < offset[size_t(r) + 1] - offset[size_t(r)]; ++i) {
+      const size_t row = size_t(offset[size_t(r)] + i), s = size_t(r) * M + size_t(i);
+      for (int c = 0; c < 3; ++c) {
+        const T x = o[3 * size_t(r) + c] + t[s] * d[3 * size_t(r) + c];
+        if (std::abs(x) > bound) continue;
+        grad_o[3 * size_t(r) + c] += grad_x[3 * row + c];
+        grad_d[3 * size_t(r) + c] += t[s] * grad_x[3 * row + c];
+      }
+    }
+}
+
 // render_loss_range: returns the batch-mean terms (depth, ret, intensity) and its gradient.
 template <typename T>
 std::array<T, 3> ref_range_loss(int n, T a_d, T a_r, T a_i, const Vec<T>& out, const Vec<T>& target,

@@ -32,6 +32,40 @@ TEST_CASE("Ray gradient reduction equals the reference", "[render][raygrad]") {
   CHECK(go.read_vec<float>(3 * size_t(n_rays)) == dev_o);  // deterministic
 }
 
+TEST_CASE("Ray gradient reduction over compact rows equals the reference, with the box clamp",
+          "[render][raygrad]") {
+  auto& rt = test::runtime();
+  const int n_rays = 257, M = 24;
+  const float bound = 1.0f;
+  const auto t = test::make_uniform(size_t(n_rays) * M, 0.f, 2.f, 11);
+  const auto o = test::make_uniform(3 * size_t(n_rays), -0.8f, 0.8f, 12);
+  const auto d = test::make_uniform(3 * size_t(n_rays), -1.f, 1.f, 13);
+  std::vector<int> offset(size_t(n_rays) + 1, 0);
+  for (int r = 0; r < n_rays; ++r) offset[size_t(r) + 1] = offset[size_t(r)] + (r * 7) % (M + 1);
+  const auto gx = test::make_uniform(3 * size_t(offset.back()) + 3, -1.f, 1.f, 14);
+  auto bt = cl::Buffer::from(rt, t), bo = cl::Buffer::from(rt, o), bd = cl::Buffer::from(rt, d);
+  auto bgx = cl::Buffer::from(rt, gx), boff = cl::Buffer::from(rt, offset);
+  cl::Buffer go(rt, size_t(n_rays) * 12), gd(rt, size_t(n_rays) * 12);
+  render::RayGradReducer red(rt);
+  red.reduce_rows(&boff, bt, bo, bd, bgx, n_rays, M, bound, go, gd).wait();
+  std::vector<float> ro, rd;
+  test::ref_raygrad_rows<float>(n_rays, M, bound, offset, t, o, d, gx, ro, rd);
+  CHECK(test::max_abs_err(go.read_vec<float>(3 * size_t(n_rays)), ro) < 1e-5);
+  CHECK(test::max_abs_err(gd.read_vec<float>(3 * size_t(n_rays)), rd) < 1e-5);
+  // Some components were clamped away: the unmasked sum differs.
+  std::vector<float> uo, ud;
+  test::ref_raygrad_rows<float>(n_rays, M, 1e9f, offset, t, o, d, gx, uo, ud);
+  CHECK(test::max_abs_err(uo, ro) > 1e-2);
+  // Full layout (no offset table) equals the plain reduction inside the box.
+  const auto gfull = test::make_uniform(3 * size_t(n_rays) * M, -1.f, 1.f, 15);
+  auto bgf = cl::Buffer::from(rt, gfull);
+  red.reduce_rows(nullptr, bt, bo, bd, bgf, n_rays, M, 1e9f, go, gd).wait();
+  std::vector<float> po, pd;
+  test::ref_raygrad<float>(n_rays, M, t, gfull, po, pd);
+  CHECK(test::max_abs_err(go.read_vec<float>(3 * size_t(n_rays)), po) < 1e-4);
+  CHECK(test::max_abs_err(gd.read_vec<float>(3 * size_t(n_rays)), pd) < 1e-4);
+}
+
 namespace {
 // A smooth synthetic field: h0, return logit and intensity logit of x, with gradients.
 template <typename T>

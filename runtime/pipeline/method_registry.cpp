@@ -1,0 +1,34 @@
+// The method registry (see method_registry.hpp).
+#include "pipeline/method_registry.hpp"
+
+namespace sgnlf::pipeline {
+
+const std::vector<MethodSpec>& method_registry() {
+  static const std::vector<MethodSpec> registry = {
+      {"lidar-nerf", "lidar-nerf", Json::object(), false, true,
+       "LiDAR-NeRF with ground-truth poses (method.md §1)"},
+      {"lidar4d", "lidar4d", Json::object(), false, false,
+       "LiDAR4D with ground-truth poses (method.md §2)"},
+      {"geonlf", "geonlf", Json::object(), true, true,
+       "GeoNLF: poses optimised jointly with the field, geometric optimiser (method.md §3)"},
+      {"geonlf-frozen", "geonlf",
+       Json{{"method", "geonlf-frozen"},
+            {"pose_optim", {{"optimize", false}}},
+            {"geometric", {{"enabled", false}}}},
+       true, true,
+       "control (not in the paper): GeoNLF's field trained on the frozen initial poses"},
+      {"sg-nlf", "sg-nlf", Json::object(), true, false, "SG-NLF (method.md §4)"},
+  };
+  return registry;
+}
+
+const MethodSpec& method_spec(const std::string& name) {
+  std::string known;
+  for (const auto& m : method_registry()) {
+    if (m.name == name) return m;
+    known += (known.empty() ? "" : ", ") + m.name;
+  }
+  throw ConfigError("unknown method '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace sgnlf::pipeline

@@ -1,0 +1,86 @@
+// PoseSet (see pose_set.hpp).
+#include "pipeline/pose_set.hpp"
+
+#include <cmath>
+#include <cstring>
+
+#include "core/error.hpp"
+
+namespace sgnlf::pipeline {
+
+PoseSet::PoseSet(std::vector<Pose> T_init, const PoseOptimConfig& c, double lr_scale)
+    : T_init_(std::move(T_init)),
+      cfg_(c),
+      lr_scale_(lr_scale),
+      xi_(T_init_.size(), Vec6::Zero()),
+      m_(T_init_.size(), Vec6::Zero()),
+      v_(T_init_.size(), Vec6::Zero()),
+      t_(T_init_.size(), 0) {}
+
+Pose PoseSet::pose(size_t i) const { return corrected_pose(T_init_.at(i), xi_.at(i)); }
+
+std::vector<Pose> PoseSet::poses() const {
+  std::vector<Pose> out;
+  for (size_t i = 0; i < size(); ++i) out.push_back(pose(i));
+  return out;
+}
+
+void PoseSet::step(size_t i, const Vec6& g, double progress) {
+  if (!g.allFinite())
+    throw NumericError("pose gradient of frame index " + std::to_string(i) + " is not finite");
+  const double decay = std::pow(cfg_.final_factor, std::min(1.0, std::max(0.0, progress)));
+  const double lr[2] = {cfg_.lr_rot * decay * lr_scale_, cfg_.lr_trans * decay * lr_scale_};
+  const long t = ++t_.at(i);
+  const double c1 = 1.0 - std::pow(cfg_.beta1, double(t)), c2 = 1.0 - std::pow(cfg_.beta2, double(t));
+  for (int k = 0; k < 6; ++k) {
+    m_[i][k] = cfg_.beta1 * m_[i][k] + (1.0 - cfg_.beta1) * g[k];
+    v_[i][k] = cfg_.beta2 * v_[i][k] + (1.0 - cfg_.beta2) * g[k] * g[k];
+    xi_[i][k] -= lr[k / 3] * (m_[i][k] / c1) / (std::sqrt(v_[i][k] / c2) + cfg_.eps);
+  }
+}
+
+void PoseSet::set_pose(size_t i, const Pose& T) {
+  if (!T.matrix().allFinite())
+    throw NumericError("set_pose: pose of frame index " + std::to_string(i) + " is not finite");
+  const Pose& A = T_init_.at(i);
+  Vec6 xi;
+  xi.head<3>() = log_so3(A.rotation().transpose() * T.rotation());
+  xi.tail<3>() = A.rotation().transpose() * (T.translation() - A.translation());
+  xi_[i] = xi;
+}
+
+std::vector<float> PoseSet::pack(const std::vector<double>& v) {
+  std::vector<float> out(2 * v.size());
+  std::memcpy(out.data(), v.data(), v.size() * sizeof(double));
+  return out;
+}
+
+std::vector<double> PoseSet::unpack(const std::vector<float>& v) {
+  std::vector<double> out(v.size() / 2);
+  std::memcpy(out.data(), v.data(), out.size() * sizeof(double));
+  return out;
+}
+
+std::vector<Vec6> PoseSet::to_vec6(const std::vector<double>& flat) const {
+  require(flat.size() == 6 * size(), "PoseSet: state of " + std::to_string(flat.size()) +
+                                         " numbers for " + std::to_string(size()) + " frames");
+  std::vector<Vec6> out(size());
+  for (size_t i = 0; i < size(); ++i)
+    for (int k = 0; k < 6; ++k) out[i][k] = flat[6 * i + size_t(k)];
+  return out;
+}
+
+std::vector<std::pair<std::string, std::vector<float>>> PoseSet::state_arrays() const {
+  auto flat = [](const std::vector<Vec6>& v) {
+    std::vector<double> f;
+    for (const auto& x : v) f.insert(f.end(), x.data(), x.data() + 6);
+    return f;
+  };
+  std::vector<double> t(t_.begin(), t_.end());
+  return {{"poses.xi", pack(flat(xi_))},
+          {"poses.adam_m", pack(flat(m_))},
+          {"poses.adam_v", pack(flat(v_))},
+          {"poses.adam_t", pack(t)}};
+}
+
+}  // namespace sgnlf::pipeline

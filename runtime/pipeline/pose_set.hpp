@@ -1,0 +1,60 @@
+// The poses of a pose-free run as parameters (method.md §0 "Poses"): per frame a correction
+// ξ_i = (ω_i, u_i), T_world_lidar,i = T_init,i · [Exp_SO3(ω_i) | u_i] (no left Jacobian), all in
+// the normalised scene frame, zero-initialised, each frame with its own Adam state (a frame's
+// correction only moves on the steps whose rays came from it, as with PyTorch's Adam over
+// parameters without a gradient). Learning rates decay exponentially to lr·final_factor.
+#pragma once
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "geometry/se3.hpp"
+#include "pipeline/pose_free_config.hpp"
+
+namespace sgnlf::pipeline {
+
+class PoseSet {
+ public:
+  // `lr_scale` multiplies both learning rates (identity init: PoseOptimConfig::lr_scale).
+  PoseSet(std::vector<Pose> T_init, const PoseOptimConfig& c, double lr_scale = 1.0);
+
+  size_t size() const { return T_init_.size(); }
+  const Pose& initial(size_t i) const { return T_init_.at(i); }
+  const Vec6& correction(size_t i) const { return xi_.at(i); }
+  Pose pose(size_t i) const;
+  std::vector<Pose> poses() const;
+
+  // One Adam step of frame i's correction from g = (dL/dω, dL/du) at training progress ∈ [0, 1].
+  void step(size_t i, const Vec6& g, double progress);
+  // Re-expresses T as frame i's correction: ω = Log(R_initᵀ R), u = R_initᵀ (t − t_init).
+  // Adam moments are kept. Throws NumericError for a non-finite pose.
+  void set_pose(size_t i, const Pose& T);
+
+  // Checkpoint arrays ("poses.xi", "poses.adam_m", "poses.adam_v", "poses.adam_t"): doubles
+  // stored bit-exactly (two float slots each) so that a resumed run is bit-identical.
+  std::vector<std::pair<std::string, std::vector<float>>> state_arrays() const;
+  // Restores from arrays returned by `lookup(name, expected_float_count)`.
+  template <typename Lookup>
+  void load_state(Lookup&& lookup) {
+    const size_t n = 6 * size();
+    xi_flat_from(unpack(lookup("poses.xi", 2 * n)));
+    m_ = to_vec6(unpack(lookup("poses.adam_m", 2 * n)));
+    v_ = to_vec6(unpack(lookup("poses.adam_v", 2 * n)));
+    const auto t = unpack(lookup("poses.adam_t", 2 * size()));
+    for (size_t i = 0; i < size(); ++i) t_[i] = long(t[i]);
+  }
+
+ private:
+  static std::vector<float> pack(const std::vector<double>& v);
+  static std::vector<double> unpack(const std::vector<float>& v);
+  std::vector<Vec6> to_vec6(const std::vector<double>& flat) const;
+  void xi_flat_from(const std::vector<double>& flat) { xi_ = to_vec6(flat); }
+
+  std::vector<Pose> T_init_;
+  PoseOptimConfig cfg_;
+  double lr_scale_;
+  std::vector<Vec6> xi_, m_, v_;
+  std::vector<long> t_;
+};
+
+}  // namespace sgnlf::pipeline

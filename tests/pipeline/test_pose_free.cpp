@@ -1,0 +1,198 @@
+// The pose-free machinery (issue "Pose-free joint optimisation"): the gradient of one whole
+// training step's loss with respect to the pose correction ξ of its frame against central
+// finite differences; pose-free run folders (initial/optimised trajectories, pose metrics,
+// frozen-pose control, exact resume with the poses); bad pose options.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+
+#include "datasets/simulate.hpp"
+#include "pipeline/method_registry.hpp"
+#include "pipeline/pose_set.hpp"
+#include "pipeline/ray_batch.hpp"
+#include "pipeline/run_dir.hpp"
+#include "pipeline/session.hpp"
+#include "pipeline/trainer.hpp"
+#include "render/pose_gradient.hpp"
+#include "support/test_device.hpp"
+#include "tiny_scene.hpp"
+
+SGNLF_DEVICE_TESTS;
+using namespace sgnlf;
+using namespace sgnlf::pipeline;
+namespace fs = std::filesystem;
+
+namespace {
+
+// GeoNLF's smoke preset shrunk to the tiny sequence.
+TrainConfig tiny_pose_free(const std::string& method, const Json& extra = Json::object()) {
+  Json o{{"schedule", {{"iterations", 28}, {"checkpoint_every", 7}, {"log_every", 7},
+                       {"rays_per_batch", 128}, {"render_chunk_rays", 512}}},
+         {"render", {{"n_samples", 24}}},
+         {"geometric", {{"points_per_frame", 400}, {"first_steps", 5}, {"steps_per_epoch", 2.0}}}};
+  return resolve_config(method, "smoke", merge_config_json(o, extra));
+}
+
+double step_loss(LidarNerfModel& model, const Scene& scene, const TrainConfig& c, const Pose& T,
+                 long step) {
+  const RayBatch b = draw_ray_batch(scene, c, 7, step, [&](int) { return T; });
+  model.forward_backward(b, 7, step, true);
+  return model.read_loss().total();
+}
+
+}  // namespace
+
+TEST_CASE("one training step's loss: analytic dL/dxi of its frame matches finite differences",
+          "[pipeline][posefree][device]") {
+  const Dataset& d = test::tiny_dataset();
+  // Uniform samples only (GeoNLF's sampling): importance-sample depths are held fixed in the
+  // backward pass, which finite differences would not see.
+  const TrainConfig c = test::tiny_config(Json{{"render", {{"n_importance", 0}, {"n_samples", 48}}},
+                                          {"schedule", {{"iterations", 40}}}});
+  const Scene scene = make_scene(d);
+  LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
+  TrainOptions opt;
+  opt.run_dir = test::temp_dir("posefree_fd");
+  opt.show_progress = false;
+  opt.resume = false;
+  train(model, scene, c, opt);  // a field with structure, so the loss depends on the pose
+  const long step = 41;
+  const int frame = batch_frame(scene, 7, step);
+  // An arbitrary non-zero correction on top of the frame's pose: the gradient is exact there too.
+  Vec6 xi0;
+  xi0 << 0.01, -0.02, 0.015, 0.004, -0.003, 0.002;
+  const Pose& T_init = scene.T_world_lidar[size_t(frame)];
+  const double l0 = step_loss(model, scene, c, corrected_pose(T_init, xi0), step);
+  REQUIRE(std::isfinite(l0));
+  const auto g = model.read_ray_grads();
+  const RayBatch b = draw_ray_batch(scene, c, 7, step);
+  std::vector<float> dirs;
+  for (int px : b.pixels)
+    for (int a = 0; a < 3; ++a) dirs.push_back(scene.directions[3 * size_t(px) + a]);
+  const Vec6 analytic = render::pose_gradient(T_init, xi0, {}, dirs, g.origin, g.direction);
+  Vec6 numeric;
+  for (int k = 0; k < 6; ++k) {
+    // Radians / normalised units (5e-5 ≈ 1 cm here). The hash grid's gradient is piecewise
+    // constant, so larger steps cross cell boundaries (1e-3 is off by 8 % of the largest
+    // component on this state); below ~2e-5 the float loss's rounding shows.
+    const double eps = 5e-5;
+    Vec6 xp = xi0, xm = xi0;
+    xp[k] += eps;
+    xm[k] -= eps;
+    numeric[k] = (step_loss(model, scene, c, corrected_pose(T_init, xp), step) -
+                  step_loss(model, scene, c, corrected_pose(T_init, xm), step)) /
+                 (2 * eps);
+  }
+  INFO("analytic " << analytic.transpose() << "\nnumeric  " << numeric.transpose());
+  const double scale = numeric.cwiseAbs().maxCoeff();
+  REQUIRE(scale > 1e-3);
+  for (int k = 0; k < 6; ++k) CHECK(std::abs(analytic[k] - numeric[k]) < 0.05 * scale);
+  CHECK(analytic.dot(numeric) > 0.98 * analytic.norm() * numeric.norm());
+}
+
+TEST_CASE("PoseSet: corrections, per-frame Adam, set_pose and exact state round trip",
+          "[pipeline][posefree]") {
+  std::vector<Pose> init(3, Pose::Identity());
+  init[1].translation() = Vec3(1, 2, 3);
+  PoseOptimConfig pc;
+  PoseSet ps(init, pc);
+  CHECK(ps.pose(1).isApprox(init[1]));
+  Vec6 g;
+  g << 1, 0, 0, 0, -1, 0;
+  ps.step(1, g, 0.0);
+  // Adam's first step moves each component by lr against the gradient's sign.
+  CHECK(ps.correction(1)[0] == Approx(-pc.lr_rot).epsilon(1e-6));
+  CHECK(ps.correction(1)[4] == Approx(pc.lr_trans).epsilon(1e-6));
+  CHECK(ps.correction(0).isZero());  // other frames do not move
+  Pose target = init[2];
+  target.linear() = exp_so3(Vec3(0.1, -0.2, 0.3));
+  target.translation() = Vec3(-4, 5, 6);
+  ps.set_pose(2, target);
+  CHECK(ps.pose(2).isApprox(target, 1e-12));
+  PoseSet copy(init, pc);
+  const auto arrays = ps.state_arrays();
+  copy.load_state([&](const std::string& name, size_t n) {
+    for (const auto& [k, v] : arrays)
+      if (k == name) {
+        REQUIRE(v.size() == n);
+        return v;
+      }
+    FAIL("missing " << name);
+    return std::vector<float>{};
+  });
+  for (size_t i = 0; i < 3; ++i) CHECK(copy.correction(i) == ps.correction(i));
+  Pose bad = target;
+  bad.translation().x() = std::nan("");
+  CHECK_THROWS_AS(ps.set_pose(0, bad), NumericError);
+}
+
+TEST_CASE("pose-free run folder: trajectories, pose metrics, frozen control, exact resume",
+          "[pipeline][posefree][session][device]") {
+  const std::string data = test::temp_dir("posefree_data") + "/seq";
+  {
+    SimOptions o;
+    o.sequence = "kitti360-1538";
+    o.frames = 14;
+    o.width = 128;
+    o.height = 16;
+    o.threads = 1;
+    write_synthetic(simulate(o), data);
+  }
+  auto run = [&](const std::string& method, const std::string& dir, long stop_at, bool resume) {
+    TrainRequest req;
+    req.manifest.method = method;
+    req.manifest.preset = "smoke";
+    req.manifest.dataset = data;
+    req.manifest.seed = 3;
+    req.manifest.config = tiny_pose_free(method);
+    req.run_dir = dir;
+    req.stop_at = stop_at;
+    req.resume = resume;
+    req.show_progress = false;
+    return train_run(test::runtime(), req);
+  };
+  const std::string full = test::temp_dir("posefree_full");
+  const Json s = run("geonlf", full, -1, false);
+  CHECK(s.at("finished").get<bool>());
+  for (const char* f : {"gt.kitti.txt", "initial.kitti.txt", "optimised.kitti.txt", "optimised.tum.txt",
+                        "top_view.svg"})
+    CHECK(fs::exists(full + "/trajectories/" + f));
+  CHECK(fs::exists(full + "/geometric_log.jsonl"));
+  const double ate0 = s.at("initial_pose_metrics").at("ate_m").get<double>();
+  const double ate = s.at("pose_metrics").at("ate_m").get<double>();
+  CHECK(ate0 > 1.0);   // the protocol's noisy start (σ 2 m per axis)
+  CHECK(ate < ate0);   // the poses moved towards the truth
+  LoadedRun lr = load_run(test::runtime(), full);
+  CHECK(lr.pose_free);
+  const Json m = eval_run(lr, full);
+  CHECK(m.at("pose_metrics").at("ate_m").get<double>() == Approx(ate).epsilon(1e-12));
+  CHECK(m.at("pose_init").get<std::string>() == "noisy");
+
+  // Killed after step 10 and resumed: bit-identical poses and parameters.
+  const std::string part = test::temp_dir("posefree_part");
+  run("geonlf", part, 10, false);
+  run("geonlf", part, -1, true);
+  LoadedRun resumed = load_run(test::runtime(), part);
+  for (size_t i = 0; i < lr.T_world_lidar.size(); ++i)
+    CHECK(resumed.T_world_lidar[i].matrix() == lr.T_world_lidar[i].matrix());
+  CHECK(resumed.model->state().params == lr.model->state().params);
+
+  // The control keeps its initial poses.
+  const std::string frozen = test::temp_dir("posefree_frozen");
+  const Json f = run("geonlf-frozen", frozen, -1, false);
+  CHECK(f.at("pose_metrics").at("ate_m").get<double>() == Approx(ate0).epsilon(1e-9));
+}
+
+TEST_CASE("pose-free options: unknown init, ground-truth methods, too few frames",
+          "[pipeline][posefree]") {
+  CHECK_THROWS_WITH(resolve_config("geonlf", "smoke", Json{{"poses", {{"init", "random"}}}}),
+                    Catch::Contains("'init' = \"random\""));
+  CHECK_THROWS_WITH(resolve_config("lidar-nerf", "smoke", Json{{"poses", {{"init", "noisy"}}}}),
+                    Catch::Contains("poses"));
+  CHECK_THROWS_WITH(resolve_config("nonsense", "smoke"), Catch::Contains("unknown method"));
+  Dataset d = test::tiny_dataset();
+  d.split.train.insert(d.split.train.end(), d.split.test.begin(), d.split.test.end());
+  d.split.test.clear();
+  CHECK_THROWS_WITH(make_run_scene(d, tiny_pose_free("geonlf")), Catch::Contains("test frames"));
+}
