@@ -1,8 +1,11 @@
-# CTest script: runs the smoke kitti360-standard table and compares it with the committed
+# CTest script: runs a smoke table (TABLE, default kitti360-standard) and compares it with the committed
 # baseline (exit 4 from `sgnlf compare` = regression → test fails). Runs of an earlier ctest
 # are removed first: bench resumes finished runs, which would hide a change in training.
+if(NOT TABLE)
+  set(TABLE kitti360-standard)
+endif()
 file(REMOVE_RECURSE ${OUT}/runs)
-execute_process(COMMAND ${SGNLF} bench --table kitti360-standard --scale smoke --seed 1 --out ${OUT}
+execute_process(COMMAND ${SGNLF} bench --table ${TABLE} --scale smoke --seed 1 --out ${OUT}
                 RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "sgnlf bench failed (exit ${rc})")
