@@ -65,7 +65,8 @@ int32_t KdTree::build(uint32_t begin, uint32_t end) {
   return id;
 }
 
-void KdTree::search(int32_t node_id, const Point3f& q, float& best, uint32_t& best_i) const {
+void KdTree::search(int32_t node_id, const Point3f& q, float cell_sq, Point3f& off, float& best,
+                    uint32_t& best_i) const {
   const Node& n = nodes_[node_id];
   if (n.left < 0) {
     for (uint32_t i = n.begin; i < n.end; ++i) {
@@ -80,10 +81,16 @@ void KdTree::search(int32_t node_id, const Point3f& q, float& best, uint32_t& be
   const float diff = q[n.axis] - n.split;
   const int32_t near_child = diff <= 0.f ? n.left : n.right;
   const int32_t far_child = diff <= 0.f ? n.right : n.left;
-  search(near_child, q, best, best_i);
-  // The plane distance is a lower bound for every point of the far side; ≤ keeps ties
-  // exact (an equally near point on the far side is still visited).
-  if (diff * diff <= best) search(far_child, q, best, best_i);
+  search(near_child, q, cell_sq, off, best, best_i);
+  // The far side's cell lies at least |diff| away along this axis (replacing the offset the
+  // query had along it before); ≤ keeps ties exact (an equally near point is still visited).
+  const float old = off[n.axis];
+  const float far_sq = cell_sq - old * old + diff * diff;
+  if (far_sq <= best) {
+    off[n.axis] = diff;
+    search(far_child, q, far_sq, off, best, best_i);
+    off[n.axis] = old;
+  }
 }
 
 float KdTree::nearest(const Point3f& q, uint32_t* index) const {
@@ -91,7 +98,8 @@ float KdTree::nearest(const Point3f& q, uint32_t* index) const {
   if (!q.allFinite()) throw Error("KdTree::nearest: query point is not finite");
   float best = std::numeric_limits<float>::infinity();
   uint32_t best_i = 0;
-  search(0, q, best, best_i);
+  Point3f off = Point3f::Zero();
+  search(0, q, 0.f, off, best, best_i);
   if (index) *index = order_[best_i];
   return best;
 }

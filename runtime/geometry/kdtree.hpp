@@ -37,7 +37,12 @@ class KdTree {
     float split = 0.f;
   };
   int32_t build(uint32_t begin, uint32_t end);
-  void search(int32_t node, const Point3f& q, float& best, uint32_t& best_i) const;
+  // `off` holds, per axis, the query's offset from the node's cell along the splits taken so
+  // far and `cell_sq` its squared length: a lower bound on the distance to every point of the
+  // node (Arya & Mount's incremental distance), which prunes far cells that one splitting
+  // plane alone would not.
+  void search(int32_t node, const Point3f& q, float cell_sq, Point3f& off, float& best,
+              uint32_t& best_i) const;
 
   std::vector<Point3f> points_;   // permuted so that each leaf is contiguous
   std::vector<uint32_t> order_;   // points_[k] = input[order_[k]]

@@ -3,7 +3,7 @@
 
 #include <memory>
 
-#include "posegraph/geometric_optimizer.hpp"
+#include "posegraph/annealed_run.hpp"
 
 namespace sgnlf::pipeline {
 
@@ -35,13 +35,26 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
   return [g, gc, loss, norm](PoseSet& poses, long epoch, double progress) -> Json {
     const int steps = g.steps_at(epoch, progress);
     if (steps <= 0) return nullptr;
-    posegraph::GeometricConfig run_cfg = gc;
-    run_cfg.steps = steps;
-    const posegraph::GeometricOptimizer opt(posegraph::GraphLoss::as_pose_loss(loss), poses.size(),
-                                            run_cfg);
     std::vector<Pose> T(poses.size());
     for (size_t i = 0; i < poses.size(); ++i) T[i] = denormalize_pose(poses.pose(i), norm);
-    const posegraph::GeometricResult r = opt.run(T, progress);
+    posegraph::GeometricResult r;
+    if (epoch == 0) {  // the coarse alignment
+      posegraph::AnnealConfig a;
+      a.steps = steps;
+      a.lr_final = g.lr_final;
+      const auto calls = posegraph::run_annealed(loss, gc, a, T);
+      r = calls.back();
+      r.loss_before = calls.front().loss_before;
+      r.steps = steps;
+    } else {  // the shrinking refinement at the final τ and learning rates
+      posegraph::GeometricConfig run_cfg = gc;
+      run_cfg.steps = steps;
+      run_cfg.lr_rotation *= g.lr_final;
+      run_cfg.lr_translation *= g.lr_final;
+      const posegraph::GeometricOptimizer opt(posegraph::GraphLoss::as_pose_loss(loss),
+                                              poses.size(), run_cfg);
+      r = opt.run(T, 1.0);
+    }
     for (size_t i = 0; i < poses.size(); ++i) poses.set_pose(i, normalize_pose(T[i], norm));
     return Json{{"steps", r.steps},        {"tau", r.tau},
                 {"loss_before", r.loss_before}, {"loss_after", r.loss_after},

@@ -3,8 +3,8 @@
 // config's offsets) moves every pose for GeometricScheduleConfig::steps_at(epoch, progress)
 // pose-only Adam steps, fresh each time. Each frame's observed scan is subsampled once
 // (points_per_frame, seed 1) and its k-d tree built once in its own LiDAR frame. The optimiser
-// works in metres: poses are denormalised before and normalised after. τ = tau_scale · progress
-// (tau_scale < 0: 0.5 for nuScenes-like sensors, 0.3 otherwise).
+// works in metres: poses are denormalised before and normalised after. τ and the learning rates
+// follow the stage's own clock (GeometricScheduleConfig::clock).
 #pragma once
 #include "datasets/dataset.hpp"
 #include "pipeline/pose_free_step.hpp"

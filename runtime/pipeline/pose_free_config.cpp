@@ -37,6 +37,7 @@ void PoseFreeConfig::validate(const std::string& w) const {
   check_range(g, "stop_progress", geometric.stop_progress, 0.0, 1.0);
   check_range(g, "lr_rot", geometric.lr_rot, 0.0, 1.0);
   check_range(g, "lr_trans", geometric.lr_trans, 0.0, 100.0);
+  check_range(g, "lr_final", geometric.lr_final, 1e-6, 1.0);
   if (geometric.tau_scale != -1.0) check_range(g, "tau_scale", geometric.tau_scale, 0.0, 100.0);
   if (geometric.edge_offsets.empty()) throw ConfigError(g + ": 'edge_offsets' is empty");
   for (int k : geometric.edge_offsets) check_range(g, "edge_offsets[]", k, 1, 1000);
@@ -73,6 +74,7 @@ PoseFreeConfig PoseFreeConfig::from_json(ConfigReader& r, const std::string& w) 
     g.get("edge_offsets", gc.edge_offsets).get("first_steps", gc.first_steps);
     g.get("steps_per_epoch", gc.steps_per_epoch).get("stop_progress", gc.stop_progress);
     g.get("tau_scale", gc.tau_scale).get("lr_rot", gc.lr_rot).get("lr_trans", gc.lr_trans);
+    g.get("lr_final", gc.lr_final);
     g.finish();
   }
   return c;
@@ -104,7 +106,8 @@ void PoseFreeConfig::to_json(Json& j) const {
                         {"stop_progress", geometric.stop_progress},
                         {"tau_scale", geometric.tau_scale},
                         {"lr_rot", geometric.lr_rot},
-                        {"lr_trans", geometric.lr_trans}};
+                        {"lr_trans", geometric.lr_trans},
+                        {"lr_final", geometric.lr_final}};
 }
 
 }  // namespace sgnlf::pipeline
