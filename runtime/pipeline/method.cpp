@@ -58,6 +58,8 @@ MethodResult run_method(const MethodRequest& req) {
                    {"iterations", summary.at("end_step")},
                    {"samples_per_s", summary.at("samples_per_s")},
                    {"naive_baseline", ev.at("naive_baseline").at("metrics")}};
+  if (summary.contains("geometric_seconds"))
+    res.extra["geometric_seconds"] = summary.at("geometric_seconds");
   if (ev.contains("initial_pose_metrics")) {
     res.extra["initial_pose_metrics"] = ev.at("initial_pose_metrics");
     res.extra["pose_init"] = ev.at("pose_init");

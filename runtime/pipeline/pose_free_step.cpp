@@ -2,6 +2,7 @@
 #include "pipeline/pose_free_step.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -63,8 +64,12 @@ void PoseFreeStep::on_epoch(long epoch, long step) {
   if (!geometric_) return;
   const double progress = double(step) / double(cfg_.schedule.iterations);
   const Json before = pose_errors();
+  const auto t0 = std::chrono::steady_clock::now();
   Json line = geometric_(poses_, epoch, progress);
   if (line.is_null()) return;  // the stage did nothing this epoch
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  geometric_seconds_ += secs;
+  line["seconds"] = secs;
   line["epoch"] = epoch;
   line["step"] = step;
   line["progress"] = progress;

@@ -37,6 +37,8 @@ class PoseFreeStep : public StepPolicy {
 
   // Current poses in the dataset's world frame (metres).
   std::vector<Pose> poses_world() const;
+  // Wall time spent in the geometric stage by this process (not across a resume).
+  double geometric_seconds() const { return geometric_seconds_; }
   // Network lr multiplier of `frame` under selective reweighting (1 when off or not yet known).
   double reweight(int frame) const;
 
@@ -51,6 +53,7 @@ class PoseFreeStep : public StepPolicy {
   std::vector<double> ema_;   // per frame: moving average of the range loss
   std::vector<double> seen_;  // per frame: 1 once a step came from it
   std::vector<float> level_w_;
+  double geometric_seconds_ = 0.0;
 };
 
 }  // namespace sgnlf::pipeline

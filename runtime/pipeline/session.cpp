@@ -115,6 +115,7 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
   if (pose_step) {
     j["pose_metrics"] = pose_metrics_json(current_poses(), gt_poses(d));
     j["initial_pose_metrics"] = pose_metrics_json(rs.T_world_lidar_init, gt_poses(d));
+    j["geometric_seconds"] = pose_step->geometric_seconds();
     j["trajectories"] = write_run_trajectories(req.run_dir, d, rs.T_world_lidar_init, current_poses());
   }
   write_json_file((run / "summary.json").string(), j);

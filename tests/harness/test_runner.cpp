@@ -52,10 +52,11 @@ TEST_CASE("run_table: rows, means, paper differences, seeds", "[harness]") {
   CHECK(r["table"] == "kitti360-standard");
   CHECK(r["config"]["seed"] == 7);
   CHECK(r["config_hash"].get<std::string>().size() == 16);
-  REQUIRE(r["rows"].size() == 4);  // not-implemented rows are kept, in table order
+  REQUIRE(r["rows"].size() == 5);  // not-implemented rows are kept, in table order
   CHECK(r["rows"][0]["method"] == "lidar-nerf");
   CHECK(r["rows"][1]["status"] == "not_implemented");
   CHECK(r["rows"][2]["status"] == "not_implemented");
+  CHECK(r["rows"][3]["method"] == "geonlf-frozen");
   const Json& nerf = r["rows"][0];
   REQUIRE(nerf["status"] == "ok");
   // Mean over the 2 sequences: cd (0.10 + 0.12) / 2, depth PSNR (20 + 21) / 2.
@@ -65,7 +66,7 @@ TEST_CASE("run_table: rows, means, paper differences, seeds", "[harness]") {
   CHECK(nerf["diff_vs_paper"]["cd"]["diff"].get<double>() == Approx(0.11 - 0.0923));
   CHECK(nerf["diff_vs_paper"]["cd"]["better"] == false);
   CHECK(nerf["diff_vs_paper"]["depth_psnr"]["paper"] == 26.77);
-  const Json& sg = r["rows"][3];
+  const Json& sg = r["rows"][4];
   CHECK(sg["mean"]["ate_m"].get<double>() == Approx(0.07));
   CHECK(sg["diff_vs_paper"]["cd"]["better"] == true);           // 0.055 < 0.0867
   CHECK(sg["diff_vs_paper"]["depth_psnr"]["better"] == false);  // 22.5 < 32.72
@@ -83,8 +84,8 @@ TEST_CASE("run_table: rows, means, paper differences, seeds", "[harness]") {
 TEST_CASE("a failing row is recorded with its error and the table goes on", "[harness]") {
   const Json r = test::fake_results(true);
   CHECK(r["rows"][0]["status"] == "ok");
-  CHECK(r["rows"][3]["status"] == "failed");
-  CHECK(r["rows"][3]["error"].get<std::string>().find("fake divergence") != std::string::npos);
+  CHECK(r["rows"][4]["status"] == "failed");
+  CHECK(r["rows"][4]["error"].get<std::string>().find("fake divergence") != std::string::npos);
 }
 
 TEST_CASE("markdown: ours beside the paper, not implemented rows, per-sequence tables",
