@@ -7,28 +7,13 @@
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "geometry/kdtree.hpp"
+#include "support/cloud_reference.hpp"
 
 using namespace sgnlf;
 using namespace sgnlf::geometry;
 
-namespace {
-
-// Reference: exhaustive search with the same float distance.
-float brute_nearest(const std::vector<Point3f>& pts, const Point3f& q) {
-  float best = std::numeric_limits<float>::infinity();
-  for (const auto& p : pts) best = std::min(best, squared_distance(q, p));
-  return best;
-}
-
-std::vector<Point3f> random_cloud(Rng& rng, size_t n, float extent) {
-  std::vector<Point3f> pts(n);
-  for (auto& p : pts)
-    p = Point3f(rng.uniform(-extent, extent), rng.uniform(-extent, extent),
-                rng.uniform(-extent * 0.1f, extent * 0.1f));
-  return pts;
-}
-
-}  // namespace
+using test::brute_nearest;
+using test::random_cloud;
 
 TEST_CASE("k-d tree nearest neighbour equals brute force on random clouds", "[geometry][kdtree]") {
   Rng rng(11);

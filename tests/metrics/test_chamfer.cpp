@@ -3,6 +3,8 @@
 // tests/geometry/test_kdtree.cpp.
 #include <catch2/catch.hpp>
 
+#include "support/cloud_reference.hpp"
+
 #include <cmath>
 #include <limits>
 
@@ -14,24 +16,8 @@ using namespace sgnlf::metrics;
 using geometry::Point3f;
 using geometry::squared_distance;
 
-namespace {
-
-// Reference: exhaustive search with the same float distance.
-float brute_nearest(const std::vector<Point3f>& pts, const Point3f& q) {
-  float best = std::numeric_limits<float>::infinity();
-  for (const auto& p : pts) best = std::min(best, squared_distance(q, p));
-  return best;
-}
-
-std::vector<Point3f> random_cloud(Rng& rng, size_t n, float extent) {
-  std::vector<Point3f> pts(n);
-  for (auto& p : pts)
-    p = Point3f(rng.uniform(-extent, extent), rng.uniform(-extent, extent),
-                rng.uniform(-extent * 0.1f, extent * 0.1f));
-  return pts;
-}
-
-}  // namespace
+using test::brute_nearest;
+using test::random_cloud;
 
 TEST_CASE("Chamfer distance and F-score on a hand-computed case", "[metrics][chamfer]") {
   // pred = {0}, gt = {(0.1,0,0), (1,0,0)}: d1 = {0.01}, d2 = {0.01, 1}.

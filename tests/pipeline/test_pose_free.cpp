@@ -130,15 +130,7 @@ TEST_CASE("PoseSet: corrections, per-frame Adam, set_pose and exact state round 
 TEST_CASE("pose-free run folder: trajectories, pose metrics, frozen control, exact resume",
           "[pipeline][posefree][session][device]") {
   const std::string data = test::temp_dir("posefree_data") + "/seq";
-  {
-    SimOptions o;
-    o.sequence = "kitti360-1538";
-    o.frames = 14;
-    o.width = 128;
-    o.height = 16;
-    o.threads = 1;
-    write_synthetic(simulate(o), data);
-  }
+  test::write_tiny_dataset(data);
   auto run = [&](const std::string& method, const std::string& dir, long stop_at, bool resume) {
     TrainRequest req;
     req.manifest.method = method;

@@ -21,15 +21,7 @@ namespace fs = std::filesystem;
 
 TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") {
   const std::string data = test::temp_dir("session_data") + "/seq";
-  {
-    SimOptions o;
-    o.sequence = "kitti360-1538";
-    o.frames = 14;
-    o.width = 128;
-    o.height = 16;
-    o.threads = 1;
-    write_synthetic(simulate(o), data);
-  }
+  test::write_tiny_dataset(data);
   const std::string run_dir = test::temp_dir("session_run");
   TrainRequest req;
   req.manifest.preset = "smoke";

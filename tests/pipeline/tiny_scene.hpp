@@ -1,5 +1,6 @@
 // Test fixture: a tiny synthetic KITTI-360-like sequence (14 frames of 16 × 128 pixels, test
-// frame 13), simulated in memory once per test binary, and the smoke config shrunk further.
+// frame 13), simulated in memory once per test binary (or written to disk), and the smoke
+// config shrunk further.
 #pragma once
 #include "datasets/protocol.hpp"
 #include "datasets/simulate.hpp"
@@ -8,18 +9,23 @@
 
 namespace sgnlf::test {
 
+inline SimOptions tiny_sim_options() {
+  SimOptions o;
+  o.sequence = "kitti360-1538";
+  o.frames = 14;
+  o.width = 128;
+  o.height = 16;
+  o.threads = 1;
+  return o;
+}
+
 inline const Dataset& tiny_dataset() {
-  static const Dataset d = [] {
-    SimOptions o;
-    o.sequence = "kitti360-1538";
-    o.frames = 14;
-    o.width = 128;
-    o.height = 16;
-    o.threads = 1;
-    return simulate(o).dataset;
-  }();
+  static const Dataset d = simulate(tiny_sim_options()).dataset;
   return d;
 }
+
+// The same sequence written to `dir` in the synthetic layout (for run-folder tests).
+inline void write_tiny_dataset(const std::string& dir) { write_synthetic(simulate(tiny_sim_options()), dir); }
 
 inline pipeline::TrainConfig tiny_config(const Json& extra = Json::object()) {
   Json o{{"schedule", {{"iterations", 12}, {"checkpoint_every", 4}, {"log_every", 2},
