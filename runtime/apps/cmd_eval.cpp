@@ -62,10 +62,11 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
     if (j.contains("pose_metrics")) {
       const Json& p = j.at("pose_metrics");
       const Json& i = j.at("initial_pose_metrics");
-      std::printf("\nposes over %ld frames (SE(3)-aligned, protocol §4)   optimised      initial (%s)\n",
+      std::printf("\nposes over %ld frames (SE(3)-aligned, protocol §4), initial: %s\n",
                   p.at("frames").get<long>(), j.at("pose_init").get<std::string>().c_str());
+      std::printf("%-18s %12s %12s\n", "pose", "optimised", "initial");
       for (const char* k : {"ate_m", "rpe_t_cm", "rpe_r_deg"})
-        std::printf("%-18s %30s %12s\n", k, num(p.at(k)).c_str(), num(i.at(k)).c_str());
+        std::printf("%-18s %12s %12s\n", k, num(p.at(k)).c_str(), num(i.at(k)).c_str());
     }
     return 0;
   });
