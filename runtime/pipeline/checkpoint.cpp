@@ -136,4 +136,16 @@ Checkpoint load_checkpoint_for(const std::string& path, uint64_t config_hash, ui
   return ck;
 }
 
+std::vector<float> pack_doubles(const std::vector<double>& v) {
+  std::vector<float> out(2 * v.size());
+  std::memcpy(out.data(), v.data(), v.size() * sizeof(double));
+  return out;
+}
+
+std::vector<double> unpack_doubles(const std::vector<float>& v) {
+  std::vector<double> out(v.size() / 2);
+  std::memcpy(out.data(), v.data(), out.size() * sizeof(double));
+  return out;
+}
+
 }  // namespace sgnlf::pipeline

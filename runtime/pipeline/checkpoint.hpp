@@ -23,6 +23,11 @@ struct Checkpoint {
   const std::vector<float>& array(const std::string& name, size_t expected_size = 0) const;
 };
 
+// Doubles stored bit-exactly in a float array (two slots each), for host state such as poses
+// whose resumed run must be bit-identical.
+std::vector<float> pack_doubles(const std::vector<double>& v);
+std::vector<double> unpack_doubles(const std::vector<float>& v);
+
 void save_checkpoint(const std::string& path, const Checkpoint& ck);
 // Throws IoError (naming the file and what is wrong) for missing, truncated or corrupt files.
 Checkpoint load_checkpoint(const std::string& path);

@@ -43,9 +43,8 @@ void PoseFreeConfig::validate(const std::string& w) const {
   for (int k : geometric.edge_offsets) check_range(g, "edge_offsets[]", k, 1, 1000);
 }
 
-PoseFreeConfig PoseFreeConfig::from_json(ConfigReader& r, const std::string& w) {
+PoseFreeConfig PoseFreeConfig::from_json(ConfigReader& r) {
   PoseFreeConfig c;
-  (void)w;
   {
     auto p = r.child("poses");
     p.get("init", c.poses.init).get("noise_seed", c.poses.noise_seed);

@@ -62,7 +62,7 @@ struct PoseFreeConfig {
   GeometricScheduleConfig geometric;
 
   void validate(const std::string& where) const;
-  static PoseFreeConfig from_json(ConfigReader& r, const std::string& where);  // reads its keys
+  static PoseFreeConfig from_json(ConfigReader& r);  // reads its keys; errors name r.where()
   void to_json(Json& j) const;  // adds its sections to a config object
 };
 

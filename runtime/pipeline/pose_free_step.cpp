@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -16,22 +15,6 @@
 
 namespace sgnlf::pipeline {
 namespace fs = std::filesystem;
-
-namespace {
-
-std::vector<float> pack(const std::vector<double>& v) {
-  std::vector<float> out(2 * v.size());
-  std::memcpy(out.data(), v.data(), v.size() * sizeof(double));
-  return out;
-}
-
-std::vector<double> unpack(const std::vector<float>& v) {
-  std::vector<double> out(v.size() / 2);
-  std::memcpy(out.data(), v.data(), out.size() * sizeof(double));
-  return out;
-}
-
-}  // namespace
 
 PoseFreeStep::PoseFreeStep(const Scene& scene, const TrainConfig& cfg, PoseSet& poses,
                            std::vector<Pose> gt, std::string run_dir, GeometricStage geometric)
@@ -143,15 +126,15 @@ std::string PoseFreeStep::progress_text() {
 
 NamedArrays PoseFreeStep::state() const {
   NamedArrays a = poses_.state_arrays();
-  a.push_back({"reweight.ema", pack(ema_)});
-  a.push_back({"reweight.seen", pack(seen_)});
+  a.push_back({"reweight.ema", pack_doubles(ema_)});
+  a.push_back({"reweight.seen", pack_doubles(seen_)});
   return a;
 }
 
 void PoseFreeStep::load_state(const Checkpoint& ck) {
   poses_.load_state([&](const std::string& name, size_t n) { return ck.array(name, n); });
-  ema_ = unpack(ck.array("reweight.ema", 2 * ema_.size()));
-  seen_ = unpack(ck.array("reweight.seen", 2 * seen_.size()));
+  ema_ = unpack_doubles(ck.array("reweight.ema", 2 * ema_.size()));
+  seen_ = unpack_doubles(ck.array("reweight.seen", 2 * seen_.size()));
 }
 
 }  // namespace sgnlf::pipeline

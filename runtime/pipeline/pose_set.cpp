@@ -2,7 +2,6 @@
 #include "pipeline/pose_set.hpp"
 
 #include <cmath>
-#include <cstring>
 
 #include "core/error.hpp"
 
@@ -49,18 +48,6 @@ void PoseSet::set_pose(size_t i, const Pose& T) {
   xi_[i] = xi;
 }
 
-std::vector<float> PoseSet::pack(const std::vector<double>& v) {
-  std::vector<float> out(2 * v.size());
-  std::memcpy(out.data(), v.data(), v.size() * sizeof(double));
-  return out;
-}
-
-std::vector<double> PoseSet::unpack(const std::vector<float>& v) {
-  std::vector<double> out(v.size() / 2);
-  std::memcpy(out.data(), v.data(), out.size() * sizeof(double));
-  return out;
-}
-
 std::vector<Vec6> PoseSet::to_vec6(const std::vector<double>& flat) const {
   require(flat.size() == 6 * size(), "PoseSet: state of " + std::to_string(flat.size()) +
                                          " numbers for " + std::to_string(size()) + " frames");
@@ -77,10 +64,10 @@ std::vector<std::pair<std::string, std::vector<float>>> PoseSet::state_arrays() 
     return f;
   };
   std::vector<double> t(t_.begin(), t_.end());
-  return {{"poses.xi", pack(flat(xi_))},
-          {"poses.adam_m", pack(flat(m_))},
-          {"poses.adam_v", pack(flat(v_))},
-          {"poses.adam_t", pack(t)}};
+  return {{"poses.xi", pack_doubles(flat(xi_))},
+          {"poses.adam_m", pack_doubles(flat(m_))},
+          {"poses.adam_v", pack_doubles(flat(v_))},
+          {"poses.adam_t", pack_doubles(t)}};
 }
 
 }  // namespace sgnlf::pipeline

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geometry/se3.hpp"
+#include "pipeline/checkpoint.hpp"
 #include "pipeline/pose_free_config.hpp"
 
 namespace sgnlf::pipeline {
@@ -37,16 +38,14 @@ class PoseSet {
   template <typename Lookup>
   void load_state(Lookup&& lookup) {
     const size_t n = 6 * size();
-    xi_flat_from(unpack(lookup("poses.xi", 2 * n)));
-    m_ = to_vec6(unpack(lookup("poses.adam_m", 2 * n)));
-    v_ = to_vec6(unpack(lookup("poses.adam_v", 2 * n)));
-    const auto t = unpack(lookup("poses.adam_t", 2 * size()));
+    xi_flat_from(unpack_doubles(lookup("poses.xi", 2 * n)));
+    m_ = to_vec6(unpack_doubles(lookup("poses.adam_m", 2 * n)));
+    v_ = to_vec6(unpack_doubles(lookup("poses.adam_v", 2 * n)));
+    const auto t = unpack_doubles(lookup("poses.adam_t", 2 * size()));
     for (size_t i = 0; i < size(); ++i) t_[i] = long(t[i]);
   }
 
  private:
-  static std::vector<float> pack(const std::vector<double>& v);
-  static std::vector<double> unpack(const std::vector<float>& v);
   std::vector<Vec6> to_vec6(const std::vector<double>& flat) const;
   void xi_flat_from(const std::vector<double>& flat) { xi_ = to_vec6(flat); }
 

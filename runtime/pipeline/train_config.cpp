@@ -102,7 +102,7 @@ TrainConfig train_config_from_json(const Json& j, const std::string& where) {
     s.get("patches_on_even_epochs", c.schedule.patches_on_even_epochs);
     s.finish();
   }
-  if (c.is_pose_free()) c.pose_free = PoseFreeConfig::from_json(r, where);
+  if (c.is_pose_free()) c.pose_free = PoseFreeConfig::from_json(r);
   r.finish();
   c.validate();
   return c;
