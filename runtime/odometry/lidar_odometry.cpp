@@ -1,0 +1,110 @@
+// LidarOdometry (see lidar_odometry.hpp).
+#include "odometry/lidar_odometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "odometry/motion_model.hpp"
+#include "odometry/voxel_grid.hpp"
+
+namespace sgnlf::odometry {
+
+LidarOdometry::LidarOdometry(const OdometryConfig& config)
+    : cfg_((config.validate("odometry"), config)),
+      map_(config.resolved_voxel_size(), config.max_points_per_voxel, config.max_range),
+      coarse_map_(0.5 * config.coarse_threshold, config.max_points_per_voxel, config.max_range),
+      threshold_(config.initial_threshold, config.min_motion, config.max_range) {}
+
+Cloud LidarOdometry::transformed(const Cloud& c, const Pose& T) {
+  Cloud out(c.size());
+  for (size_t i = 0; i < c.size(); ++i) out[i] = T * c[i];
+  return out;
+}
+
+FrameResult LidarOdometry::register_frame(const Cloud& scan_lidar, double timestamp_s) {
+  if (!timestamps_.empty() && timestamp_s < timestamps_.back())
+    throw Error("LidarOdometry: timestamp " + std::to_string(timestamp_s) +
+                " s is before the previous frame's " + std::to_string(timestamps_.back()) + " s");
+  const double v = cfg_.resolved_voxel_size();
+  // Step 1 (KISS-ICP §III-B): the map keeps the 0.5 v grid, ICP registers the 1.5 v grid.
+  const Cloud frame = voxel_downsample(crop_range(scan_lidar, cfg_.min_range, cfg_.max_range), 0.5 * v);
+  const Cloud source = voxel_downsample(frame, 1.5 * v);
+  FrameResult fr;
+  fr.source_points = source.size();
+  fr.sigma = threshold_.sigma();
+  // Step 2: constant-velocity prediction.
+  fr.T_world_lidar_predicted = predict_constant_velocity(poses_, timestamps_, timestamp_s);
+  fr.T_world_lidar = fr.T_world_lidar_predicted;
+  if (map_.empty()) {
+    fr.initialised_map = true;
+  } else {
+    RegistrationOptions o;
+    o.max_iterations = cfg_.max_iterations;
+    o.convergence = cfg_.convergence;
+    o.min_points = cfg_.min_points;
+    o.min_fitness = cfg_.min_fitness;
+    o.threads = cfg_.threads;
+    Pose guess = fr.T_world_lidar_predicted;
+    int coarse_iterations = 0;
+    // Step 3a (ours): the coarse stage pulls a prediction metres off into the fine basin.
+    if (cfg_.coarse_stage) {
+      const Cloud coarse_source = voxel_downsample(source, cfg_.coarse_voxel_factor * 1.5 * v);
+      RegistrationOptions oc = o;
+      oc.max_distance = std::max(cfg_.coarse_threshold, 3.0 * fr.sigma);
+      oc.kernel_scale = oc.max_distance / 3.0;
+      oc.min_points = std::max(3, std::min(o.min_points, int(coarse_source.size())));
+      oc.min_fitness = 0.0;
+      // Starts: the prediction, and without a motion estimate the grid of planar offsets.
+      std::vector<Pose> starts{guess};
+      const double step = cfg_.initial_search_step, reach = cfg_.initial_search;
+      if (!has_motion_ && reach > 0) {
+        const int n = int(std::floor(reach / step + 1e-9));
+        for (int ix = -n; ix <= n; ++ix)
+          for (int iy = -n; iy <= n; ++iy) {
+            if (ix == 0 && iy == 0) continue;
+            Pose s = guess;
+            s.translation() += guess.linear() * Vec3(ix * step, iy * step, 0.0);
+            starts.push_back(s);
+          }
+      }
+      double best_overlap = -1.0;
+      for (const Pose& start : starts) {
+        const RegistrationResult rc = register_scan(coarse_source, coarse_map_, start, oc);
+        coarse_iterations += rc.iterations;
+        if (!(rc.failure.empty() || rc.failure.rfind("no convergence", 0) == 0)) continue;
+        const double overlap = starts.size() == 1 ? 1.0
+            : overlap_fraction(source, map_, rc.T_world_source, cfg_.inlier_distance);
+        if (overlap > best_overlap) {  // strict: ties keep the earlier start (the prediction)
+          best_overlap = overlap;
+          guess = rc.T_world_source;
+        }
+      }
+    }
+    // Step 3b (KISS-ICP §III-D): 3σ correspondences, Geman-McClure κ = σ/3.
+    o.max_distance = 3.0 * fr.sigma;
+    o.kernel_scale = fr.sigma / 3.0;
+    fr.registration = register_scan(source, map_, guess, o);
+    fr.registration.iterations += coarse_iterations;
+    if (!fr.registration.converged) {
+      has_motion_ = false;  // the next frame searches around its prediction again
+      fr.map_points = map_.num_points();
+      poses_.push_back(fr.T_world_lidar);
+      timestamps_.push_back(timestamp_s);
+      return fr;
+    }
+    fr.T_world_lidar = fr.registration.T_world_source;
+    has_motion_ = true;
+    // Step 4: σ from the model deviation (eq. 5–6).
+    threshold_.update(fr.T_world_lidar_predicted.inverse() * fr.T_world_lidar);
+  }
+  const Cloud frame_world = transformed(frame, fr.T_world_lidar);
+  map_.update(frame_world, fr.T_world_lidar.translation());
+  coarse_map_.update(frame_world, fr.T_world_lidar.translation());
+  fr.map_points = map_.num_points();
+  poses_.push_back(fr.T_world_lidar);
+  timestamps_.push_back(timestamp_s);
+  return fr;
+}
+
+}  // namespace sgnlf::odometry

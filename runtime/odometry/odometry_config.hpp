@@ -1,0 +1,50 @@
+// Options of the LiDAR odometry (plain struct with defaults, strict JSON at the edges).
+// Distances in metres. Defaults follow KISS-ICP's (Vizzo et al., RA-L 2023, §III) where they
+// exist; the coarse stage and the failure checks are ours (see lidar_odometry.hpp).
+#pragma once
+#include <string>
+
+#include "core/config.hpp"
+
+namespace sgnlf::odometry {
+
+struct OdometryConfig {
+  double max_range = 80.0;   // points farther than this are dropped (protocol §1's range cut)
+  double min_range = 2.0;    // and nearer than this (the vehicle itself)
+  double voxel_size = -1.0;  // local-map voxel; < 0: max_range / 100 (KISS-ICP)
+  int max_points_per_voxel = 20;
+  // Adaptive threshold (KISS-ICP §III-C, eq. 5–6): σ before any motion sample, and the
+  // smallest relative motion that counts as a sample.
+  double initial_threshold = 2.0;
+  double min_motion = 0.1;
+  // Registration (KISS-ICP §III-D): correspondences within 3σ, Geman-McClure scale σ/3.
+  int max_iterations = 500;
+  double convergence = 1e-4;  // ‖Δx‖ (rad, m) below which an ICP stage has converged
+  // Coarse stage (ours): before the 3σ stage, one ICP stage with correspondences within
+  // max(coarse_threshold, 3σ) on a coarser source (×coarse_voxel_factor), for 2 Hz keyframes
+  // metres and up to 15° apart, where the constant-velocity prediction is metres off.
+  bool coarse_stage = true;
+  double coarse_threshold = 6.0;
+  double coarse_voxel_factor = 2.0;
+  // Without a motion estimate (the second frame, or after a failed one) the coarse stage starts
+  // from a grid of planar offsets of the prediction, −initial_search … +initial_search metres in
+  // steps of initial_search_step along x and y (0 = off), and keeps the start whose result
+  // has the most source points within inlier_distance of the fine map: a car at 2 Hz has moved
+  // metres before the odometry has seen any motion, and along a straight street the ICP alone
+  // does not find it.
+  double initial_search = 6.0;
+  double initial_search_step = 3.0;
+  double inlier_distance = 0.5;
+  // Failure checks: a registration with fewer source points, or whose final fraction of
+  // source points with a correspondence (fitness) is lower, is reported as not converged.
+  int min_points = 100;
+  double min_fitness = 0.3;
+  int threads = 1;  // correspondence search and normal equations; reduced in a fixed order
+
+  double resolved_voxel_size() const { return voxel_size > 0 ? voxel_size : max_range / 100.0; }
+  void validate(const std::string& where) const;
+  static OdometryConfig from_json(ConfigReader& r);  // reads its keys; errors name r.where()
+  Json to_json() const;
+};
+
+}  // namespace sgnlf::odometry

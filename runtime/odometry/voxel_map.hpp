@@ -1,0 +1,45 @@
+// The local map (KISS-ICP §III-B): a hash map from voxel keys to at most `max_points_per_voxel`
+// world-frame points, first come first kept, voxels farther than `max_distance` from the
+// sensor dropped after each update. Nearest-neighbour search looks at the query's voxel and its
+// 26 neighbours, so it is exact whenever the true nearest point lies within one voxel size of
+// the query (tests compare it with a brute-force search); farther points may be missed.
+#pragma once
+#include <unordered_map>
+#include <vector>
+
+#include "odometry/voxel_grid.hpp"
+
+namespace sgnlf::odometry {
+
+class VoxelHashMap {
+ public:
+  VoxelHashMap(double voxel_size, int max_points_per_voxel, double max_distance);
+
+  bool empty() const { return map_.empty(); }
+  size_t num_voxels() const { return map_.size(); }
+  size_t num_points() const;
+  double voxel_size() const { return voxel_size_; }
+
+  // Adds world-frame points, voxel by voxel in input order.
+  void add_points(const Cloud& points_world);
+  // Drops voxels whose first point is farther than max_distance from `origin_world`.
+  void remove_far(const Point3& origin_world);
+  // add_points then remove_far around the sensor position.
+  void update(const Cloud& points_world, const Point3& origin_world) {
+    add_points(points_world);
+    remove_far(origin_world);
+  }
+  void clear() { map_.clear(); }
+
+  // Nearest map point among the 27 voxels around `q`; false when they are all empty.
+  bool nearest(const Point3& q, Point3& nearest_point, double& squared_distance) const;
+  // Every point, in an unspecified but deterministic order (tests, pictures).
+  Cloud points() const;
+
+ private:
+  double voxel_size_, inv_voxel_size_, max_distance_;
+  int max_points_;
+  std::unordered_map<VoxelKey, std::vector<Point3>, VoxelKeyHash, VoxelKeyEqual> map_;
+};
+
+}  // namespace sgnlf::odometry
