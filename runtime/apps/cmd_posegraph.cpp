@@ -36,8 +36,8 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
   a->cfg.lr_rotation = 1e-2;
   a->cfg.lr_translation = 1e-1;
   sub.add_option("--data", a->data, "Dataset folder (synthetic or real layout)")->required();
-  sub.add_option("--pose-init", a->init, "Initial poses: noisy (protocol §3), identity or gt")
-      ->check(CLI::IsMember({"noisy", "identity", "gt"}));
+  sub.add_option("--pose-init", a->init, "Initial poses: noisy (protocol §3), identity, gt or odometry")
+      ->check(CLI::IsMember({"noisy", "identity", "gt", "odometry"}));
   sub.add_option("--steps", a->steps, "Adam steps in all");
   sub.add_option("--per-call", a->per_call, "Steps per call (a fresh Adam each call)");
   sub.add_option("--points", a->cfg.points_per_frame, "Points kept per frame");

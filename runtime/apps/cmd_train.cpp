@@ -1,4 +1,4 @@
-// `sgnlf train --method lidar-nerf|geonlf|geonlf-frozen [--pose-init gt|noisy|identity] --preset <name> --data <dataset> --out <run dir> [--seed N]
+// `sgnlf train --method lidar-nerf|geonlf|geonlf-frozen [--pose-init gt|noisy|identity|odometry] --preset <name> --data <dataset> --out <run dir> [--seed N]
 // [--config overrides.json] [--device SPEC] [--no-resume] [--stop-at STEP] [--sequence S]
 // [--start ID] [--frames N] [--test-frames P,...]`: trains a run folder (resumes an interrupted
 // one by default) and writes run.json (with the dataset options, which eval and render reuse),
@@ -25,8 +25,9 @@ const Registrar reg("train", "Train a method on a dataset into a run folder", []
   auto a = std::make_shared<TrainArgs>();
   sub.add_option("--method", a->method, "Method (lidar-nerf, geonlf, geonlf-frozen)");
   sub.add_option("--pose-init", a->pose_init,
-                 "Pose-free methods: initial poses gt, noisy (protocol §3, the presets' default) or "
-                 "identity (config key poses.init; recorded in run.json)");
+                 "Pose-free methods: initial poses gt, noisy (protocol §3, the presets' default), "
+                 "identity or odometry (the built-in LiDAR odometry on the scans; config key "
+                 "poses.init; recorded in run.json)");
   sub.add_option("--preset", a->preset, "Preset: paper, quick, smoke");
   sub.add_option("--data", a->data, "Dataset folder (synthetic or real layout)")->required();
   sub.add_option("--out", a->out, "Run folder")->required();

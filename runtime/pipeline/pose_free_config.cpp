@@ -13,9 +13,10 @@ int GeometricScheduleConfig::steps_at(long epoch, double progress) const {
 }
 
 void PoseFreeConfig::validate(const std::string& w) const {
-  if (poses.init != "gt" && poses.init != "noisy" && poses.init != "identity")
+  if (poses.init != "gt" && poses.init != "noisy" && poses.init != "identity" &&
+      poses.init != "odometry")
     throw ConfigError(w + ".poses: 'init' = \"" + poses.init +
-                      "\" is not one of \"gt\", \"noisy\", \"identity\"");
+                      "\" is not one of \"gt\", \"noisy\", \"identity\", \"odometry\"");
   check_range(w + ".poses", "sigma_rot_rad", poses.sigma_rot_rad, 0.0, 3.2);
   check_range(w + ".poses", "sigma_trans_m", poses.sigma_trans_m, 0.0, 1e3);
   const std::string o = w + ".pose_optim";

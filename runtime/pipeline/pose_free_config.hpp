@@ -11,7 +11,7 @@
 namespace sgnlf::pipeline {
 
 struct PoseInitConfig {
-  std::string init = "noisy";  // "gt", "noisy" (protocol §3) or "identity"
+  std::string init = "noisy";  // "gt", "noisy" (protocol §3), "identity" or "odometry"
   uint64_t noise_seed = 1;
   double sigma_rot_rad = 0.151, sigma_trans_m = 2.0;
 };
