@@ -34,6 +34,8 @@ class Adam {
 
   cl::Buffer& m() { return m_; }
   cl::Buffer& v() { return v_; }
+  const cl::Buffer& m() const { return m_; }
+  const cl::Buffer& v() const { return v_; }
 
  private:
   cl::Runtime& rt_;

@@ -17,7 +17,14 @@ const std::vector<MethodSpec>& method_registry() {
             {"geometric", {{"enabled", false}}}},
        true, true,
        "control (not in the paper): GeoNLF's field trained on the frozen initial poses"},
-      {"sg-nlf", "sg-nlf", Json::object(), true, false, "SG-NLF (method.md §4)"},
+      {"sg-nlf", "sg-nlf", Json::object(), true, false,
+       "SG-NLF (method.md §4): hybrid field, confidence-aware pose graph, adversarial "
+       "cross-frame consistency",
+       true},
+      {"sg-nlf-no-consistency", "sg-nlf", Json{{"method", "sg-nlf-no-consistency"}}, true, true,
+       "SG-NLF without the adversarial cross-frame consistency (method.md §5 ablation): hybrid "
+       "field and confidence-aware pose graph",
+       true},
   };
   return registry;
 }

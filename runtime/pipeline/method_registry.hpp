@@ -16,6 +16,7 @@ struct MethodSpec {
   bool pose_free = false;      // poses are parameters (PoseFreeConfig in its config)
   bool implemented = false;
   std::string description;
+  bool spectral_field = false; // SG-NLF's hybrid field: the config's "spectral" section
 };
 
 const std::vector<MethodSpec>& method_registry();

@@ -3,6 +3,8 @@
 #include "pipeline/model.hpp"
 
 #include "core/error.hpp"
+#include "field/hash_grid_encoder.hpp"
+#include "spectral/hybrid_encoder.hpp"
 
 namespace sgnlf::pipeline {
 namespace {
@@ -46,6 +48,13 @@ field::MlpSpec head_spec(const FieldSizes& f) {
   return s;
 }
 
+std::unique_ptr<field::Encoder> make_encoder(cl::Runtime& rt, const TrainConfig& c) {
+  if (c.hybrid_encoder())
+    return std::make_unique<spectral::HybridEncoder>(rt, grid_config(c.field), c.spectral.psi,
+                                                     c.spectral.loss);
+  return std::make_unique<field::HashGridEncoder>(rt, grid_config(c.field));
+}
+
 cl::Buffer floats(cl::Runtime& rt, size_t n) { return cl::Buffer(rt, std::max<size_t>(n, 1) * 4); }
 
 }  // namespace
@@ -55,8 +64,8 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
     : rt_(rt),
       cfg_(c),
       max_rays_(max_rays),
-      grid_(rt, grid_config(c.field)),
-      density_(rt, field::make_mlp_spec(c.field.levels * c.field.features_per_level,
+      encoder_(make_encoder(rt, c)),
+      density_(rt, field::make_mlp_spec(encoder_->width(),
                                         c.field.density_hidden, 1, 1 + c.field.geo_features,
                                         field::Activation::Relu)),
       head_(rt, head_spec(c.field)),
@@ -67,7 +76,7 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
       ray_grad_(rt) {
   if (1 + c.field.geo_features != kDensStride)
     throw ConfigError("config.field: 'geo_features' must be 15 (density output 1 + 15 = 16)");
-  off_grid_ = layout_.add("hash_grid", grid_.n_params()).offset;
+  off_grid_ = layout_.add("hash_grid", encoder_->n_params()).offset;
   off_density_ = layout_.add("density_mlp", density_.n_params()).offset;
   off_head_ = layout_.add("head_mlp", head_.n_params()).offset;
   adam_ = std::make_unique<field::Adam>(rt, layout_.total(), adam_config(c.optim));
@@ -83,7 +92,7 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
 
   const size_t R = size_t(max_rays), S = size_t(c.render.n_samples),
                M = S + size_t(c.render.n_importance), N = R * M;
-  const size_t lf = size_t(c.field.levels * c.field.features_per_level);
+  const size_t lf = size_t(encoder_->width());
   const size_t enc_dim = size_t(dirs_.enc_dim());
   params_ = floats(rt, layout_.total());
   grad_ = floats(rt, layout_.total());
@@ -110,7 +119,7 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
 
 void LidarNerfModel::init_params(uint64_t seed) {
   std::vector<float> p(layout_.total(), 0.0f);
-  grid_.init_params(p, off_grid_, seed ^ 0x1111);
+  encoder_->init_params(p, off_grid_, seed ^ 0x1111);
   density_.init_params(p, off_density_, seed ^ 0x2222);
   head_.init_params(p, off_head_, seed ^ 0x3333);
   params_.write_vec(p);
@@ -133,7 +142,7 @@ int LidarNerfModel::sample(int n_rays, bool jitter, uint64_t seed, uint32_t step
   sampler_.uniform(o_, d_, n_rays, jitter, seed, step, t_c_, x_c_);
   clamp_.set_args(n_c * 3, kSceneBound, x_c_);
   clamp_.launch({cl::round_up(size_t(n_c) * 3, 64)}, {64});
-  grid_.forward(params_, off_grid_, x_c_, n_c, enc_c_);
+  encoder_->forward(params_, off_grid_, x_c_, n_c, enc_c_);
   density_.forward(params_, off_density_, enc_c_, n_c, dens_, density_ctx_);
   col_get_.set_args(n_c, kDensStride, 0, dens_, h0_);
   col_get_.launch({cl::round_up(size_t(n_c), 64)}, {64});
@@ -149,9 +158,9 @@ int LidarNerfModel::sample(int n_rays, bool jitter, uint64_t seed, uint32_t step
   if (reuse_coarse_) {
     fine_points_.set_args(n_rays, S, M, src_, x_, x_f_);
     fine_points_.launch({global}, {64});
-    grid_.forward(params_, off_grid_, x_f_, n_rays * I, enc_f_);
+    encoder_->forward(params_, off_grid_, x_f_, n_rays * I, enc_f_);
   }
-  const int lf = cfg_.field.levels * cfg_.field.features_per_level;
+  const int lf = encoder_->width();
   merge_.set_args(n_rays, S, M, lf, src_, x_c_, enc_c_, enc_f_, x_, enc_);
   merge_.launch({global}, {64});
   encoded_ = reuse_coarse_;
@@ -176,11 +185,11 @@ void LidarNerfModel::compact(int n_rays, int M) {
   compact_rows_.launch({global}, {64});
   const int n = int(n_live_);
   if (encoded_) {
-    const int lf = cfg_.field.levels * cfg_.field.features_per_level;
+    const int lf = encoder_->width();
     compact_rows_.set_args(n_rays, M, lf, offset_, enc_, enc_l_);
     compact_rows_.launch({global}, {64});
   } else {
-    grid_.forward(params_, off_grid_, x_l_, n, enc_l_);
+    encoder_->forward(params_, off_grid_, x_l_, n, enc_l_);
   }
   compacted_ = true;
 }
@@ -199,7 +208,7 @@ void LidarNerfModel::field_forward(int n_rays, int samples) {
   // With early termination the field runs on the live rows only (enc_l_); the renderer always
   // sees the full layout, dead samples at zero density.
   const int rows = compacted_ ? int(n_live_) : n;
-  if (!encoded_ && !compacted_) grid_.forward(params_, off_grid_, x_, n, enc_);
+  if (!encoded_ && !compacted_) encoder_->forward(params_, off_grid_, x_, n, enc_);
   density_.forward(params_, off_density_, compacted_ ? enc_l_ : enc_, rows, dens_, density_ctx_);
   dirs_.forward(d_, n_rays, dir_enc_);
   if (compacted_) {
@@ -264,7 +273,7 @@ void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long ste
   density_.backward(params_, off_density_, density_ctx_, dens_, g_dens_, grad_, off_density_,
                     &g_enc_);
   if (!ray_grads) {
-    grid_.backward(params_, off_grid_, *x, rows, g_enc_, grad_, off_grid_);
+    encoder_->backward(params_, off_grid_, *x, rows, g_enc_, grad_, off_grid_, nullptr);
     return;
   }
   if (!g_x_) {  // allocated on the first pose-free step only
@@ -273,7 +282,7 @@ void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long ste
     g_o_ = floats(rt_, size_t(max_rays_) * 3), g_d_ = floats(rt_, size_t(max_rays_) * 3);
     g_dir_ = floats(rt_, size_t(max_rays_) * 3);
   }
-  grid_.backward(params_, off_grid_, *x, rows, g_enc_, grad_, off_grid_, &g_x_);
+  encoder_->backward(params_, off_grid_, *x, rows, g_enc_, grad_, off_grid_, &g_x_);
   ray_grad_.reduce_rows(compacted_ ? &offset_ : nullptr, t_, o_, d_, g_x_, R, M, kSceneBound,
                         g_o_, g_d_);
   dirs_.backward(d_, R, g_dir_enc_, g_dir_);
@@ -308,6 +317,23 @@ std::vector<float> LidarNerfModel::render_rays(const std::vector<float>& origins
   field_forward(n, M);
   if (cfg_.render.eval_depth == "median") renderer_.median_depth(t_, weights_, n, M, out_);
   return out_.read_vec<float>(size_t(n) * 3);
+}
+
+std::vector<float> LidarNerfModel::encode_points(const std::vector<float>& x, int n) {
+  require(n >= 0 && x.size() == size_t(n) * 3,
+          "LidarNerfModel::encode_points: " + std::to_string(x.size()) + " floats for " +
+              std::to_string(n) + " points");
+  const int w = encoder_->width();
+  std::vector<float> out(size_t(n) * size_t(w));
+  // x_ and enc_ hold max_rays × samples rows.
+  const int chunk = max_rays_ * cfg_.render.n_samples;
+  for (int b = 0; b < n; b += chunk) {
+    const int m = std::min(chunk, n - b);
+    x_.write(x.data() + size_t(b) * 3, size_t(m) * 3 * sizeof(float));
+    encoder_->forward(params_, off_grid_, x_, m, enc_);
+    enc_.read(out.data() + size_t(b) * size_t(w), size_t(m) * size_t(w) * sizeof(float));
+  }
+  return out;
 }
 
 ModelState LidarNerfModel::state() const {

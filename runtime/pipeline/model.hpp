@@ -1,5 +1,5 @@
-// The LiDAR-NeRF model on the device (method.md §0–1): hash grid → density MLP (σ logit + 15
-// geometric features) → [geo, direction encoding] → LiDAR head → volume rendering, with
+// The LiDAR-NeRF model on the device (method.md §0–1): position encoder (field::Encoder: the
+// hash grid, or SG-NLF's hybrid [f_geo, λ·Ψ]) → density MLP (σ logit + 15 geometric features) → [geo, direction encoding] → LiDAR head → volume rendering, with
 // importance sampling from a density-only coarse pass, the range loss (+ the patch gradient
 // loss on patch batches), the backward chain and Adam over one flat parameter buffer.
 // A training step is enqueued as a whole; the only host sync is the caller's loss read-back.
@@ -11,7 +11,7 @@
 #include "cl/runtime.hpp"
 #include "field/adam.hpp"
 #include "field/dir_encoding.hpp"
-#include "field/hash_grid.hpp"
+#include "field/encoder.hpp"
 #include "field/mlp.hpp"
 #include "field/param_layout.hpp"
 #include "pipeline/ray_batch.hpp"
@@ -61,8 +61,14 @@ class LidarNerfModel {
   RayGrads read_ray_grads() const;
 
   // Coarse-to-fine mask of the hash-grid levels (field::barf_level_weights); all ones by default.
-  void set_level_weights(const std::vector<float>& w) { grid_.set_level_weights(w); }
-  int levels() const { return cfg_.field.levels; }
+  void set_level_weights(const std::vector<float>& w) { encoder_->set_level_weights(w); }
+  int levels() const { return encoder_->levels(); }
+  // The position encoder (the hash grid, or spectral::HybridEncoder when the config's
+  // hybrid_encoder() is on: the spectral schedule reaches Ψ through it).
+  field::Encoder& encoder() { return *encoder_; }
+  // Encodings f (N × encoder().width()) at n points (N × 3, normalised box): the per-point
+  // features of the pose graph's matching (method.md §4.2). Blocking; chunks of max_rays.
+  std::vector<float> encode_points(const std::vector<float>& x, int n);
   // The four loss terms of the last train_step (blocks until it finished).
   render::LossValues read_loss() const;
 
@@ -99,7 +105,7 @@ class LidarNerfModel {
   TrainConfig cfg_;
   int max_rays_;
   field::ParamLayout layout_;
-  field::HashGrid grid_;
+  std::unique_ptr<field::Encoder> encoder_;
   field::Mlp density_, head_;
   field::DirEncoding dirs_;
   std::unique_ptr<field::Adam> adam_;

@@ -1,5 +1,6 @@
 // Run folder manifest and loading (see run_dir.hpp).
 #include "pipeline/run_dir.hpp"
+#include "pipeline/spectral_schedule.hpp"
 
 #include <filesystem>
 
@@ -89,6 +90,7 @@ LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
   st.adam_v = ck.array("adam_v", run.model->n_params());
   st.adam_step = ck.step;
   run.model->set_state(st);
+  restore_hybrid_encoder(*run.model, c, ck);
   run.step = ck.step;
   run.pose_free = c.is_pose_free();
   run.T_world_lidar = run.T_world_lidar_init;

@@ -15,6 +15,7 @@
 #include "metrics/pose_errors.hpp"
 #include "pipeline/geometric_stage.hpp"
 #include "pipeline/pose_free_step.hpp"
+#include "pipeline/spectral_schedule.hpp"
 #include "pipeline/trajectory_files.hpp"
 
 namespace sgnlf::pipeline {
@@ -85,6 +86,17 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
                                                make_geometric_stage(d, scene, c));
     opt.policy = pose_step.get();
   }
+  // SG-NLF's hybrid field: Ψ trains on the current surface around the pose-free step.
+  std::unique_ptr<SpectralSchedule> spectral_step;
+  if (c.hybrid_encoder()) {
+    require(pose_step != nullptr, "the hybrid spectral field needs a pose-free method");
+    const PoseSet& ps = *poses;
+    spectral_step = std::make_unique<SpectralSchedule>(
+        *pose_step, dynamic_cast<spectral::HybridEncoder&>(model.encoder()), c,
+        make_surface_pool_source(d, scene, c.spectral.points_per_frame, req.manifest.seed),
+        [&ps](int frame) { return ps.pose(size_t(frame)); }, req.manifest.seed);
+    opt.policy = spectral_step.get();
+  }
   auto current_poses = [&] { return pose_step ? pose_step->poses_world() : rs.T_world_lidar_init; };
   const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_load).count();
   opt.evaluate = [&](long) {
@@ -116,6 +128,7 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
     j["pose_metrics"] = pose_metrics_json(current_poses(), gt_poses(d));
     j["initial_pose_metrics"] = pose_metrics_json(rs.T_world_lidar_init, gt_poses(d));
     j["geometric_seconds"] = pose_step->geometric_seconds();
+    if (spectral_step) j["spectral_seconds"] = spectral_step->seconds();
     j["trajectories"] = write_run_trajectories(req.run_dir, d, rs.T_world_lidar_init, current_poses());
   }
   write_json_file((run / "summary.json").string(), j);

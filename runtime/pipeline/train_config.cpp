@@ -44,6 +44,7 @@ void ScheduleConfig::validate(const std::string& w) const {
 }
 
 bool TrainConfig::is_pose_free() const { return method_spec(method).pose_free; }
+bool TrainConfig::has_spectral_field() const { return method_spec(method).spectral_field; }
 
 void TrainConfig::validate() const {
   const std::string w = "config";
@@ -57,6 +58,7 @@ void TrainConfig::validate() const {
     throw ConfigError(w + ": 'method' = \"" + method + "\" is not a trainable method (" +
                       trainable + ")");
   if (spec->pose_free) pose_free.validate(w);
+  if (spec->spectral_field) spectral.validate(w);
   field.validate(w + ".field");
   render.validate(w + ".render");
   optim.validate(w + ".optim");
@@ -103,6 +105,7 @@ TrainConfig train_config_from_json(const Json& j, const std::string& where) {
     s.finish();
   }
   if (c.is_pose_free()) c.pose_free = PoseFreeConfig::from_json(r);
+  if (c.has_spectral_field()) c.spectral = SpectralFieldConfig::from_json(r);
   r.finish();
   c.validate();
   return c;
@@ -140,6 +143,7 @@ Json train_config_to_json(const TrainConfig& c) {
         {"render_chunk_rays", c.schedule.render_chunk_rays},
         {"patches_on_even_epochs", c.schedule.patches_on_even_epochs}}}};
   if (c.is_pose_free()) c.pose_free.to_json(j);
+  if (c.has_spectral_field()) c.spectral.to_json(j);
   return j;
 }
 

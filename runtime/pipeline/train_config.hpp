@@ -8,6 +8,7 @@
 
 #include "core/config.hpp"
 #include "pipeline/pose_free_config.hpp"
+#include "pipeline/spectral_field_config.hpp"
 #include "render/render_config.hpp"
 
 namespace sgnlf::pipeline {
@@ -61,6 +62,10 @@ struct TrainConfig {
   ScheduleConfig schedule;
   // Pose-free methods only (method_registry: pose_free); absent from the JSON of the others.
   PoseFreeConfig pose_free;
+  // Methods on SG-NLF's hybrid field only (method_registry: spectral_field); absent otherwise.
+  SpectralFieldConfig spectral;
+  bool has_spectral_field() const;  // the method's config carries the "spectral" section
+  bool hybrid_encoder() const { return has_spectral_field() && spectral.enabled; }
 
   bool is_pose_free() const;
   void validate() const;

@@ -1,0 +1,32 @@
+// Configuration of SG-NLF's hybrid field (method.md §4.1), the config's "spectral" section:
+// Ψ's architecture and loss, the fusion ramp λ(t), and the schedule on which Ψ trains on
+// area-uniform samples of the current surface during pose-free training
+// (spectral_schedule.hpp). Present only in the configs of methods built on the hybrid field
+// (method_registry: spectral_field), so other methods' config hashes do not change.
+#pragma once
+#include "core/config.hpp"
+#include "spectral/fusion.hpp"
+#include "spectral/psi.hpp"
+#include "spectral/spectral_loss.hpp"
+
+namespace sgnlf::pipeline {
+
+struct SpectralFieldConfig {
+  bool enabled = true;               // false: the plain hash grid (ablation "without hybrid")
+  spectral::PsiSpec psi;             // 3 → 64 → 64 → K, tanh
+  spectral::SpectralLossConfig loss; // Ky Fan form, β, h
+  spectral::FusionRamp fusion;       // λ: 0 → 1 between these training iterations
+  int every = 1;                     // one spectral step every `every` training steps
+  int batch = 1024;                  // surface samples per spectral step (× 5 evaluations)
+  double lr = 1e-2, lr_final = 0.1;  // Ψ's Adam: lr cosine-decayed to lr·lr_final
+  int points_per_frame = 2000;       // observed points per training frame in the surface pool
+  double radius_m = 1.0;             // neighbourhood of the uniform-area thinning and the PCA
+                                     // normals (spectral::surface_from_points), metres
+
+  void validate(const std::string& where) const;
+  static SpectralFieldConfig from_json(ConfigReader& r);  // reads "spectral"; errors name r.where()
+  void to_json(Json& j) const;                            // adds the "spectral" section
+  double lr_at(long step, long iterations) const;         // cosine decay
+};
+
+}  // namespace sgnlf::pipeline

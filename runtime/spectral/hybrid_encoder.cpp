@@ -1,0 +1,118 @@
+// HybridEncoder (hybrid_encoder.hpp).
+#include "spectral/hybrid_encoder.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace sgnlf::spectral {
+namespace {
+cl::Buffer floats(cl::Runtime& rt, size_t n) { return cl::Buffer(rt, std::max<size_t>(n, 1) * 4); }
+}  // namespace
+
+HybridEncoder::HybridEncoder(cl::Runtime& rt, const field::HashGridConfig& grid, const PsiSpec& psi,
+                             const SpectralLossConfig& loss)
+    : rt_(rt),
+      grid_(rt, grid),
+      psi_spec_((psi.validate(), psi)),
+      psi_(rt, psi.mlp_spec()),
+      fusion_(rt, grid_.n_output(), psi.k),
+      psi_adam_(rt, psi_.n_params()) {
+  objective_ = std::make_unique<SpectralObjective>(rt, psi_, loss);
+  psi_params_ = floats(rt, psi_.n_params());
+  psi_grad_ = floats(rt, psi_.n_params());
+  psi_scratch_grad_ = floats(rt, psi_.n_params());
+  psi_grad_.fill_zero();
+  accumulate_ = rt.kernel("field/accumulate.cl", "field_accumulate");
+}
+
+void HybridEncoder::init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) {
+  grid_.init_params(host_params, offset, seed);
+  std::vector<float> p(psi_.n_params(), 0.0f);
+  init_psi_params(psi_, psi_spec_, p, 0, seed ^ 0x5151);
+  psi_params_.write_vec(p);
+  psi_adam_.reset();
+}
+
+void HybridEncoder::set_lambda(float lambda) {
+  require(std::isfinite(lambda) && lambda >= 0.0f && lambda <= 1.0f,
+          "HybridEncoder: fusion weight lambda " + std::to_string(lambda) + " not in [0, 1]");
+  lambda_ = lambda;
+}
+
+void HybridEncoder::ensure(int n) {
+  if (size_t(n) <= capacity_) return;
+  const size_t N = size_t(n);
+  geo_ = floats(rt_, N * size_t(grid_.n_output()));
+  d_geo_ = floats(rt_, N * size_t(grid_.n_output()));
+  psi_out_ = floats(rt_, N * size_t(psi_spec_.k));
+  psi_out_.fill_zero();  // λ = 0 reads it (times 0): keep it finite
+  d_psi_ = floats(rt_, N * size_t(psi_spec_.k));
+  d_x_psi_ = floats(rt_, N * 3);
+  capacity_ = N;
+}
+
+void HybridEncoder::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& x, int n,
+                            cl::Buffer& enc) {
+  ensure(n);
+  grid_.forward(params, offset, x, n, geo_);
+  psi_x_ = nullptr;
+  if (lambda_ > 0.0f) {
+    psi_.forward(psi_params_, 0, x, n, psi_out_, ctx_);
+    psi_x_ = &x, psi_n_ = n;
+  }
+  fusion_.forward(geo_, psi_out_, n, lambda_, enc);
+}
+
+void HybridEncoder::backward(const cl::Buffer& params, size_t offset, const cl::Buffer& x, int n,
+                             const cl::Buffer& d_enc, cl::Buffer& grad, size_t grad_offset,
+                             cl::Buffer* d_x) {
+  require(size_t(n) <= capacity_, "HybridEncoder::backward: more points than the last forward");
+  fusion_.backward(d_enc, n, lambda_, &d_geo_, d_psi_);
+  grid_.backward(params, offset, x, n, d_geo_, grad, grad_offset, d_x);
+  if (!d_x || lambda_ <= 0.0f) return;
+  // Ψ's share of dL/dx; its weight gradient goes to a scratch buffer (Ψ trains on L_spe only).
+  // The model may encode several point sets before one backward (coarse and importance
+  // samples, compacted rows): Ψ's activations are recomputed unless the last forward was on
+  // these very points.
+  if (psi_x_ != &x || psi_n_ != n) psi_.forward(psi_params_, 0, x, n, psi_out_, ctx_);
+  psi_x_ = &x, psi_n_ = n;
+  psi_.backward(psi_params_, 0, ctx_, psi_out_, d_psi_, psi_scratch_grad_, 0, &d_x_psi_);
+  accumulate_.set_args(n * 3, d_x_psi_, *d_x);
+  accumulate_.launch({cl::round_up(size_t(n) * 3, 64)}, {64});
+}
+
+double HybridEncoder::spectral_step(const std::vector<SurfacePoint>& batch, float lr) {
+  const auto res = objective_->loss_and_grad(psi_params_, 0, batch, psi_grad_, 0);
+  psi_adam_.begin_step();
+  psi_adam_.update(psi_params_, psi_grad_, 0, psi_.n_params(), lr);
+  return res.loss;
+}
+
+std::vector<float> HybridEncoder::psi_at(const std::vector<Eigen::Vector3d>& x) {
+  return objective_->evaluate(psi_params_, 0, x);
+}
+
+HybridEncoder::PsiState HybridEncoder::psi_state() const {
+  PsiState s;
+  s.params = psi_params_.read_vec<float>(psi_.n_params());
+  s.adam_m = psi_adam_.m().read_vec<float>(psi_.n_params());
+  s.adam_v = psi_adam_.v().read_vec<float>(psi_.n_params());
+  s.adam_step = psi_adam_.step();
+  return s;
+}
+
+void HybridEncoder::set_psi_state(const PsiState& s) {
+  const size_t n = psi_.n_params();
+  if (s.params.size() != n || s.adam_m.size() != n || s.adam_v.size() != n)
+    throw IoError("spectral embedding state has " + std::to_string(s.params.size()) +
+                  " parameters, the model's Psi " + std::to_string(n));
+  psi_params_.write_vec(s.params);
+  psi_adam_.reset();
+  psi_adam_.m().write_vec(s.adam_m);
+  psi_adam_.v().write_vec(s.adam_v);
+  for (int64_t i = 0; i < s.adam_step; ++i) psi_adam_.begin_step();
+}
+
+}  // namespace sgnlf::spectral

@@ -1,0 +1,76 @@
+// SG-NLF's hybrid spectral-geometric encoding (method.md §4.1) as a field::Encoder:
+//   f_hyb(x) = [f_geo(x), λ·Ψ(x)],  f_geo the hash grid, Ψ the spectral-embedding MLP.
+// The hash grid lives in the model's flat buffer and trains with the range loss. Ψ owns its
+// parameters and its Adam and trains only on the spectral loss (spectral_step), on its own
+// schedule: the range loss reaches the positions through Ψ (dL/dx, for the pose gradients) but
+// never Ψ's weights, so Ψ stays a spectral embedding of the surface (the reading of method.md
+// §4.1 this project takes). With λ = 0 Ψ is not evaluated and f_hyb = [f_geo, 0].
+#pragma once
+#include <memory>
+
+#include "field/adam.hpp"
+#include "field/encoder.hpp"
+#include "field/hash_grid.hpp"
+#include "spectral/fusion.hpp"
+#include "spectral/psi.hpp"
+#include "spectral/spectral_objective.hpp"
+
+namespace sgnlf::spectral {
+
+class HybridEncoder : public field::Encoder {
+ public:
+  HybridEncoder(cl::Runtime& rt, const field::HashGridConfig& grid, const PsiSpec& psi,
+                const SpectralLossConfig& loss);
+
+  int width() const override { return grid_.n_output() + psi_spec_.k; }
+  size_t n_params() const override { return grid_.n_params(); }
+  // The grid's slice from `seed`; Ψ from init_psi_params(seed ^ 0x5151); Ψ's Adam reset.
+  void init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) override;
+  void forward(const cl::Buffer& params, size_t offset, const cl::Buffer& x, int n,
+               cl::Buffer& enc) override;
+  void backward(const cl::Buffer& params, size_t offset, const cl::Buffer& x, int n,
+                const cl::Buffer& d_enc, cl::Buffer& grad, size_t grad_offset,
+                cl::Buffer* d_x) override;
+  int levels() const override { return grid_.config().levels; }
+  void set_level_weights(const std::vector<float>& w) override { grid_.set_level_weights(w); }
+
+  // Fusion weight λ(t) of the following forward/backward calls (FusionRamp), in [0, 1].
+  void set_lambda(float lambda);
+  float lambda() const { return lambda_; }
+
+  // One spectral step on a batch of surface samples (normalised box, weights summing to 1):
+  // the spectral loss, its gradient into Ψ and Ψ's Adam at `lr`. Returns the loss (blocking).
+  double spectral_step(const std::vector<SurfacePoint>& batch, float lr);
+  // Ψ at points (N × K, normalised box), blocking.
+  std::vector<float> psi_at(const std::vector<Eigen::Vector3d>& x);
+
+  int k() const { return psi_spec_.k; }
+  size_t psi_params() const { return psi_.n_params(); }
+  // Ψ's parameters, Adam moments and step, for checkpoints (host copies) and their restoration.
+  struct PsiState {
+    std::vector<float> params, adam_m, adam_v;
+    int64_t adam_step = 0;
+  };
+  PsiState psi_state() const;
+  void set_psi_state(const PsiState& s);  // throws IoError on a size mismatch
+
+ private:
+  void ensure(int n);
+  cl::Runtime& rt_;
+  field::HashGrid grid_;
+  PsiSpec psi_spec_;
+  field::Mlp psi_;
+  SpectralFusion fusion_;
+  field::Adam psi_adam_;
+  std::unique_ptr<SpectralObjective> objective_;
+  cl::Buffer psi_params_, psi_grad_, psi_scratch_grad_;
+  field::MlpContext ctx_;
+  cl::Buffer geo_, psi_out_, d_geo_, d_psi_, d_x_psi_;
+  cl::Kernel accumulate_;
+  size_t capacity_ = 0;
+  float lambda_ = 0.0f;
+  const cl::Buffer* psi_x_ = nullptr;  // points of Ψ's activations in ctx_ (nullptr: none)
+  int psi_n_ = 0;
+};
+
+}  // namespace sgnlf::spectral
