@@ -1,6 +1,7 @@
 // VoxelHashMap (see voxel_map.hpp).
 #include "odometry/voxel_map.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "core/error.hpp"
@@ -14,32 +15,90 @@ VoxelHashMap::VoxelHashMap(double voxel_size, int max_points_per_voxel, double m
       max_points_(max_points_per_voxel) {
   if (!(voxel_size > 0) || max_points_per_voxel < 1 || !(max_distance > 0))
     throw Error("VoxelHashMap: voxel size, points per voxel and max distance must be > 0");
+  slots_.resize(1024);
 }
 
-size_t VoxelHashMap::num_points() const {
-  size_t n = 0;
-  for (const auto& kv : map_) n += kv.second.size();
-  return n;
+void VoxelHashMap::clear() {
+  slots_.assign(1024, Slot{});
+  points_.clear();
+  counts_.clear();
+  keys_.clear();
+  voxels_ = points_total_ = 0;
+}
+
+int32_t VoxelHashMap::find(const VoxelKey& key) const {
+  const size_t mask = slots_.size() - 1;
+  for (size_t i = VoxelKeyHash{}(key) & mask;; i = (i + 1) & mask) {
+    const Slot& s = slots_[i];
+    if (s.block < 0) return -1;
+    if (VoxelKeyEqual{}(s.key, key)) return s.block;
+  }
+}
+
+int32_t VoxelHashMap::find_or_insert(const VoxelKey& key) {
+  if (2 * (voxels_ + 1) > slots_.size()) rehash(2 * slots_.size());
+  const size_t mask = slots_.size() - 1;
+  size_t i = VoxelKeyHash{}(key) & mask;
+  for (;; i = (i + 1) & mask) {
+    const Slot& s = slots_[i];
+    if (s.block < 0) break;
+    if (VoxelKeyEqual{}(s.key, key)) return s.block;
+  }
+  const int32_t b = int32_t(voxels_++);
+  slots_[i] = Slot{key, b};
+  keys_.push_back(key);
+  counts_.push_back(0);
+  points_.resize(points_.size() + size_t(max_points_));
+  return b;
+}
+
+void VoxelHashMap::rehash(size_t capacity) {
+  slots_.assign(capacity, Slot{});
+  const size_t mask = capacity - 1;
+  for (size_t b = 0; b < voxels_; ++b) {
+    size_t i = VoxelKeyHash{}(keys_[b]) & mask;
+    while (slots_[i].block >= 0) i = (i + 1) & mask;
+    slots_[i] = Slot{keys_[b], int32_t(b)};
+  }
 }
 
 void VoxelHashMap::add_points(const Cloud& points_world) {
   for (const Point3& p : points_world) {
-    auto& voxel = map_[voxel_key(p, inv_voxel_size_)];
-    if (int(voxel.size()) < max_points_) {
-      if (voxel.empty()) voxel.reserve(size_t(max_points_));
-      voxel.push_back(p);
+    const int32_t b = find_or_insert(voxel_key(p, inv_voxel_size_));
+    int32_t& n = counts_[size_t(b)];
+    if (n < max_points_) {
+      points_[size_t(b) * size_t(max_points_) + size_t(n)] = p;
+      ++n;
+      ++points_total_;
     }
   }
 }
 
 void VoxelHashMap::remove_far(const Point3& origin_world) {
+  // Compacts the kept blocks in their order (deterministic), then rebuilds the table.
   const double max2 = max_distance_ * max_distance_;
-  for (auto it = map_.begin(); it != map_.end();) {
-    if ((it->second.front() - origin_world).squaredNorm() > max2)
-      it = map_.erase(it);
-    else
-      ++it;
+  const size_t m = size_t(max_points_);
+  size_t kept = 0;
+  points_total_ = 0;
+  for (size_t b = 0; b < voxels_; ++b) {
+    if ((points_[b * m] - origin_world).squaredNorm() > max2) continue;
+    if (kept != b) {
+      std::copy(points_.begin() + long(b * m), points_.begin() + long(b * m + m),
+                points_.begin() + long(kept * m));
+      counts_[kept] = counts_[b];
+      keys_[kept] = keys_[b];
+    }
+    points_total_ += size_t(counts_[kept]);
+    ++kept;
   }
+  if (kept == voxels_) return;
+  voxels_ = kept;
+  points_.resize(kept * m);
+  counts_.resize(kept);
+  keys_.resize(kept);
+  size_t cap = 1024;
+  while (cap < 2 * kept + 2) cap *= 2;
+  rehash(cap);
 }
 
 namespace {
@@ -84,13 +143,15 @@ bool VoxelHashMap::nearest(const Point3& q, Point3& nearest_point, double& squar
     double bound = 0.0;
     for (int a = 0; a < 3; ++a) bound += o[a] < 0 ? lo[a] : (o[a] > 0 ? hi[a] : 0.0);
     if (bound >= best) continue;
-    const auto it = map_.find(VoxelKey(c.x() + o[0], c.y() + o[1], c.z() + o[2]));
-    if (it == map_.end()) continue;
-    for (const Point3& p : it->second) {
-      const double d2 = (p - q).squaredNorm();
+    const int32_t b = find(VoxelKey(c.x() + o[0], c.y() + o[1], c.z() + o[2]));
+    if (b < 0) continue;
+    const Point3* p = &points_[size_t(b) * size_t(max_points_)];
+    const Point3* end = p + counts_[size_t(b)];
+    for (; p != end; ++p) {
+      const double d2 = (*p - q).squaredNorm();
       if (d2 < best) {
         best = d2;
-        best_p = &p;
+        best_p = p;
       }
     }
   }
@@ -102,8 +163,11 @@ bool VoxelHashMap::nearest(const Point3& q, Point3& nearest_point, double& squar
 
 Cloud VoxelHashMap::points() const {
   Cloud out;
-  out.reserve(num_points());
-  for (const auto& kv : map_) out.insert(out.end(), kv.second.begin(), kv.second.end());
+  out.reserve(points_total_);
+  for (size_t b = 0; b < voxels_; ++b) {
+    const Point3* p = &points_[b * size_t(max_points_)];
+    out.insert(out.end(), p, p + counts_[b]);
+  }
   return out;
 }
 

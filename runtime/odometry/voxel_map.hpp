@@ -3,8 +3,11 @@
 // sensor dropped after each update. Nearest-neighbour search looks at the query's voxel and its
 // 26 neighbours, so it is exact whenever the true nearest point lies within one voxel size of
 // the query (tests compare it with a brute-force search); farther points may be missed.
+// Storage: an open-addressing table (linear probing, load ≤ 1/2) from keys to fixed blocks of
+// max_points_per_voxel points, contiguous per voxel, so that one probe and one cache-friendly
+// run serve each cell of a query; removal rebuilds the table (once per frame).
 #pragma once
-#include <unordered_map>
+#include <cstdint>
 #include <vector>
 
 #include "odometry/voxel_grid.hpp"
@@ -15,9 +18,9 @@ class VoxelHashMap {
  public:
   VoxelHashMap(double voxel_size, int max_points_per_voxel, double max_distance);
 
-  bool empty() const { return map_.empty(); }
-  size_t num_voxels() const { return map_.size(); }
-  size_t num_points() const;
+  bool empty() const { return voxels_ == 0; }
+  size_t num_voxels() const { return voxels_; }
+  size_t num_points() const { return points_total_; }
   double voxel_size() const { return voxel_size_; }
 
   // Adds world-frame points, voxel by voxel in input order.
@@ -29,7 +32,7 @@ class VoxelHashMap {
     add_points(points_world);
     remove_far(origin_world);
   }
-  void clear() { map_.clear(); }
+  void clear();
 
   // Nearest map point among the 27 voxels around `q`; false when they are all empty.
   bool nearest(const Point3& q, Point3& nearest_point, double& squared_distance) const;
@@ -37,9 +40,23 @@ class VoxelHashMap {
   Cloud points() const;
 
  private:
+  struct Slot {
+    VoxelKey key;
+    int32_t block = -1;  // −1: empty
+  };
+  // The block of `key`, or −1.
+  int32_t find(const VoxelKey& key) const;
+  // The block of `key`, created empty when absent.
+  int32_t find_or_insert(const VoxelKey& key);
+  void rehash(size_t capacity);
+
   double voxel_size_, inv_voxel_size_, max_distance_;
   int max_points_;
-  std::unordered_map<VoxelKey, std::vector<Point3>, VoxelKeyHash, VoxelKeyEqual> map_;
+  std::vector<Slot> slots_;       // capacity a power of two
+  std::vector<Point3> points_;    // block b holds points_[b·max_points_ …]
+  std::vector<int32_t> counts_;   // points in each block
+  std::vector<VoxelKey> keys_;    // key of each block
+  size_t voxels_ = 0, points_total_ = 0;
 };
 
 }  // namespace sgnlf::odometry
