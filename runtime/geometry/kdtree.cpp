@@ -4,6 +4,8 @@
 #include "geometry/kdtree.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 #include <limits>
 #include <numeric>
 
@@ -102,6 +104,43 @@ float KdTree::nearest(const Point3f& q, uint32_t* index) const {
   search(0, q, 0.f, off, best, best_i);
   if (index) *index = order_[best_i];
   return best;
+}
+
+void KdTree::collect(int32_t node_id, const Point3f& q, float cell_sq, Point3f& off,
+                     float r_sq, std::vector<uint32_t>& out) const {
+  const Node& n = nodes_[node_id];
+  if (n.left < 0) {
+    for (uint32_t i = n.begin; i < n.end; ++i)
+      if (squared_distance(q, points_[i]) <= r_sq) out.push_back(order_[i]);
+    return;
+  }
+  // As in search(): the near child shares the query's cell bound, the far child's bound grows
+  // by the offset to the splitting plane along this axis.
+  const float diff = q[n.axis] - n.split;
+  const int32_t near_child = diff <= 0.f ? n.left : n.right;
+  const int32_t far_child = diff <= 0.f ? n.right : n.left;
+  collect(near_child, q, cell_sq, off, r_sq, out);
+  const float old = off[n.axis];
+  const float far_sq = cell_sq - old * old + diff * diff;
+  // The bound is rounded in float: a small slack only visits more cells (the leaf test above
+  // decides), so a point exactly on the sphere is never lost to rounding of the bound.
+  if (far_sq <= r_sq * (1.f + 1e-5f)) {
+    off[n.axis] = diff;
+    collect(far_child, q, far_sq, off, r_sq, out);
+    off[n.axis] = old;
+  }
+}
+
+void KdTree::radius_search(const Point3f& q, float radius, std::vector<uint32_t>& out) const {
+  out.clear();
+  if (points_.empty()) throw Error("KdTree::radius_search: the tree holds no points");
+  if (!q.allFinite()) throw Error("KdTree::radius_search: query point is not finite");
+  if (!(std::isfinite(radius) && radius >= 0.f))
+    throw Error("KdTree::radius_search: radius " + std::to_string(radius) +
+                " (must be finite and >= 0)");
+  Point3f off = Point3f::Zero();
+  collect(0, q, 0.f, off, radius * radius, out);
+  std::sort(out.begin(), out.end());
 }
 
 void KdTree::nearest_all(const std::vector<Point3f>& queries, std::vector<float>& out_sq) const {

@@ -28,6 +28,11 @@ class KdTree {
   float nearest(const Point3f& q, uint32_t* index = nullptr) const;
   // nearest() for every query; `out_sq` is resized to queries.size().
   void nearest_all(const std::vector<Point3f>& queries, std::vector<float>& out_sq) const;
+  // Indices (input order, ascending) of every point p with squared_distance(q, p) ≤ radius²
+  // (radius² computed in float; exact, the same test a brute-force scan makes). `out` is
+  // cleared first. Throws sgnlf::Error for an empty tree, a non-finite query or a radius that
+  // is negative or not finite.
+  void radius_search(const Point3f& q, float radius, std::vector<uint32_t>& out) const;
 
  private:
   struct Node {
@@ -43,6 +48,9 @@ class KdTree {
   // plane alone would not.
   void search(int32_t node, const Point3f& q, float cell_sq, Point3f& off, float& best,
               uint32_t& best_i) const;
+
+  void collect(int32_t node, const Point3f& q, float cell_sq, Point3f& off, float r_sq,
+               std::vector<uint32_t>& out) const;
 
   std::vector<Point3f> points_;   // permuted so that each leaf is contiguous
   std::vector<uint32_t> order_;   // points_[k] = input[order_[k]]
