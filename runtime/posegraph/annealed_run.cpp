@@ -18,6 +18,14 @@ void AnnealConfig::validate() const {
 std::vector<GeometricResult> run_annealed(
     std::shared_ptr<const GraphLoss> loss, const GeometricConfig& base, const AnnealConfig& a,
     std::vector<Pose>& T, const std::function<void(int, double, const GeometricResult&)>& on_call) {
+  require(loss != nullptr, "run_annealed: null loss");
+  const size_t frames = loss->frames();
+  return run_annealed(GraphLoss::as_pose_loss(std::move(loss)), frames, base, a, T, on_call);
+}
+
+std::vector<GeometricResult> run_annealed(
+    PoseLoss loss, size_t frames, const GeometricConfig& base, const AnnealConfig& a,
+    std::vector<Pose>& T, const std::function<void(int, double, const GeometricResult&)>& on_call) {
   a.validate();
   const int calls = (a.steps + a.per_call - 1) / a.per_call;
   std::vector<GeometricResult> out;
@@ -27,7 +35,7 @@ std::vector<GeometricResult> run_annealed(
     const double decay = std::pow(a.lr_final, double(k - 1) / calls);
     c.lr_rotation *= decay;
     c.lr_translation *= decay;
-    const GeometricOptimizer opt(GraphLoss::as_pose_loss(loss), T.size(), c);
+    const GeometricOptimizer opt(loss, frames, c);
     const double clock = double(k) / calls;
     out.push_back(opt.run(T, clock));
     if (on_call) on_call(k, clock, out.back());

@@ -25,5 +25,11 @@ std::vector<GeometricResult> run_annealed(
     std::shared_ptr<const GraphLoss> loss, const GeometricConfig& base, const AnnealConfig& a,
     std::vector<Pose>& T_world_lidar,
     const std::function<void(int, double, const GeometricResult&)>& on_call = {});
+// The same schedule over any loss of `frames` poses (e.g. a graph that on_call rebuilds between
+// calls: staged_graph_run.hpp).
+std::vector<GeometricResult> run_annealed(
+    PoseLoss loss, size_t frames, const GeometricConfig& base, const AnnealConfig& a,
+    std::vector<Pose>& T_world_lidar,
+    const std::function<void(int, double, const GeometricResult&)>& on_call = {});
 
 }  // namespace sgnlf::posegraph
