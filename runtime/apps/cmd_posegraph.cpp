@@ -1,8 +1,13 @@
 // `sgnlf posegraph --data <dataset> [--pose-init noisy|identity|gt] [--steps N] [--points N]
-// [--tau-scale X] [--lr-rot X] [--lr-trans X] [--lr-final X] [--offsets 1,2] [--out DIR]`:
+// [--tau-scale X] [--lr-rot X] [--lr-trans X] [--lr-final X] [--offsets 1,2] [--out DIR]
+// [--graph sequential|confidence] [--graph-config FILE] [--confidence-start X]`:
 // GeoNLF's geometric pose optimiser alone (no field; method.md §3) from the protocol's initial
 // poses, as the coarse alignment that starts a GeoNLF run (posegraph/annealed_run.hpp). Prints the ATE/RPE after each call; with --out writes
 // the trajectories (pipeline/trajectory_files.hpp) and a JSON log.
+// --graph confidence: SG-NLF's confidence-aware pose graph (method.md §4.2) with the STAND-IN
+// features (posegraph/standin_features.hpp, not the field's f_hyb) on the staged schedule of
+// posegraph/staged_graph_run.hpp; --out adds graphs/graph_after_call_<k>.{json,svg} for every
+// (re-)evaluation.
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -16,13 +21,17 @@
 #include "pipeline/geometric_stage.hpp"
 #include "pipeline/pose_init.hpp"
 #include "pipeline/trajectory_files.hpp"
+#include "io/pose_graph_svg.hpp"
 #include "posegraph/annealed_run.hpp"
+#include "posegraph/staged_graph_run.hpp"
+#include "posegraph/standin_features.hpp"
 
 namespace sgnlf::app {
 namespace {
 
 struct PoseGraphArgs {
-  std::string data, out, init = "noisy";
+  std::string data, out, init = "noisy", graph = "sequential", graph_config;
+  double confidence_start = 0.5;
   int steps = 300, per_call = 10;
   posegraph::GeometricConfig cfg;
   double tau_scale = 1.5, lr_final = 0.05;
@@ -47,6 +56,10 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
   sub.add_option("--lr-final", a->lr_final, "Learning rates decay exponentially to this factor at the end");
   sub.add_option("--offsets", a->cfg.edge_offsets, "Edges (i, i + k) for these k")->delimiter(',');
   sub.add_option("--out", a->out, "Folder for trajectories/ and posegraph_log.json");
+  sub.add_option("--graph", a->graph, "Pose graph: sequential (GeoNLF) or confidence (SG-NLF, stand-in features)")
+      ->check(CLI::IsMember({"sequential", "confidence"}));
+  sub.add_option("--graph-config", a->graph_config, "JSON file of the confidence graph's parameters (posegraph/confidence_graph_config.hpp)");
+  sub.add_option("--confidence-start", a->confidence_start, "Fraction of the calls on the sequential graph before the first confidence graph");
   sub.add_option("--sequence", a->load.sequence, "Sequence / drive / scene of a real layout");
   sub.add_option("--start", a->load.start, "First frame id of the window");
   sub.add_option("--frames", a->load.frames, "Frames in the window");
@@ -86,16 +99,64 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
     an.steps = a->steps;
     an.per_call = a->per_call;
     an.lr_final = a->lr_final;
-    posegraph::run_annealed(loss, a->cfg, an, T,
-                            [&](int k, double clock, const posegraph::GeometricResult& r) {
-                              report(k, clock, &r);
-                            });
+    auto on_call = [&](int k, double clock, const posegraph::GeometricResult& r) {
+      report(k, clock, &r);
+    };
+    Json graphs = Json::array();
+    Json graph_cfg_json = nullptr;
+    if (a->graph == "sequential") {
+      posegraph::run_annealed(loss, a->cfg, an, T, on_call);
+    } else {
+      posegraph::ConfidenceGraphConfig gc;
+      gc.sequential_offsets = a->cfg.edge_offsets;
+      gc.threads = a->cfg.threads;
+      if (!a->graph_config.empty()) {
+        Json j = load_json_file(a->graph_config);
+        if (!j.contains("sequential_offsets")) j["sequential_offsets"] = gc.sequential_offsets;
+        if (!j.contains("threads")) j["threads"] = gc.threads;
+        gc = posegraph::ConfidenceGraphConfig::from_json(j, a->graph_config);
+      }
+      graph_cfg_json = gc.to_json();
+      posegraph::StagedGraphConfig sc;
+      sc.anneal = an;
+      sc.confidence_start = a->confidence_start;
+      const auto features = posegraph::standin_fourier_features({});
+      const std::filesystem::path gdir = std::filesystem::path(a->out) / "graphs";
+      if (!a->out.empty()) std::filesystem::create_directories(gdir);
+      posegraph::run_staged_graph(
+          clouds, a->cfg, sc, gc, features, T, on_call, [&](const posegraph::GraphEvaluation& e) {
+            const auto& g = e.graph;
+            std::printf("graph after call %d: %zu candidates, %zu non-adjacent edges kept "
+                        "(threshold %.4f = %.4f + kappa * %.4f)\n",
+                        e.after_call, g.pairs.size(), g.non_adjacent_edges(), g.threshold,
+                        g.sequential_mean, g.sequential_std);
+            graphs.push_back(Json{{"after_call", e.after_call},
+                                  {"non_adjacent_edges", g.non_adjacent_edges()},
+                                  {"candidates", g.pairs.size()},
+                                  {"threshold", std::isfinite(g.threshold) ? Json(g.threshold) : Json(nullptr)}});
+            if (a->out.empty()) return;
+            const std::string stem = (gdir / ("graph_after_call_" + std::to_string(e.after_call))).string();
+            Json gj = posegraph::confidence_graph_json(g);
+            gj["after_call"] = e.after_call;
+            gj["features"] = features.name;
+            write_json_file(stem + ".json", gj);
+            std::vector<io::SvgGraphEdge> edges;
+            for (const auto& r : g.pairs)
+              if (r.kept) edges.push_back({r.i, r.j, r.weight, r.sequential});
+            io::write_pose_graph_svg(stem + ".svg",
+                                     d.name + ": confidence graph after call " +
+                                         std::to_string(e.after_call) + " (grey: ground truth)",
+                                     T, edges, gt);
+          });
+    }
     if (!a->out.empty()) {
       pipeline::write_run_trajectories(a->out, d, init, T);
       write_json_file((std::filesystem::path(a->out) / "posegraph_log.json").string(),
                       Json{{"dataset", d.name}, {"pose_init", a->init}, {"points", a->cfg.points_per_frame},
                            {"tau_scale", a->cfg.tau_scale}, {"lr_rot", a->cfg.lr_rotation},
-                           {"lr_trans", a->cfg.lr_translation}, {"calls", log}});
+                           {"lr_trans", a->cfg.lr_translation}, {"graph", a->graph},
+                           {"graph_config", graph_cfg_json}, {"confidence_start", a->confidence_start},
+                           {"graphs", graphs}, {"calls", log}});
     }
     return 0;
   });
