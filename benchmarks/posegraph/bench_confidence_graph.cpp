@@ -3,7 +3,9 @@
 // between frames) of 36, 100 and 300 frames, one ray per pixel of a 66 × 360 grid, 4000 match
 // points per frame, graph built under the ground-truth poses with the STAND-IN features
 // (random Fourier features of x_world, host; the pipeline's f_hyb runs on the device instead).
-// Candidates pruned by sensor distance (40 m, the default) against no pruning (every pair).
+// Candidates pruned by sensor distance (40 m, the default) against no pruning (every pair);
+// min_index_gap 0 here (every pair within the distance is matched, not only loop closures: the
+// larger workload).
 // Args: frames, pruned (1) or all pairs (0), threads. Wall-clock time, host only.
 #include <benchmark/benchmark.h>
 
@@ -46,6 +48,7 @@ const Drive& drive(int frames) {
 void BM_ConfidenceGraph(benchmark::State& state) {
   const Drive& d = drive(int(state.range(0)));
   ConfidenceGraphConfig c;
+  c.min_index_gap = 0;
   if (state.range(1) == 0) c.candidate_distance_m = 1e6;
   c.threads = int(state.range(2));
   const FeatureProvider f = standin_fourier_features({});
