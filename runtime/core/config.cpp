@@ -34,6 +34,8 @@ Json load_json_file(const std::string& path) {
     return Json::parse(in);
   } catch (const Json::parse_error& e) {
     throw IoError(path + ": invalid JSON at byte " + std::to_string(e.byte) + ": " + e.what());
+  } catch (const Json::exception& e) {  // e.g. out_of_range 406: a number like 1e999 (fuzz_compare_results)
+    throw IoError(path + ": invalid JSON: " + e.what());
   }
 }
 

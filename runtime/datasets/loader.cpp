@@ -126,14 +126,21 @@ namespace detail {
 std::vector<int> select_window(const std::vector<int>& available, int start, int stride, int count,
                                const std::string& where) {
   if (available.empty()) throw IoError(where + ": no frames");
+  // Every caller resolves the defaults first; a stride below 1 would repeat one frame or never end.
+  if (stride < 1 || count < 1)
+    throw ConfigError(where + ": window stride " + std::to_string(stride) + " and count " +
+                      std::to_string(count) + " (both must be >= 1)");
+  // Walks the available ids, not the grid: a far-away start (or a file named 2147483647.bin)
+  // must not cost billions of look-ups. `missing` counts grid ids without a frame, as before.
   std::vector<int> ids;
-  int missing = 0;
-  for (int id = start; id <= available.back() && int(ids.size()) < count; id += stride) {
-    if (std::binary_search(available.begin(), available.end(), id))
-      ids.push_back(id);
-    else
-      ++missing;
+  for (int a : available) {
+    if (int(ids.size()) >= count) break;
+    if (!ids.empty() && a == ids.back()) continue;  // "7.bin" and "07.bin": one frame id
+    if (a >= start && (static_cast<long long>(a) - start) % stride == 0) ids.push_back(a);
   }
+  const long long last = int(ids.size()) >= count ? ids.back() : available.back();
+  const long long grid = last >= start ? (last - start) / stride + 1 : 0;
+  const long long missing = grid - static_cast<long long>(ids.size());
   if (missing > 0)
     log::warn(where, ": skipped ", missing, " frame ids without a pose or scan in the window from ",
               start, " with stride ", stride);

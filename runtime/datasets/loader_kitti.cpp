@@ -1,6 +1,7 @@
 // KITTI-360 raw (and the synthetic layout, which mimics it) and KITTI odometry loaders
 // (protocol §2 pose chains).
 #include <algorithm>
+#include <climits>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -29,7 +30,16 @@ std::vector<int> scan_ids(const fs::path& dir, const std::string& ext) {
     const std::string n = e.path().filename().string();
     if (n.size() <= ext.size() || n.compare(n.size() - ext.size(), ext.size(), ext) != 0) continue;
     const std::string stem = n.substr(0, n.size() - ext.size());
-    if (stem.find_first_not_of("0123456789") == std::string::npos) ids.push_back(std::stoi(stem));
+    if (stem.find_first_not_of("0123456789") != std::string::npos) continue;
+    // Frame numbers are ints; a longer digit string would overflow (std::stoi threw without
+    // naming the file).
+    const size_t nz = std::min(stem.find_first_not_of('0'), stem.size());
+    long long id = 0;
+    for (size_t k = nz; k < stem.size() && id <= INT_MAX; ++k) id = id * 10 + (stem[k] - '0');
+    if (stem.size() - nz > 10 || id > INT_MAX)
+      throw IoError(e.path().string() + ": frame number in the file name is out of range (at most " +
+                    std::to_string(INT_MAX) + ")");
+    ids.push_back(int(id));
   }
   std::sort(ids.begin(), ids.end());
   return ids;
@@ -49,6 +59,20 @@ std::map<int, double> read_kitti360_timestamps(const fs::path& file) {
     t[k] = d * 86400.0 + h * 3600.0 + mi * 60.0 + s;
   }
   return t;
+}
+
+std::string meta_string(const Json& meta, const std::string& key, const std::string& where) {
+  const Json& v = meta.at(key);
+  if (!v.is_string()) throw IoError(where + ": key '" + key + "' must be a string, found " + v.dump());
+  return v.get<std::string>();
+}
+
+int meta_int(const Json& meta, const std::string& key, int min, const std::string& where) {
+  const Json& v = meta.at(key);
+  if (!v.is_number_integer() || v.get<long long>() < min || v.get<long long>() > INT_MAX)
+    throw IoError(where + ": key '" + key + "' must be an integer >= " + std::to_string(min) +
+                  ", found " + v.dump());
+  return int(v.get<long long>());
 }
 
 std::string pick_drive(const fs::path& root, const std::string& requested) {
@@ -76,16 +100,22 @@ Dataset load_kitti360(const std::string& root_s, const LoadOptions& opt, bool sy
   std::string freq_default = "standard", seq_default;
   int start_default = 1538, stride_meta = -1, count_meta = -1;
   if (synthetic) {
-    meta = load_json_file((root / "sgnlf_dataset.json").string());
     const std::string where = (root / "sgnlf_dataset.json").string();
+    meta = load_json_file(where);
+    if (!meta.is_object()) throw IoError(where + ": expected a JSON object");
     if (!meta.contains("sequence") || !meta.contains("frequency") || !meta.contains("first_frame") ||
         !meta.contains("stride") || !meta.contains("frames"))
       throw IoError(where + ": missing one of sequence, frequency, first_frame, stride, frames");
-    seq_default = meta["sequence"].get<std::string>();
-    freq_default = meta["frequency"].get<std::string>();
-    start_default = meta["first_frame"].get<int>();
-    stride_meta = meta["stride"].get<int>();
-    count_meta = meta["frames"].get<int>();
+    seq_default = meta_string(meta, "sequence", where);
+    freq_default = meta_string(meta, "frequency", where);
+    if (freq_default != "standard" && freq_default != "low")
+      throw IoError(where + ": frequency '" + freq_default + "' (expected standard or low)");
+    // A stride of 0 loaded one frame many times (or hung the loader on a missing id), a
+    // negative one walked backwards forever.
+    start_default = meta_int(meta, "first_frame", 0, where);
+    stride_meta = meta_int(meta, "stride", 1, where);
+    count_meta = meta_int(meta, "frames", 1, where);
+    if (meta.contains("name")) (void)meta_string(meta, "name", where);
     const std::string sj = (root / "sensor.json").string();
     if (!fs::exists(sj)) throw IoError(sj + ": missing sensor description");
     sensor = sensor_from_json(load_json_file(sj), sj);

@@ -2,6 +2,7 @@
 // ego_to_world · lidar_to_ego (protocol §2), frames sorted by timestamp inside one scene.
 // Low frequency uses the 2 Hz keyframes, standard the 20 Hz sweeps. Also the scan-folder loader.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 
@@ -20,6 +21,40 @@ struct Table {
   std::map<std::string, Json> by_token;
 };
 
+// Typed field access: a field of the wrong JSON type names the table file, the record and the
+// key (nlohmann's type_error named none of them).
+std::string where_rec(const std::string& file, const Json& rec) {
+  const auto it = rec.find("token");
+  return file + ": record " + (it != rec.end() && it->is_string() ? "'" + it->get<std::string>() + "'" : "?");
+}
+
+const Json& field(const std::string& file, const Json& rec, const std::string& key) {
+  const auto it = rec.find(key);
+  if (it == rec.end()) throw IoError(where_rec(file, rec) + " lacks '" + key + "'");
+  return *it;
+}
+
+std::string str_field(const std::string& file, const Json& rec, const std::string& key) {
+  const Json& v = field(file, rec, key);
+  if (!v.is_string())
+    throw IoError(where_rec(file, rec) + ": '" + key + "' must be a string, found " + v.dump());
+  return v.get<std::string>();
+}
+
+// Optional string with a fallback (sensor channel, scene name, file name).
+std::string str_field_or(const std::string& file, const Json& rec, const std::string& key,
+                         const std::string& fallback) {
+  return rec.contains(key) ? str_field(file, rec, key) : fallback;
+}
+
+double num_field(const std::string& file, const Json& v, const Json& rec, const std::string& key) {
+  if (!v.is_number())
+    throw IoError(where_rec(file, rec) + ": '" + key + "' must hold numbers, found " + v.dump());
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) throw IoError(where_rec(file, rec) + ": '" + key + "' is not finite");
+  return x;
+}
+
 Table load_table(const fs::path& dir, const std::string& name, bool required = true) {
   Table t;
   t.file = (dir / (name + ".json")).string();
@@ -32,29 +67,40 @@ Table load_table(const fs::path& dir, const std::string& name, bool required = t
   for (size_t i = 0; i < j.size(); ++i) {
     if (!j[i].is_object() || !j[i].contains("token"))
       throw IoError(t.file + ": record " + std::to_string(i) + " has no 'token'");
+    if (!j[i]["token"].is_string())
+      throw IoError(t.file + ": record " + std::to_string(i) + ": 'token' must be a string, found " +
+                    j[i]["token"].dump());
     t.by_token[j[i]["token"].get<std::string>()] = j[i];
   }
   return t;
 }
 
-const Json& lookup(const Table& t, const Json& rec, const std::string& key) {
-  if (!rec.contains(key)) throw IoError(t.file + ": referencing record lacks '" + key + "'");
-  const auto it = t.by_token.find(rec[key].get<std::string>());
+// `rec` comes from `from` (a file name, for errors); its `key` names a record of `t`.
+const Json& lookup(const Table& t, const std::string& from, const Json& rec, const std::string& key) {
+  const std::string tok = str_field(from, rec, key);
+  const auto it = t.by_token.find(tok);
   if (it == t.by_token.end())
-    throw IoError(t.file + ": no record with token '" + rec[key].get<std::string>() + "' (from " + key + ")");
+    throw IoError(t.file + ": no record with token '" + tok + "' (from " + key + " in " + from + ")");
   return it->second;
 }
 
 Pose pose_of(const Json& rec, const std::string& where) {
-  if (!rec.contains("translation") || !rec.contains("rotation") || rec["translation"].size() != 3 ||
-      rec["rotation"].size() != 4)
-    throw IoError(where + ": record " + rec.value("token", "?") + " lacks translation[3] / rotation[4]");
-  const auto& q = rec["rotation"];  // w, x, y, z
+  const Json& tj = field(where, rec, "translation");
+  const Json& qj = field(where, rec, "rotation");
+  if (!tj.is_array() || !qj.is_array() || tj.size() != 3 || qj.size() != 4)
+    throw IoError(where_rec(where, rec) + " lacks translation[3] / rotation[4]");
+  double q[4], t[3];
+  for (int k = 0; k < 4; ++k) q[k] = num_field(where, qj[size_t(k)], rec, "rotation");
+  for (int k = 0; k < 3; ++k) t[k] = num_field(where, tj[size_t(k)], rec, "translation");
+  // w, x, y, z. nuScenes stores unit quaternions; a zero (or far from unit) one is a broken
+  // record, which Eigen's normalized() would have turned into the identity without a word.
+  const Eigen::Quaterniond quat(q[0], q[1], q[2], q[3]);
+  if (!(std::abs(quat.norm() - 1.0) < 1e-3))
+    throw IoError(where_rec(where, rec) + ": rotation quaternion has norm " +
+                  std::to_string(quat.norm()) + " (a unit quaternion w, x, y, z expected)");
   Pose T = Pose::Identity();
-  T.linear() = Eigen::Quaterniond(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(),
-                                  q[3].get<double>()).normalized().toRotationMatrix();
-  const auto& t = rec["translation"];
-  T.translation() = Vec3(t[0].get<double>(), t[1].get<double>(), t[2].get<double>());
+  T.linear() = quat.normalized().toRotationMatrix();
+  T.translation() = Vec3(t[0], t[1], t[2]);
   return T;
 }
 
@@ -72,14 +118,30 @@ Dataset load_nuscenes(const std::string& root_s, const LoadOptions& opt) {
   struct Rec { int64_t ts; bool key; const Json* j; std::string scene; };
   std::map<std::string, std::vector<Rec>> per_scene;
   for (const auto& [tok, r] : sd.by_token) {
-    const Json& c = lookup(cal, r, "calibrated_sensor_token");
-    const std::string fname = r.value("filename", "");
-    const bool lidar = sensor_t.by_token.empty()
-                           ? fname.find("LIDAR_TOP") != std::string::npos
-                           : lookup(sensor_t, c, "sensor_token").value("channel", "") == "LIDAR_TOP";
+    const Json& c = lookup(cal, sd.file, r, "calibrated_sensor_token");
+    const std::string fname = str_field_or(sd.file, r, "filename", "");
+    const bool lidar =
+        sensor_t.by_token.empty()
+            ? fname.find("LIDAR_TOP") != std::string::npos
+            : str_field_or(sensor_t.file, lookup(sensor_t, cal.file, c, "sensor_token"), "channel", "") == "LIDAR_TOP";
     if (!lidar) continue;
-    const std::string sc = lookup(scene, lookup(sample, r, "sample_token"), "scene_token").value("name", "?");
-    per_scene[sc].push_back({r.value("timestamp", int64_t(0)), r.value("is_key_frame", false), &r, sc});
+    const std::string sc = str_field_or(
+        scene.file, lookup(scene, sample.file, lookup(sample, sd.file, r, "sample_token"), "scene_token"), "name", "?");
+    int64_t ts = 0;
+    if (r.contains("timestamp")) {
+      if (!r["timestamp"].is_number_integer())
+        throw IoError(where_rec(sd.file, r) + ": 'timestamp' must be an integer (microseconds), found " +
+                      r["timestamp"].dump());
+      ts = r["timestamp"].get<int64_t>();
+    }
+    bool key = false;
+    if (r.contains("is_key_frame")) {
+      if (!r["is_key_frame"].is_boolean())
+        throw IoError(where_rec(sd.file, r) + ": 'is_key_frame' must be true or false, found " +
+                      r["is_key_frame"].dump());
+      key = r["is_key_frame"].get<bool>();
+    }
+    per_scene[sc].push_back({ts, key, &r, sc});
   }
   if (per_scene.empty()) throw IoError(sd.file + ": no LIDAR_TOP sample_data records");
   const std::string sc = opt.sequence.empty() ? per_scene.begin()->first : opt.sequence;
@@ -107,9 +169,9 @@ Dataset load_nuscenes(const std::string& root_s, const LoadOptions& opt) {
     Frame f;
     f.id = id;
     f.timestamp_s = recs[size_t(id)].ts * 1e-6;
-    f.T_world_lidar = pose_of(lookup(ego, r, "ego_pose_token"), ego.file) *
-                      pose_of(lookup(cal, r, "calibrated_sensor_token"), cal.file);
-    load_frame_scan(f, (root / r.value("filename", "")).string(), sensor, opt.load_points, dropped);
+    f.T_world_lidar = pose_of(lookup(ego, sd.file, r, "ego_pose_token"), ego.file) *
+                      pose_of(lookup(cal, sd.file, r, "calibrated_sensor_token"), cal.file);
+    load_frame_scan(f, (root / str_field(sd.file, r, "filename")).string(), sensor, opt.load_points, dropped);
     d.frames.push_back(std::move(f));
   }
   finish_dataset(d, dropped);

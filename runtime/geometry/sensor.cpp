@@ -6,6 +6,13 @@ void Sensor::validate() const {
   const std::string w = "sensor '" + name + "'";
   check_range(w, "height", height, 1, 4096);
   check_range(w, "width", width, 1, 65536);
+  // Every frame holds range, intensity and mask images of height × width floats, and training
+  // keeps all frames: 4096 × 65536 was 3 GB per frame. 2^20 pixels (12 MB a frame) is over
+  // three times the densest spinning LiDAR made (128 beams × 2048 columns).
+  if (long(height) * long(width) > kMaxSensorPixels)
+    throw ConfigError(w + ": height × width = " + std::to_string(long(height) * long(width)) +
+                      " pixels per range image, more than " + std::to_string(kMaxSensorPixels) +
+                      " (height " + std::to_string(height) + ", width " + std::to_string(width) + ")");
   check_range(w, "fov_deg", fov_deg, 1e-3, 180.0);
   check_range(w, "fov_up_deg", fov_up_deg, -90.0, 90.0);
   check_range(w, "max_range_m", max_range_m, 1e-3, 1e4);

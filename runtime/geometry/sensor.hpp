@@ -6,6 +6,9 @@
 
 namespace sgnlf {
 
+// Upper bound on height × width accepted by Sensor::validate().
+constexpr long kMaxSensorPixels = 1L << 20;
+
 struct Sensor {
   std::string name = "kitti360";
   int height = 66;          // beams (rows)

@@ -1,6 +1,9 @@
 #include "io/range_array.hpp"
 
+#include <cerrno>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -37,17 +40,33 @@ RangeImage read_range_npy(const std::string& path) {
   const std::string dict(b.data() + 10, hlen);
   if (dict.find("'<f4'") == std::string::npos || dict.find("False") == std::string::npos)
     throw IoError(path + ": expected float32 little-endian C-order array, header " + dict);
-  int h = 0, w = 0, c = 0;
+  // The shape is checked against the file size before anything is allocated: a header that
+  // claims (2147483647, 2147483647, 3) must not ask for exabytes.
+  long long dims[3] = {0, 0, 0};
   const auto pos = dict.find("'shape': (");
-  if (pos == std::string::npos ||
-      std::sscanf(dict.c_str() + pos + 10, "%d, %d, %d", &h, &w, &c) != 3 || c != 3 || h <= 0 || w <= 0)
+  bool ok = pos != std::string::npos;
+  const char* q = ok ? dict.c_str() + pos + 10 : nullptr;
+  for (int k = 0; ok && k < 3; ++k) {
+    char* end = nullptr;
+    errno = 0;
+    dims[k] = std::strtoll(q, &end, 10);
+    ok = end != q && errno == 0 && dims[k] > 0 && dims[k] <= (1LL << 24);
+    q = end;
+    if (ok && k < 2) {
+      while (*q == ' ') ++q;
+      ok = *q == ',';
+      ++q;
+    }
+  }
+  if (!ok || dims[2] != 3)
     throw IoError(path + ": expected shape (H, W, 3), header " + dict);
-  RangeImage img(h, w);
-  const size_t need = 10 + hlen + img.size() * 3 * sizeof(float);
-  if (b.size() != need)
+  const size_t h = size_t(dims[0]), w = size_t(dims[1]);
+  const size_t need = 10 + hlen + h * w * 3 * sizeof(float);
+  if (b.size() != need || h * w > size_t(INT32_MAX))
     throw IoError(path + ": size " + std::to_string(b.size()) + " bytes, expected " +
                   std::to_string(need) + " for shape (" + std::to_string(h) + ", " +
                   std::to_string(w) + ", 3)");
+  RangeImage img(static_cast<int>(h), static_cast<int>(w));
   const char* p = b.data() + 10 + hlen;
   for (size_t i = 0; i < img.size(); ++i) {
     float v[3];

@@ -12,11 +12,14 @@
 namespace sgnlf::io {
 namespace fs = std::filesystem;
 
-std::vector<char> read_file_bytes(const std::string& path) {
+std::vector<char> read_file_bytes(const std::string& path, size_t max_bytes) {
   std::ifstream f(path, std::ios::binary | std::ios::ate);
   if (!f) throw IoError(path + ": cannot open file");
   const auto size = f.tellg();
   const std::streamoff sz = size;
+  if (sz > 0 && uint64_t(sz) > max_bytes)
+    throw IoError(path + ": " + std::to_string(sz) + " bytes, more than the " +
+                  std::to_string(max_bytes) + " this reader accepts");
   std::vector<char> buf(size_t(sz < 0 ? 0 : sz));
   f.seekg(0);
   if (!buf.empty() && !f.read(buf.data(), std::streamsize(buf.size())))
@@ -42,7 +45,7 @@ namespace {
 // Shared reader of float32 records with `fields` values each; x, y, z at 0..2, intensity at 3.
 std::vector<PointXYZI> read_records(const std::string& path, int fields, float intensity_scale,
                                     ScanReadStats* stats, std::vector<uint8_t>* rings) {
-  const auto bytes = read_file_bytes(path);
+  const auto bytes = read_file_bytes(path, kMaxScanBytes);
   const size_t rec = size_t(fields) * sizeof(float);
   if (bytes.empty()) throw IoError(path + ": empty scan (0 bytes)");
   if (bytes.size() % rec != 0)
@@ -62,14 +65,15 @@ std::vector<PointXYZI> read_records(const std::string& path, int fields, float i
     const PointXYZI p{v[0], v[1], v[2], v[3] * intensity_scale};
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) ||
         !std::isfinite(p.intensity)) {
-      ++st.non_finite;
+      if (st.non_finite++ == 0) st.first_non_finite = i;
       continue;
     }
     pts.push_back(p);
     if (rings) rings->push_back(uint8_t(std::lround(std::fmax(0.f, std::fmin(255.f, v[4])))));
   }
   if (st.non_finite > 0)
-    log::warn(path, ": dropped ", st.non_finite, " of ", n, " points with NaN/Inf values");
+    log::warn(path, ": dropped ", st.non_finite, " of ", n, " points with NaN/Inf values (first: point ",
+              st.first_non_finite, " at byte offset ", st.first_non_finite * rec, ")");
   if (pts.empty()) throw IoError(path + ": empty scan (no finite point among " + std::to_string(n) + ")");
   if (stats) *stats = st;
   return pts;

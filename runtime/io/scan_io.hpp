@@ -3,6 +3,7 @@
 // misaligned) throw IoError naming the file and byte offset; NaN/Inf points are dropped and
 // counted (protocol §2 formats).
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@ namespace sgnlf::io {
 struct ScanReadStats {
   size_t records = 0;     // records in the file
   size_t non_finite = 0;  // records dropped because a coordinate or intensity was NaN/Inf
+  size_t first_non_finite = 0;  // index of the first of them (valid when non_finite > 0)
 };
 
 // KITTI .bin: reflectance kept as is (already in [0, 1]).
@@ -27,8 +29,11 @@ bool is_scan_file(const std::string& path);
 
 void write_kitti_bin(const std::string& path, const std::vector<PointXYZI>& pts);
 
-// Whole-file binary read; throws IoError naming the file.
-std::vector<char> read_file_bytes(const std::string& path);
+// Whole-file binary read; throws IoError naming the file (also when it holds more than
+// `max_bytes`, checked before reading).
+std::vector<char> read_file_bytes(const std::string& path, size_t max_bytes = SIZE_MAX);
+// Largest scan file read_scan accepts: a real one is 1–3 MB (120 k points × 16–20 bytes).
+constexpr size_t kMaxScanBytes = size_t(1) << 30;
 // Writes bytes atomically (temporary file + rename).
 void write_file_bytes(const std::string& path, const void* data, size_t bytes);
 

@@ -1,6 +1,7 @@
 #include "io/trajectory_io.hpp"
 
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -33,12 +34,20 @@ std::string fmt(double v) {
   return b;
 }
 
-void check_pose(const Pose& T, const std::string& path, int line) {
+// |RᵀR − I| (Frobenius) below 1e-3 and det R > 0: a rotation, not a reflection or a scaling.
+// Real KITTI / KITTI-360 calibrations and poses are orthonormal to ~1e-6.
+std::string rigidity_problem(const Pose& T) {
   const Mat3 R = T.linear();
   const double err = (R.transpose() * R - Mat3::Identity()).norm();
-  if (!(err < 1e-3) || !T.translation().allFinite())
-    throw IoError(path + ":" + std::to_string(line) + ": not a rigid pose (|RᵀR − I| = " +
-                  std::to_string(err) + ")");
+  if (!(err < 1e-3)) return "not a rigid pose (|RᵀR − I| = " + std::to_string(err) + ")";
+  if (!(R.determinant() > 0)) return "a reflection, not a rotation (det R = " + std::to_string(R.determinant()) + ")";
+  if (!T.translation().allFinite()) return "non-finite translation";
+  return "";
+}
+
+void check_pose(const Pose& T, const std::string& path, int line) {
+  const std::string p = rigidity_problem(T);
+  if (!p.empty()) throw IoError(path + ":" + std::to_string(line) + ": " + p);
 }
 
 }  // namespace
@@ -96,7 +105,7 @@ std::map<int, Pose> read_indexed_poses(const std::string& path) {
     if (v.size() != 13)
       throw IoError(path + ":" + std::to_string(ln) + ": expected frame id + 12 numbers, found " +
                     std::to_string(v.size()) + " fields");
-    if (v[0] != std::floor(v[0]) || v[0] < 0 || int(v[0]) <= last)
+    if (v[0] != std::floor(v[0]) || v[0] < 0 || v[0] > double(INT_MAX) || int(v[0]) <= last)
       throw IoError(path + ":" + std::to_string(ln) + ": frame id " + fmt(v[0]) +
                     " is not an integer greater than the previous id " + std::to_string(last));
     last = int(v[0]);
@@ -173,7 +182,13 @@ Pose key_pose(const std::map<std::string, std::vector<double>>& kv, const std::s
   if (it->second.size() != 12)
     throw IoError(path + ": calibration entry '" + key + "' has " +
                   std::to_string(it->second.size()) + " numbers, expected 12");
-  return pose_from_3x4(it->second.data());
+  const Pose T = pose_from_3x4(it->second.data());
+  // A calibration that is not rigid (a typo, a projection matrix under the wrong key, a scale)
+  // would silently shear every scan.
+  const std::string p = rigidity_problem(T);
+  if (!p.empty())
+    throw IoError(path + ": calibration entry '" + (key.empty() ? "<3x4 matrix>" : key) + "' is " + p);
+  return T;
 }
 
 }  // namespace sgnlf::io

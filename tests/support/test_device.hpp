@@ -22,8 +22,9 @@ cl::Runtime& runtime();
 std::string source_dir();
 std::string shared_dir();  // $SGNLF_SHARED_DIR, else ../shared beside the checkout
 // True when the real-data folder or file `path` exists. When it does not, the calling test is
-// to return early: a warning names the path, except with CI set (CI=true), where the test
-// fails, so that the real-data tests cannot silently stop running where the data belongs.
+// to return early: a warning names the path, except under CI=true or SGNLF_REQUIRE_REAL_DATA=1
+// (scripts/test.sh sets it), where the test fails, so that the real-data tests cannot silently
+// stop running where the data belongs.
 bool have_real_data(const std::string& path);
 std::string temp_dir(const std::string& name);  // fresh empty folder under the build tree
 
