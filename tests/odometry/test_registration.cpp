@@ -2,10 +2,9 @@
 // known pose, fixed seed, errors asserted in metres and degrees) through the odometry's full
 // path (coarse stage, then KISS-ICP's 3σ stage) at magnitudes up to 2 m and 15°: about random
 // axes on an HDL-64E scan; vehicle-like (yaw, roll and pitch ~5 % of it, translation mostly
-// horizontal) on an HDL-32E scan, where a single scan's 32 rings 1.3° apart make point-to-point
-// ICP settle one ring spacing off for large roll or pitch (measured: 1.32° errors from 5° random
-// axes; a limitation of point-to-point matching on one sparse scan, see
-// results/odometry/README.md); and the failures that must be reported as such: too few points, no
+// horizontal) on an HDL-32E scan, whose 32 rings 1.3° apart made point-to-point ICP settle one
+// ring spacing off for large roll or pitch before the planar start search existed (see
+// results/odometry/README.md, "Ring aliasing"); and the failures that must be reported as such: too few points, no
 // overlap, an empty map.
 #include <catch2/catch.hpp>
 
