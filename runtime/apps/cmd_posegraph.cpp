@@ -65,6 +65,8 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
   sub.add_option("--frames", a->load.frames, "Frames in the window");
   return std::function<int()>([a] {
     if (a->steps < 1 || a->per_call < 1) throw ConfigError("--steps and --per-call must be >= 1");
+    if (a->graph == "sequential" && !a->graph_config.empty())
+      throw ConfigError("--graph-config needs --graph confidence");
     a->load.validate();
     const Dataset d = load_dataset(a->data, a->load);
     pipeline::PoseInitConfig pi;
