@@ -68,6 +68,12 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
       for (const char* k : {"ate_m", "rpe_t_cm", "rpe_r_deg"})
         std::printf("%-18s %12s %12s\n", k, num(p.at(k)).c_str(), num(i.at(k)).c_str());
     }
+    if (j.contains("pose_graph")) {
+      const Json& g = j.at("pose_graph");
+      std::printf("\nconfidence-aware pose graph (epoch %ld): %ld non-adjacent edges in use (%s)\n",
+                  g.at("epoch").get<long>(), g.at("non_adjacent_edges").get<long>(),
+                  g.at("file").get<std::string>().c_str());
+    }
     return 0;
   });
 });

@@ -8,11 +8,24 @@
 #pragma once
 #include "datasets/dataset.hpp"
 #include "pipeline/pose_free_step.hpp"
+#include "posegraph/point_features.hpp"
 
 namespace sgnlf::pipeline {
 
 // An empty stage when the config disables it (or the poses are not optimised).
-GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const TrainConfig& c);
+// SG-NLF (TrainConfig::confidence_graph()): from pose_graph.start_epoch on, every
+// graph.reevaluate_every epochs, the refinement's graph is rebuilt as the confidence-aware pose
+// graph (posegraph::build_confidence_graph) from `features` (the field's f_hyb) under the current
+// poses, written to <run_dir>/pose_graph/epoch_<e>.json and .svg (and latest.json), and carried
+// in checkpoints, so a resumed run continues on the same graph. Epoch 0's coarse alignment
+// stays sequential.
+GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const TrainConfig& c,
+                                    posegraph::FeatureProvider features = {},
+                                    std::string run_dir = "");
+
+// The field's encodings as the pose graph's per-point features: world points (metres) are
+// normalised, clamped to the scene box and encoded by `model` (blocking; between steps only).
+posegraph::FeatureProvider field_features(LidarNerfModel& model, const SceneNormalization& norm);
 
 // The τ scale in force for `sensor` under `g`.
 double geometric_tau_scale(const GeometricScheduleConfig& g, const Sensor& sensor);

@@ -20,11 +20,11 @@ const std::vector<MethodSpec>& method_registry() {
       {"sg-nlf", "sg-nlf", Json::object(), true, false,
        "SG-NLF (method.md §4): hybrid field, confidence-aware pose graph, adversarial "
        "cross-frame consistency",
-       true},
+       true, true},
       {"sg-nlf-no-consistency", "sg-nlf", Json{{"method", "sg-nlf-no-consistency"}}, true, true,
        "SG-NLF without the adversarial cross-frame consistency (method.md §5 ablation): hybrid "
        "field and confidence-aware pose graph",
-       true},
+       true, true},
   };
   return registry;
 }

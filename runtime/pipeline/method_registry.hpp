@@ -17,6 +17,7 @@ struct MethodSpec {
   bool implemented = false;
   std::string description;
   bool spectral_field = false; // SG-NLF's hybrid field: the config's "spectral" section
+  bool confidence_graph = false;  // SG-NLF's pose graph: the config's "pose_graph" section
 };
 
 const std::vector<MethodSpec>& method_registry();

@@ -48,7 +48,7 @@ void PoseFreeStep::on_epoch(long epoch, long step) {
   const double progress = double(step) / double(cfg_.schedule.iterations);
   const Json before = pose_errors();
   const auto t0 = std::chrono::steady_clock::now();
-  Json line = geometric_(poses_, epoch, progress);
+  Json line = geometric_.run(poses_, epoch, progress);
   if (line.is_null()) return;  // the stage did nothing this epoch
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   geometric_seconds_ += secs;
@@ -128,6 +128,8 @@ NamedArrays PoseFreeStep::state() const {
   NamedArrays a = poses_.state_arrays();
   a.push_back({"reweight.ema", pack_doubles(ema_)});
   a.push_back({"reweight.seen", pack_doubles(seen_)});
+  if (geometric_.state)
+    for (auto& x : geometric_.state()) a.push_back(std::move(x));
   return a;
 }
 
@@ -135,6 +137,7 @@ void PoseFreeStep::load_state(const Checkpoint& ck) {
   poses_.load_state([&](const std::string& name, size_t n) { return ck.array(name, n); });
   ema_ = unpack_doubles(ck.array("reweight.ema", 2 * ema_.size()));
   seen_ = unpack_doubles(ck.array("reweight.seen", 2 * seen_.size()));
+  if (geometric_.load_state) geometric_.load_state(ck);
 }
 
 }  // namespace sgnlf::pipeline

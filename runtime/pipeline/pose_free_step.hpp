@@ -17,9 +17,15 @@
 
 namespace sgnlf::pipeline {
 
-// A geometric stage: moves `poses` (normalised frame) before epoch `epoch` at `progress`;
-// returns a JSON summary (steps, losses) for the log.
-using GeometricStage = std::function<Json(PoseSet& poses, long epoch, double progress)>;
+// A geometric stage: `run` moves `poses` (normalised frame) before epoch `epoch` at `progress`
+// and returns a JSON summary (steps, losses) for the log, or null when it did nothing. A stage
+// with state of its own (SG-NLF's current pose graph) saves it with the step's checkpoint arrays.
+struct GeometricStage {
+  std::function<Json(PoseSet& poses, long epoch, double progress)> run;
+  std::function<NamedArrays()> state;                  // optional
+  std::function<void(const Checkpoint&)> load_state;  // optional
+  explicit operator bool() const { return bool(run); }
+};
 
 class PoseFreeStep : public StepPolicy {
  public:

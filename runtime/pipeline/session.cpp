@@ -82,8 +82,11 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
     const PoseFreeConfig& pf = c.pose_free;
     poses = std::make_unique<PoseSet>(scene.T_world_lidar, pf.pose_optim,
                                       pf.pose_optim.lr_scale(pf.poses.init));
-    pose_step = std::make_unique<PoseFreeStep>(scene, c, *poses, gt_poses(d), req.run_dir,
-                                               make_geometric_stage(d, scene, c));
+    pose_step = std::make_unique<PoseFreeStep>(
+        scene, c, *poses, gt_poses(d), req.run_dir,
+        c.confidence_graph()
+            ? make_geometric_stage(d, scene, c, field_features(model, scene.norm), req.run_dir)
+            : make_geometric_stage(d, scene, c));
     opt.policy = pose_step.get();
   }
   // SG-NLF's hybrid field: Ψ trains on the current surface around the pose-free step.
@@ -208,6 +211,14 @@ Json eval_run(LoadedRun& run, const std::string& run_dir) {
     j["pose_metrics"] = pose_metrics_json(run.T_world_lidar, gt);
     j["initial_pose_metrics"] = pose_metrics_json(run.T_world_lidar_init, gt);
     j["pose_init"] = run.manifest.config.pose_free.poses.init;
+    // SG-NLF: the confidence-aware pose graph in force at the end of training.
+    const fs::path graph = fs::path(run_dir) / "pose_graph" / "latest.json";
+    if (fs::exists(graph)) {
+      const Json gj = load_json_file(graph.string());
+      j["pose_graph"] = Json{{"epoch", gj.value("epoch", -1)},
+                             {"non_adjacent_edges", gj.value("non_adjacent_edges", 0)},
+                             {"file", graph.string()}};
+    }
   }
   write_json_file((fs::path(run_dir) / "metrics.json").string(), j);
   return j;

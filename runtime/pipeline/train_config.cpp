@@ -45,6 +45,7 @@ void ScheduleConfig::validate(const std::string& w) const {
 
 bool TrainConfig::is_pose_free() const { return method_spec(method).pose_free; }
 bool TrainConfig::has_spectral_field() const { return method_spec(method).spectral_field; }
+bool TrainConfig::has_pose_graph() const { return method_spec(method).confidence_graph; }
 
 void TrainConfig::validate() const {
   const std::string w = "config";
@@ -59,6 +60,7 @@ void TrainConfig::validate() const {
                       trainable + ")");
   if (spec->pose_free) pose_free.validate(w);
   if (spec->spectral_field) spectral.validate(w);
+  if (spec->confidence_graph) pose_graph.validate(w);
   field.validate(w + ".field");
   render.validate(w + ".render");
   optim.validate(w + ".optim");
@@ -106,6 +108,7 @@ TrainConfig train_config_from_json(const Json& j, const std::string& where) {
   }
   if (c.is_pose_free()) c.pose_free = PoseFreeConfig::from_json(r);
   if (c.has_spectral_field()) c.spectral = SpectralFieldConfig::from_json(r);
+  if (c.has_pose_graph()) c.pose_graph = PoseGraphConfig::from_json(r);
   r.finish();
   c.validate();
   return c;
@@ -144,6 +147,7 @@ Json train_config_to_json(const TrainConfig& c) {
         {"patches_on_even_epochs", c.schedule.patches_on_even_epochs}}}};
   if (c.is_pose_free()) c.pose_free.to_json(j);
   if (c.has_spectral_field()) c.spectral.to_json(j);
+  if (c.has_pose_graph()) c.pose_graph.to_json(j);
   return j;
 }
 

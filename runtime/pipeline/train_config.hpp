@@ -8,6 +8,7 @@
 
 #include "core/config.hpp"
 #include "pipeline/pose_free_config.hpp"
+#include "pipeline/pose_graph_config.hpp"
 #include "pipeline/spectral_field_config.hpp"
 #include "render/render_config.hpp"
 
@@ -66,6 +67,10 @@ struct TrainConfig {
   SpectralFieldConfig spectral;
   bool has_spectral_field() const;  // the method's config carries the "spectral" section
   bool hybrid_encoder() const { return has_spectral_field() && spectral.enabled; }
+  // Methods with SG-NLF's confidence-aware pose graph only (method_registry: confidence_graph).
+  PoseGraphConfig pose_graph;
+  bool has_pose_graph() const;
+  bool confidence_graph() const { return has_pose_graph() && pose_graph.enabled; }
 
   bool is_pose_free() const;
   void validate() const;

@@ -32,9 +32,12 @@ TrainConfig tiny_hybrid(const Json& extra = Json::object()) {
   Json o{{"schedule", {{"iterations", 28}, {"checkpoint_every", 7}, {"log_every", 7},
                        {"rays_per_batch", 128}, {"render_chunk_rays", 512}}},
          {"render", {{"n_samples", 24}}},
-         {"geometric", {{"points_per_frame", 400}, {"first_steps", 5}, {"steps_per_epoch", 2.0}}},
+         {"geometric", {{"points_per_frame", 400}, {"first_steps", 5}, {"steps_per_epoch", 4.0},
+                        {"stop_progress", 1.0}}},
          {"spectral", {{"fusion", {{"start", 4}, {"end", 14}}}, {"batch", 128},
-                       {"points_per_frame", 300}}}};
+                       {"points_per_frame", 300}}},
+         {"pose_graph", {{"start_epoch", 1}, {"reevaluate_every", 1}, {"match_points", 300},
+                         {"min_matches", 5}}}};
   return resolve_config(kMethod, "smoke", merge_config_json(o, extra));
 }
 
@@ -126,9 +129,21 @@ TEST_CASE("hybrid field run folder: spectral schedule, exact resume, evaluation 
   CHECK(lambdas.back() == 1.0);
   for (double l : losses) CHECK(std::isfinite(l));
 
-  // Killed after step 10 (mid-epoch, λ mid-ramp) and resumed: bit-identical field, Ψ and poses.
+  // The confidence-aware pose graph from epoch 1 on (epochs of 14 steps here): its files, the
+  // geometric log's record of it, and `eval`'s count of its non-adjacent edges.
+  CHECK(fs::exists(full + "/pose_graph/epoch_00001.json"));
+  CHECK(fs::exists(full + "/pose_graph/epoch_00001.svg"));
+  const Json g1 = load_json_file(full + "/pose_graph/latest.json");
+  CHECK(g1.at("edges").size() > 0);
+  bool logged = false;
+  std::ifstream glog(full + "/geometric_log.jsonl");
+  while (std::getline(glog, line)) logged = logged || Json::parse(line).contains("pose_graph");
+  CHECK(logged);
+
+  // Killed after step 20 (after the graph was built, λ at 1) and resumed: bit-identical field,
+  // Ψ, pose graph and poses.
   const std::string part = test::temp_dir("sgnlf_part");
-  run(part, 10, false);
+  run(part, 20, false);
   run(part, -1, true);
   LoadedRun a = load_run(test::runtime(), full), b = load_run(test::runtime(), part);
   CHECK(a.model->state().params == b.model->state().params);
@@ -140,7 +155,11 @@ TEST_CASE("hybrid field run folder: spectral schedule, exact resume, evaluation 
     CHECK(a.T_world_lidar[i].matrix() == b.T_world_lidar[i].matrix());
   // Evaluation from the folder renders with the trained Ψ and λ (restored from the checkpoint):
   // both folders give the same metrics, and switching Ψ off changes them.
-  const double rmse = eval_run(a, full).at("metrics").at("depth_rmse").get<double>();
+  const Json ea = eval_run(a, full);
+  CHECK(ea.at("pose_graph").at("non_adjacent_edges").get<long>() ==
+        g1.at("non_adjacent_edges").get<long>());
+  CHECK(load_json_file(part + "/pose_graph/latest.json").at("edges") == g1.at("edges"));
+  const double rmse = ea.at("metrics").at("depth_rmse").get<double>();
   CHECK(eval_run(b, part).at("metrics").at("depth_rmse").get<double>() == rmse);
   pa.set_lambda(0.0f);
   CHECK(eval_run(a, full).at("metrics").at("depth_rmse").get<double>() != rmse);

@@ -1,0 +1,74 @@
+// What SG-NLF's hybrid field costs per pose-free training step (issue "SG-NLF, part 1", item 1):
+// the same quick-preset step (1024 rays × 96 uniform samples, forward, loss, backward with the
+// ray gradients the pose update needs, Adam) with GeoNLF's hash grid and with the hybrid
+// [f_geo, λ·Ψ] at λ = 1 (Ψ evaluated forward and backward for dL/dx), and one spectral step of Ψ
+// (1024 surface samples × 5 evaluations, loss and moments on the host, Adam) as the schedule
+// runs it every `spectral.every` steps. Ratios of these are the cost of the hybrid field.
+#include <benchmark/benchmark.h>
+
+#include "support/bench_support.hpp"
+#include "datasets/simulate.hpp"
+#include "pipeline/model.hpp"
+#include "pipeline/presets.hpp"
+#include "pipeline/ray_batch.hpp"
+#include "spectral/hybrid_encoder.hpp"
+#include "spectral/surface.hpp"
+
+using namespace sgnlf;
+using namespace sgnlf::pipeline;
+
+namespace {
+
+const Dataset& bench_dataset() {
+  static const Dataset d = [] {
+    SimOptions o;
+    o.sequence = "kitti360-low-a";
+    o.frames = 12;
+    o.threads = 1;
+    return simulate(o).dataset;
+  }();
+  return d;
+}
+
+void BM_PoseFreeStep(benchmark::State& state, const char* method) {
+  bench::add_device_context();
+  const Scene scene = make_scene(bench_dataset());
+  const TrainConfig c = resolve_config(method, "quick");
+  LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), c.schedule.rays_per_batch);
+  model.init_params(1);
+  if (auto* h = dynamic_cast<spectral::HybridEncoder*>(&model.encoder())) h->set_lambda(1.0f);
+  long step = 0;
+  auto one = [&] {
+    const RayBatch b = draw_ray_batch(scene, c, 1, step);
+    model.forward_backward(b, 1, step++, true);
+    model.update(1e-2f);
+    benchmark::DoNotOptimize(model.read_ray_grads());
+  };
+  one();
+  for (auto _ : state) one();
+  state.counters["samples/s"] = benchmark::Counter(
+      double(c.schedule.rays_per_batch) * c.render.n_samples * double(state.iterations()),
+      benchmark::Counter::kIsRate);
+}
+
+void BM_SpectralStep(benchmark::State& state) {
+  bench::add_device_context();
+  const TrainConfig c = resolve_config("sg-nlf-no-consistency", "quick");
+  const Scene scene = make_scene(bench_dataset());
+  LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), c.schedule.rays_per_batch);
+  model.init_params(1);
+  auto& h = dynamic_cast<spectral::HybridEncoder&>(model.encoder());
+  const auto shape = spectral::make_shape(spectral::ShapeSpec::preset(spectral::ShapeKind::sphere));
+  Rng rng(3, 1);
+  auto batch = shape->sample(rng, size_t(c.spectral.batch));
+  h.spectral_step(batch, 1e-2f);
+  for (auto _ : state) benchmark::DoNotOptimize(h.spectral_step(batch, 1e-2f));
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(BM_PoseFreeStep, geonlf_quick, "geonlf")
+    ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+BENCHMARK_CAPTURE(BM_PoseFreeStep, hybrid_quick, "sg-nlf-no-consistency")
+    ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+BENCHMARK(BM_SpectralStep)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);

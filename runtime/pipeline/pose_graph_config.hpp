@@ -1,0 +1,26 @@
+// Configuration of SG-NLF's confidence-aware pose graph in a pose-free run (method.md §4.2), the
+// config's "pose_graph" section: when the geometric stage's refinement switches from GeoNLF's
+// sequential graph to the confidence graph (built from the field's f_hyb under the current
+// poses), and the graph's own parameters (posegraph::ConfidenceGraphConfig, whose
+// reevaluate_every counts epochs here). Present only in the configs of methods with the
+// confidence graph (method_registry: confidence_graph).
+#pragma once
+#include "core/config.hpp"
+#include "posegraph/confidence_graph_config.hpp"
+
+namespace sgnlf::pipeline {
+
+struct PoseGraphConfig {
+  bool enabled = true;  // false: the sequential graph throughout (ablation "without global graph")
+  // First epoch whose geometric refinement uses the confidence graph: the field has to be
+  // trained enough for f_hyb to describe the surface, and the sequential graph converged
+  // (method.md §4.2 "Caution"). Epoch 0 is always the sequential coarse alignment.
+  int start_epoch = 10;
+  posegraph::ConfidenceGraphConfig graph;
+
+  void validate(const std::string& where) const;
+  static PoseGraphConfig from_json(ConfigReader& r);  // reads "pose_graph"; errors name r.where()
+  void to_json(Json& j) const;                        // adds the "pose_graph" section
+};
+
+}  // namespace sgnlf::pipeline
