@@ -4,14 +4,24 @@
 //   u64 FNV-1a of everything before it.
 #include "pipeline/checkpoint.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstdlib>
+#include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
 #include "core/config.hpp"
 #include "core/error.hpp"
+#include "core/log.hpp"
 
 namespace sgnlf::pipeline {
+namespace fs = std::filesystem;
 namespace {
 
 constexpr char kMagic[8] = {'S', 'G', 'N', 'L', 'F', 'C', 'K', '1'};
@@ -42,7 +52,7 @@ class Reader {
 
  private:
   void need(size_t n, const char* what) {
-    if (pos_ + n > d_.size())
+    if (n > d_.size() - pos_)
       throw IoError(path_ + ": truncated checkpoint (reading " + what + " at byte " +
                     std::to_string(pos_) + ")");
   }
@@ -51,20 +61,56 @@ class Reader {
   size_t pos_ = 0;
 };
 
-}  // namespace
-
-const std::vector<float>& Checkpoint::array(const std::string& name, size_t expected) const {
-  for (const auto& [n, v] : arrays) {
-    if (n != name) continue;
-    if (expected > 0 && v.size() != expected)
-      throw IoError("checkpoint array '" + name + "' has " + std::to_string(v.size()) +
-                    " values, expected " + std::to_string(expected));
-    return v;
+// Writes `data` to `file` and syncs it to disk. On failure `file` is removed and the error names
+// `path` (the file the caller is producing) and the system's reason (ENOSPC, EACCES, EFBIG...).
+void write_synced(const std::string& file, const std::string& data, const std::string& path,
+                  long fault_step = -1) {
+  auto fail = [&](const std::string& what, int fd) {
+    const std::string why = std::strerror(errno);
+    if (fd >= 0) ::close(fd);
+    ::unlink(file.c_str());
+    throw IoError(path + ": " + what + " (" + why + "); an existing " +
+                  fs::path(path).filename().string() + " is left as it was");
+  };
+  std::error_code ec;
+  const fs::path parent = fs::path(file).parent_path();
+  if (!parent.empty()) fs::create_directories(parent, ec);
+  if (ec) throw IoError(path + ": cannot create the folder " + parent.string() + " (" + ec.message() + ")");
+  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) fail("cannot open " + file + " for writing", -1);
+  // Under fault injection only: the first half, synced, then the "checkpoint-partial" point.
+  const bool split = fault_step >= 0 && std::getenv("SGNLF_FAULT_KILL") != nullptr;
+  size_t done = 0;
+  while (done < data.size()) {
+    const size_t chunk = split && done == 0 ? data.size() / 2 : data.size() - done;
+    const ssize_t n = ::write(fd, data.data() + done, chunk);
+    if (split && done == 0 && n > 0) {
+      ::fsync(fd);
+      fault_point("checkpoint-partial", fault_step);
+    }
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      if (n == 0) errno = EIO;
+      fail("write failed after " + std::to_string(done) + " of " + std::to_string(data.size()) +
+               " bytes of " + file,
+           fd);
+    }
+    done += size_t(n);
   }
-  throw IoError("checkpoint has no array '" + name + "'");
+  if (::fsync(fd) != 0) fail("fsync of " + file + " failed", fd);
+  if (::close(fd) != 0) fail("close of " + file + " failed", -1);
 }
 
-void save_checkpoint(const std::string& path, const Checkpoint& ck) {
+void rename_or_throw(const std::string& from, const std::string& to, const std::string& note) {
+  if (std::rename(from.c_str(), to.c_str()) != 0) {
+    const std::string why = std::strerror(errno);
+    ::unlink(from.c_str());
+    throw IoError(to + ": cannot rename from " + from + " (" + why + ")" + note);
+  }
+}
+
+// The file format above, checksum included.
+std::string serialize(const Checkpoint& ck) {
   std::string out(kMagic, sizeof kMagic);
   put(out, kVersion);
   put(out, int64_t(ck.step));
@@ -80,7 +126,88 @@ void save_checkpoint(const std::string& path, const Checkpoint& ck) {
     out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(float));
   }
   put(out, fnv1a64(out));
-  write_text_file(path, out);  // atomic: temporary file + rename
+  return out;
+}
+
+}  // namespace
+
+const std::vector<float>& Checkpoint::array(const std::string& name, size_t expected) const {
+  for (const auto& [n, v] : arrays) {
+    if (n != name) continue;
+    if (expected > 0 && v.size() != expected)
+      throw IoError("checkpoint array '" + name + "' has " + std::to_string(v.size()) +
+                    " values, expected " + std::to_string(expected));
+    return v;
+  }
+  throw IoError("checkpoint has no array '" + name + "'");
+}
+
+void save_checkpoint(const std::string& path, const Checkpoint& ck) {
+  const std::string tmp = path + ".tmp";
+  write_synced(tmp, serialize(ck), path);
+  rename_or_throw(tmp, path, "");
+}
+
+std::string previous_checkpoint_path(const std::string& latest_path) {
+  return (fs::path(latest_path).parent_path() / "previous.ckpt").string();
+}
+
+void save_checkpoint_rotating(const std::string& latest_path, const Checkpoint& ck) {
+  // 1. the new state complete and synced in latest.ckpt.tmp; 2. previous.ckpt replaced by a
+  // hard link to the current latest (through previous.ckpt.tmp, an atomic rename); 3. the new
+  // state renamed over latest. latest.ckpt is never absent, and a kill at any point leaves
+  // latest (old or new) and previous complete.
+  const std::string prev = previous_checkpoint_path(latest_path);
+  const std::string tmp = latest_path + ".tmp";
+  write_synced(tmp, serialize(ck), latest_path, ck.step);
+  fault_point("checkpoint-written", ck.step);
+  std::error_code ec;
+  if (fs::exists(latest_path, ec)) {
+    const std::string prev_tmp = prev + ".tmp";
+    fs::remove(prev_tmp, ec);
+    fs::create_hard_link(latest_path, prev_tmp, ec);
+    if (ec) {  // a file system without hard links: a copy
+      ec.clear();
+      fs::copy_file(latest_path, prev_tmp, fs::copy_options::overwrite_existing, ec);
+    }
+    if (ec) {
+      fs::remove(tmp, ec);
+      throw IoError(latest_path + ": cannot keep it as " + prev + " (" + ec.message() +
+                    "); latest.ckpt is left as it was");
+    }
+    rename_or_throw(prev_tmp, prev, "; latest.ckpt is left as it was");
+    fault_point("checkpoint-linked", ck.step);
+  }
+  rename_or_throw(tmp, latest_path, "; the previous checkpoint is kept at " + prev);
+}
+
+bool have_checkpoint(const std::string& latest_path) {
+  std::error_code ec;
+  return fs::exists(latest_path, ec) || fs::exists(previous_checkpoint_path(latest_path), ec);
+}
+
+Checkpoint load_latest_checkpoint(const std::string& latest_path, uint64_t config_hash,
+                                  uint64_t seed, std::string* used) {
+  const std::string prev = previous_checkpoint_path(latest_path);
+  std::string latest_problem;
+  try {
+    Checkpoint ck = load_checkpoint_for(latest_path, config_hash, seed);
+    if (used) *used = latest_path;
+    return ck;
+  } catch (const IoError& e) {
+    latest_problem = e.what();
+  }
+  std::error_code ec;
+  if (!fs::exists(prev, ec))
+    throw IoError(latest_problem + "; no earlier checkpoint (" + prev + ") to fall back to");
+  log::warn(latest_problem, "; falling back to ", prev);
+  try {
+    Checkpoint ck = load_checkpoint_for(prev, config_hash, seed);
+    if (used) *used = prev;
+    return ck;
+  } catch (const IoError& e) {
+    throw IoError(latest_problem + "; the fallback " + e.what());
+  }
 }
 
 Checkpoint load_checkpoint(const std::string& path) {
@@ -110,6 +237,9 @@ Checkpoint load_checkpoint(const std::string& path) {
   const auto n = r.get<uint32_t>("array count");
   for (uint32_t i = 0; i < n; ++i) {
     const auto len = r.get<uint32_t>("array name length");
+    if (len > body.size() - r.pos())  // before allocating: a corrupt length could ask for 4 GB
+      throw IoError(path + ": array name length " + std::to_string(len) + " at byte " +
+                    std::to_string(r.pos()) + " is more than the file holds");
     std::string name(len, '\0');
     r.bytes(name.data(), len, "array name");
     const auto count = r.get<uint64_t>("array size");
@@ -134,6 +264,15 @@ Checkpoint load_checkpoint_for(const std::string& path, uint64_t config_hash, ui
     throw ConfigError(path + ": checkpoint seed " + std::to_string(ck.seed) +
                       " differs from the run's seed " + std::to_string(seed));
   return ck;
+}
+
+void fault_point(const char* point, long step) {
+  const char* env = std::getenv("SGNLF_FAULT_KILL");
+  if (!env || !*env) return;
+  if (std::string(env) != std::string(point) + "@" + std::to_string(step)) return;
+  std::fprintf(stderr, "SGNLF_FAULT_KILL: killing the process at %s@%ld\n", point, step);
+  std::fflush(stderr);
+  ::raise(SIGKILL);
 }
 
 std::vector<float> pack_doubles(const std::vector<double>& v) {

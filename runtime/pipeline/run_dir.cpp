@@ -83,7 +83,7 @@ LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
   run.model = std::make_unique<LidarNerfModel>(rt, c, float(run.scene->norm.scale),
                                                model_capacity(c));
   const Checkpoint ck =
-      load_checkpoint_for(checkpoint_path(run_dir), trained_hash, run.manifest.seed);
+      load_latest_checkpoint(checkpoint_path(run_dir), trained_hash, run.manifest.seed);
   ModelState st;
   st.params = ck.array("params", run.model->n_params());
   st.adam_m = ck.array("adam_m", run.model->n_params());

@@ -31,6 +31,31 @@ void append_line(const std::string& path, const Json& j) {
   out << j.dump() << "\n";
 }
 
+// Keeps the lines of a JSON-lines log whose "step" is below `limit` (at most `limit` when
+// `inclusive`), dropping the rest and any torn last line: after a crash and resume the log
+// continues from the checkpoint's step instead of repeating the steps after it.
+void truncate_log(const std::string& path, long limit, bool inclusive) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return;
+  std::ifstream in(path);
+  if (!in) throw IoError(path + ": cannot open to continue the log after resuming");
+  std::string kept, line;
+  size_t dropped = 0;
+  while (std::getline(in, line)) {
+    const Json j = Json::parse(line, nullptr, /*allow_exceptions=*/false);
+    const auto it = j.is_object() ? j.find("step") : j.end();
+    const bool keep = it != j.end() && it->is_number_integer() &&
+                      (inclusive ? it->get<long>() <= limit : it->get<long>() < limit);
+    if (keep)
+      kept += line + "\n";
+    else
+      ++dropped;
+  }
+  if (dropped == 0) return;
+  write_text_file(path, kept);
+  log::info(path, ": dropped ", dropped, " lines past step ", limit, " (written before the resumed checkpoint)");
+}
+
 // Smoothed-loss divergence tracker (state kept in checkpoints).
 struct Tracker {
   double best = 0.0, smoothed = 0.0;
@@ -63,8 +88,9 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
   TrainSummary sum;
   Tracker tracker;
   long last_good = -1;
-  if (opt.resume && fs::exists(ck_path)) {
-    const Checkpoint ck = load_checkpoint_for(ck_path, hash, opt.seed);
+  if (opt.resume && have_checkpoint(ck_path)) {
+    std::string used;
+    const Checkpoint ck = load_latest_checkpoint(ck_path, hash, opt.seed, &used);
     ModelState st;
     st.params = ck.array("params", model.n_params());
     st.adam_m = ck.array("adam_m", model.n_params());
@@ -75,10 +101,15 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
     tracker.best = ck.best_loss;
     tracker.smoothed = ck.smoothed_loss;
     sum.start_step = last_good = ck.step;
-    log::info("resuming ", opt.run_dir, " from step ", ck.step);
+    log::info("resuming ", opt.run_dir, " from step ", ck.step, " (", used, ")");
   } else {
     model.init_params(opt.seed);
   }
+  // The logs hold exactly the steps up to the state training continues from (none when it
+  // starts afresh); the geometric log is keyed by the step its epoch starts at, rerun on resume.
+  truncate_log(log_path, sum.start_step, true);
+  truncate_log(eval_path, sum.start_step, true);
+  truncate_log((fs::path(opt.run_dir) / "geometric_log.jsonl").string(), sum.start_step, false);
 
   auto save = [&](long step) {
     const ModelState st = model.state();
@@ -94,7 +125,7 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
     ck.smoothed_loss = tracker.smoothed;
     ck.arrays = {{"params", st.params}, {"adam_m", st.adam_m}, {"adam_v", st.adam_v}};
     for (auto& a : policy.state()) ck.arrays.push_back(std::move(a));
-    save_checkpoint(ck_path, ck);
+    save_checkpoint_rotating(ck_path, ck);
     last_good = step;
   };
 
@@ -103,7 +134,10 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
       long(cfg.schedule.rays_per_batch) * (cfg.render.n_samples + cfg.render.n_importance);
   Progress progress("train " + cfg.method + "-" + cfg.preset, total);
   const auto t0 = std::chrono::steady_clock::now();
+  // The first step of a fresh run is logged; a resumed run logs exactly the steps the
+  // uninterrupted run logs, so that its train_log.jsonl reads the same.
   bool first = true;
+  const bool log_first = sum.start_step == 0;
   double live_sum = 0.0;
   const long epoch_len = long(scene.train.size());
   for (long step = sum.start_step; step < end; ++step) {
@@ -113,11 +147,12 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
     const double live = double(model.live_samples()) / double(samples_per_step);
     live_sum += live;
     const long done = step + 1;
+    fault_point("after-step", done);
     const bool ck_due = (cfg.schedule.checkpoint_every > 0 && done % cfg.schedule.checkpoint_every == 0) ||
                         done == end;
     const bool eval_due = cfg.schedule.eval_every > 0 && done % cfg.schedule.eval_every == 0 &&
                           opt.evaluate;
-    if (done % cfg.schedule.log_every == 0 || ck_due || eval_due || first) {
+    if (done % cfg.schedule.log_every == 0 || ck_due || eval_due || (first && log_first)) {
       const auto loss = model.read_loss();  // waits for the step
       const double total_loss = loss.total();
       if (!std::isfinite(total_loss))
@@ -154,6 +189,11 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
   sum.samples_per_s = sum.steps_per_s * double(samples_per_step);
   sum.live_fraction = ran > 0 ? live_sum / double(ran) : 1.0;
   sum.finished = sum.end_step >= total;
+  // A finished run keeps one checkpoint: the fallback costs a model's worth of disk.
+  if (sum.finished && last_good == total) {
+    std::error_code ec;
+    fs::remove(previous_checkpoint_path(ck_path), ec);
+  }
   if (opt.show_progress) progress.finish("");
   return sum;
 }
