@@ -64,7 +64,12 @@ std::string Runtime::profile_report() const {
 }
 
 cl_program Runtime::program(const std::string& file, const std::string& options) {
-  return program_from_source(kernel_source(file), options, file);
+  // The label names where the source came from, so that a build error points at the file a
+  // user edited (SGNLF_KERNEL_DIR) or says the binary's embedded copy failed.
+  const char* dir = std::getenv("SGNLF_KERNEL_DIR");
+  const std::string label = dir && *dir ? std::string(dir) + "/" + file + " (SGNLF_KERNEL_DIR)"
+                                        : file + " (embedded kernels/" + file + ")";
+  return program_from_source(kernel_source(file), options, label);
 }
 
 cl_program Runtime::program_from_source(const std::string& source, const std::string& options,
@@ -90,7 +95,8 @@ cl_program Runtime::program_from_source(const std::string& source, const std::st
     if (n) clGetProgramBuildInfo(p, dev, CL_PROGRAM_BUILD_LOG, n, build_log.data(), nullptr);
     while (!build_log.empty() && build_log.back() == '\0') build_log.pop_back();
     throw BuildError("clBuildProgram failed: " + std::string(error_name(rc)) + " building '" +
-                         label + "' for device '" + device_.name + "' with options '" + opts +
+                         label + "' for device '" + device_.name + "' (driver " +
+                         device_.driver_version + ") with options '" + opts +
                          "'; build log:\n" + build_log,
                      build_log);
   }
