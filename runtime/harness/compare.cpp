@@ -16,6 +16,18 @@ const Json& at(const Json& j, const std::string& k) {
   return j.is_object() && j.contains(k) ? j[k] : null_json;
 }
 
+// Typed look-ups that never throw: a results file of another shape (hand-edited, truncated, from
+// another tool) compares as missing rows and metrics instead of a JSON type_error.
+std::string str(const Json& j, const std::string& k) {
+  const Json& v = at(j, k);
+  return v.is_string() ? v.get<std::string>() : std::string();
+}
+const Json& arr(const Json& j, const std::string& k) {
+  static const Json empty = Json::array();
+  const Json& v = at(j, k);
+  return v.is_array() ? v : empty;
+}
+
 std::string fmt(double v) {
   char buf[48];
   std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -25,12 +37,12 @@ std::string fmt(double v) {
 const Json* find_by(const Json& arr, const std::string& key, const std::string& value) {
   if (!arr.is_array()) return nullptr;
   for (const auto& x : arr)
-    if (x.value(key, "") == value) return &x;
+    if (str(x, key) == value) return &x;
   return nullptr;
 }
 
 Json merged_metrics(const Json& seq) {
-  Json m = seq.value("metrics", Json::object());
+  Json m = at(seq, "metrics").is_object() ? at(seq, "metrics") : Json::object();
   const Json& p = at(seq, "pose_metrics");
   if (p.is_object())
     for (auto it = p.begin(); it != p.end(); ++it) m[it.key()] = it.value();
@@ -102,15 +114,37 @@ struct Comparer {
 };
 
 bool same_run_configs(const Json& fresh, const Json& base) {
-  for (const auto& brow : base.value("rows", Json::array())) {
-    const Json* nrow = find_by(at(fresh, "rows"), "method", brow.value("method", ""));
+  for (const auto& brow : arr(base, "rows")) {
+    const Json* nrow = find_by(at(fresh, "rows"), "method", str(brow, "method"));
     if (!nrow) return false;
-    for (const auto& bs : brow.value("sequences", Json::array())) {
-      const Json* ns = find_by(at(*nrow, "sequences"), "sequence", bs.value("sequence", ""));
+    for (const auto& bs : arr(brow, "sequences")) {
+      const Json* ns = find_by(at(*nrow, "sequences"), "sequence", str(bs, "sequence"));
       if (!ns || at(*ns, "config_hash") != at(bs, "config_hash")) return false;
     }
   }
   return true;
+}
+
+// Which config hashes differ (for the message of a smoke comparison that is not a twin).
+std::string config_differences(const Json& fresh, const Json& base) {
+  std::vector<std::string> d;
+  if (at(fresh, "config_hash") != at(base, "config_hash")) d.push_back("harness config_hash");
+  for (const auto& brow : arr(base, "rows")) {
+    const std::string m = str(brow, "method");
+    const Json* nrow = find_by(at(fresh, "rows"), "method", m);
+    if (!nrow) continue;  // reported as a missing row
+    for (const auto& bs : arr(brow, "sequences")) {
+      const std::string sq = str(bs, "sequence");
+      const Json* ns = find_by(at(*nrow, "sequences"), "sequence", sq);
+      if (ns && at(*ns, "config_hash") != at(bs, "config_hash"))  // a missing one is reported as such
+        d.push_back(m + " / " + sq + " config_hash " + at(*ns, "config_hash").dump() + " vs " +
+                    at(bs, "config_hash").dump());
+    }
+  }
+  std::string out;
+  for (size_t i = 0; i < d.size() && i < 4; ++i) out += (i ? "; " : "") + d[i];
+  if (d.size() > 4) out += "; and " + std::to_string(d.size() - 4) + " more";
+  return out;
 }
 
 }  // namespace
@@ -139,7 +173,7 @@ CompareReport compare_results(const Json& fresh, const Json& base, const Compare
   rep.mode_reason = "the results are not comparable";
   Comparer c{opt, rep};
   for (const auto* j : {&fresh, &base}) {
-    if (j->value("schema", "") != kSchemaName || at(*j, "schema_version") != Json(kSchemaVersion)) {
+    if (str(*j, "schema") != kSchemaName || at(*j, "schema_version") != Json(kSchemaVersion)) {
       c.add("regression", true, j == &fresh ? "new" : "baseline",
             "not a " + std::string(kSchemaName) + " v" + std::to_string(kSchemaVersion) +
                 " result (schema " + at(*j, "schema").dump() + " version " +
@@ -160,7 +194,28 @@ CompareReport compare_results(const Json& fresh, const Json& base, const Compare
                            at(cn, "driver_version") == at(cb, "driver_version");
   const bool same_cfg = at(fresh, "config_hash") == at(base, "config_hash") &&
                         same_run_configs(fresh, base);
-  if (opt.mode == "auto") {
+  // A smoke table is a few dozen iterations of an untrained model: its metrics say nothing
+  // under loose tolerances (a CD within ±25 % of a 60-step model), only a bit-identical rerun
+  // means anything. Loose tolerances are for trained tables (quick, paper) on another device.
+  const bool untrained = at(base, "scale") == Json("smoke");
+  if (opt.mode == "auto" && untrained && !(same_device && same_cfg)) {
+    rep.mode = "tight";
+    rep.mode_reason = "smoke scale: compared only as deterministic twins";
+    if (!same_device)
+      c.add("not-twins", true, "context / opencl",
+            "the baseline was made on device " + at(cb, "device").dump() + " (driver " +
+                at(cb, "driver_version").dump() + "), this run on " + at(cn, "device").dump() +
+                " (driver " + at(cn, "driver_version").dump() +
+                "). A smoke table is compared only with a baseline from the same device and "
+                "driver; regenerate it on this device (sgnlf bench --table " +
+                str(base, "table") +
+                " --scale smoke --seed 1 --out DIR, then copy DIR/results.json over the baseline)");
+    const std::string cfg_diff = same_cfg ? std::string() : config_differences(fresh, base);
+    if (!cfg_diff.empty())
+      c.add("not-twins", true, "config_hash",
+            "the configs differ from the baseline's (" + cfg_diff +
+                "); regenerate the baseline with the new configs");
+  } else if (opt.mode == "auto") {
     rep.mode = same_device && same_cfg ? "tight" : "loose";
     rep.mode_reason = !same_device ? "different OpenCL device or driver"
                       : !same_cfg  ? "different harness or run configs"
@@ -174,14 +229,14 @@ CompareReport compare_results(const Json& fresh, const Json& base, const Compare
   const double max_ratio = opt.max_median_ratio > 0 ? opt.max_median_ratio
                                                      : tt.value("max_median_ratio", 2.5);
 
-  for (const auto& brow : base.value("rows", Json::array())) {
-    const std::string m = brow.value("method", "");
+  for (const auto& brow : arr(base, "rows")) {
+    const std::string m = str(brow, "method");
     const Json* nrow = find_by(at(fresh, "rows"), "method", m);
     if (!nrow) {
       c.add("missing", true, m, "row missing from the new result");
       continue;
     }
-    const std::string bs = brow.value("status", ""), ns = nrow->value("status", "");
+    const std::string bs = str(brow, "status"), ns = str(*nrow, "status");
     if (bs == "ok" && ns != "ok") {
       c.add("regression", true, m, "row was ok in the baseline, now " + ns +
                                        (at(*nrow, "error").is_string() ? ": " + (*nrow)["error"].get<std::string>() : ""));
@@ -192,8 +247,8 @@ CompareReport compare_results(const Json& fresh, const Json& base, const Compare
       continue;
     }
     c.metrics(m + " / mean", at(*nrow, "mean"), at(brow, "mean"));
-    for (const auto& bseq : brow.value("sequences", Json::array())) {
-      const std::string s = bseq.value("sequence", "");
+    for (const auto& bseq : arr(brow, "sequences")) {
+      const std::string s = str(bseq, "sequence");
       const Json* nseq = find_by(at(*nrow, "sequences"), "sequence", s);
       if (!nseq) {
         c.add("missing", true, m + " / " + s, "sequence missing from the new result");
@@ -204,9 +259,9 @@ CompareReport compare_results(const Json& fresh, const Json& base, const Compare
     c.timings(m + " / timings", at(*nrow, "timings"), at(brow, "timings"), same_device, min_reps,
               max_ratio);
   }
-  for (const auto& nrow : fresh.value("rows", Json::array()))
-    if (!find_by(at(base, "rows"), "method", nrow.value("method", "")))
-      c.add("note", false, nrow.value("method", ""), "row not in the baseline");
+  for (const auto& nrow : arr(fresh, "rows"))
+    if (!find_by(at(base, "rows"), "method", str(nrow, "method")))
+      c.add("note", false, str(nrow, "method"), "row not in the baseline");
   if (!same_device)
     c.add("note", false, "timings", "not compared: different OpenCL device or driver");
   return rep;

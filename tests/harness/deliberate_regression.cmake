@@ -1,6 +1,11 @@
-# CTest script: the committed baseline compared with itself must pass; a copy whose first
-# running row has a far worse mean Chamfer distance (1000 m², CMake has no float math) must
-# make `sgnlf compare` exit with 4 (regression).
+# CTest script: the CI comparison catches what it claims to catch. The committed baseline
+# compared with itself (tight, --strict) must pass; each of these copies must make
+# `sgnlf compare --strict` exit with 4 (regression):
+#   worse     the first running row's mean Chamfer distance set to 1000 m² (CMake has no float math)
+#   improved  the same set to 0: better beyond the tight tolerance means a stale baseline
+#   device    another OpenCL device: a smoke table is compared only as a deterministic twin,
+#             with a message naming both devices (before: silently loose, CD ±25 %)
+#   config    another config hash in a sequence: not a twin either
 file(READ ${BASELINE} base)
 string(JSON n LENGTH "${base}" rows)
 math(EXPR last "${n} - 1")
@@ -14,15 +19,27 @@ endforeach()
 if(row EQUAL -1)
   message(FATAL_ERROR "baseline ${BASELINE} has no row with status ok")
 endif()
-string(JSON worse SET "${base}" rows ${row} mean cd "1000.0")
 file(MAKE_DIRECTORY ${OUT})
-file(WRITE ${OUT}/worse.json "${worse}")
-execute_process(COMMAND ${SGNLF} compare ${BASELINE} ${BASELINE} RESULT_VARIABLE rc_same)
+execute_process(COMMAND ${SGNLF} compare --strict ${BASELINE} ${BASELINE} RESULT_VARIABLE rc_same)
 if(NOT rc_same EQUAL 0)
   message(FATAL_ERROR "the baseline compared with itself did not pass (exit ${rc_same})")
 endif()
-execute_process(COMMAND ${SGNLF} compare ${OUT}/worse.json ${BASELINE} RESULT_VARIABLE rc)
-if(NOT rc EQUAL 4)
-  message(FATAL_ERROR "a deliberately worsened result was not flagged (exit ${rc}, expected 4)")
+
+string(JSON worse SET "${base}" rows ${row} mean cd "1000.0")
+string(JSON improved SET "${base}" rows ${row} mean cd "0.0")
+string(JSON device SET "${base}" context opencl device "\"another OpenCL device\"")
+string(JSON config SET "${base}" rows ${row} sequences 0 config_hash "\"0000000000000000\"")
+foreach(kind worse improved device config)
+  file(WRITE ${OUT}/${kind}.json "${${kind}}")
+  execute_process(COMMAND ${SGNLF} compare --strict ${OUT}/${kind}.json ${BASELINE}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+  if(NOT rc EQUAL 4)
+    message(FATAL_ERROR "the '${kind}' copy of the baseline was not flagged (exit ${rc}, expected 4):\n${out}")
+  endif()
+  message(STATUS "'${kind}' copy flagged (exit 4), as it must be")
+endforeach()
+# The device mismatch names both devices and says what to do.
+execute_process(COMMAND ${SGNLF} compare ${OUT}/device.json ${BASELINE} RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+if(NOT rc EQUAL 4 OR NOT out MATCHES "another OpenCL device" OR NOT out MATCHES "regenerate it on this device")
+  message(FATAL_ERROR "a device mismatch did not fail with a clear message (exit ${rc}):\n${out}")
 endif()
-message(STATUS "deliberate regression detected (exit 4), as it must be")

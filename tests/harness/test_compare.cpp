@@ -65,12 +65,60 @@ TEST_CASE("tight and loose tolerances", "[harness][compare]") {
   row(drift, "lidar-nerf")["mean"]["cd"] = cd * 1.01;  // 1 % worse
   CHECK(compare_results(drift, base, {"tight"}).regression());
   CHECK_FALSE(compare_results(drift, base, {"loose"}).regression());
-  // auto → loose when the device differs.
-  drift["context"]["opencl"]["device"] = "another-device";
-  const auto rep = compare_results(drift, base);
+  // auto → loose when the device differs, for a trained table (quick or paper scale).
+  Json quick_base = base, quick_drift = drift;
+  quick_base["scale"] = quick_drift["scale"] = "quick";
+  quick_drift["context"]["opencl"]["device"] = "another-device";
+  const auto rep = compare_results(quick_drift, quick_base);
   CHECK(rep.mode == "loose");
   CHECK_FALSE(rep.regression());
   CHECK(harness::metric_tolerance("cd", "loose", 0.1) == Approx(0.005 + 0.25 * 0.1));
+}
+
+TEST_CASE("a smoke table is compared only as a deterministic twin", "[harness][compare]") {
+  // Before: another device or driver silently switched a smoke comparison to the loose
+  // tolerances (CD ±25 % around a 60-iteration model), and the 1 % drift below passed.
+  const Json base = test::fake_results();
+  REQUIRE(base["scale"] == "smoke");
+  Json drift = base;
+  row(drift, "lidar-nerf")["mean"]["cd"] = base["rows"][0]["mean"]["cd"].get<double>() * 1.01;
+  drift["context"]["opencl"]["device"] = "another-device";
+  auto rep = compare_results(drift, base);
+  CHECK(rep.mode == "tight");
+  CHECK(rep.regression());
+  bool named = false;
+  for (const auto& f : rep.findings)
+    if (f.kind == "not-twins" && f.fails && f.message.find("another-device") != std::string::npos &&
+        f.message.find("fake-device") != std::string::npos && f.message.find("regenerate") != std::string::npos)
+      named = true;
+  CHECK(named);
+  // Same device, other driver: the same.
+  Json driver = base;
+  driver["context"]["opencl"]["driver_version"] = "2.0";
+  CHECK(compare_results(driver, base).regression());
+  // Same device, another run config: not a twin either, and the message says which.
+  Json cfg = base;
+  row(cfg, "lidar-nerf")["sequences"][0]["config_hash"] = "ffffffffffffffff";
+  rep = compare_results(cfg, base);
+  CHECK(rep.regression());
+  CHECK_THAT(harness::format_report(rep), Catch::Contains("lidar-nerf / ") && Catch::Contains("ffffffffffffffff"));
+  // An explicit --mode loose is the user's choice and still allowed.
+  CHECK_FALSE(compare_results(drift, base, {"loose"}).regression());
+}
+
+TEST_CASE("results of the wrong shape are findings, not JSON type errors", "[harness][compare]") {
+  const Json base = test::fake_results();
+  for (const Json& bad : {Json{{"rows", 5}}, Json::array(), Json(3.5),
+                          Json{{"schema", 7}, {"schema_version", "x"}}}) {
+    CHECK(compare_results(bad, base).regression());
+    CHECK(compare_results(base, bad).regression());
+  }
+  Json odd = base;
+  odd["rows"][0]["method"] = 42;
+  odd["rows"][1] = "not a row";
+  odd["rows"][2]["sequences"] = {{"sequence", {1, 2}}};
+  CHECK(compare_results(odd, base).regression());
+  CHECK(compare_results(base, odd).regression());
 }
 
 TEST_CASE("missing metric, sequence and row are reported and fail", "[harness][compare]") {
@@ -118,10 +166,12 @@ TEST_CASE("timings: noise below the ratio is not flagged, a large ratio is", "[h
   CHECK(slow.findings.front().kind == "timing");
   // Too few repetitions: not compared.
   CHECK_FALSE(compare_results(scale_steps(4.0, 2), base).regression());
-  // Another device: timings are not compared.
-  Json other = scale_steps(4.0, 12);
+  // Another device: timings are not compared (a trained table: a smoke one would not be
+  // compared at all on another device).
+  Json other = scale_steps(4.0, 12), quick_base = base;
+  other["scale"] = quick_base["scale"] = "quick";
   other["context"]["opencl"]["device"] = "gpu";
-  CHECK_FALSE(compare_results(other, base).regression());
+  CHECK_FALSE(compare_results(other, quick_base).regression());
   // --no-timings
   harness::CompareOptions no_t;
   no_t.timings = false;
