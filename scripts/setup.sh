@@ -7,6 +7,8 @@ PACKAGES=(
   pocl-opencl-icd ocl-icd-libopencl1 ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libeigen3-dev nlohmann-json3-dev catch2 libbenchmark-dev libcli11-dev libstb-dev libpng-dev
 )
+# The fuzz targets and CI's sanitizer job build with clang and its libFuzzer runtime.
+if [ "${SGNLF_SETUP_CLANG:-0}" = "1" ]; then PACKAGES+=(clang libclang-rt-dev); fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
