@@ -15,7 +15,7 @@ using namespace sgnlf;
 namespace {
 void write_floats(const std::string& path, const std::vector<float>& v, size_t extra_bytes = 0) {
   std::vector<char> b(v.size() * 4 + extra_bytes, 0);
-  std::memcpy(b.data(), v.data(), v.size() * 4);
+  if (!v.empty()) std::memcpy(b.data(), v.data(), v.size() * 4);  // memcpy from null: UB (UBSan)
   io::write_file_bytes(path, b.data(), b.size());
 }
 bool message_has(const std::function<void()>& f, const std::string& a, const std::string& b = "") {
