@@ -16,6 +16,7 @@
 #include "pipeline/trainer.hpp"
 #include "render/pose_gradient.hpp"
 #include "support/test_device.hpp"
+#include "pose_step_fd.hpp"
 #include "tiny_scene.hpp"
 
 SGNLF_DEVICE_TESTS;
@@ -34,12 +35,6 @@ TrainConfig tiny_pose_free(const std::string& method, const Json& extra = Json::
   return resolve_config(method, "smoke", merge_config_json(o, extra));
 }
 
-double step_loss(LidarNerfModel& model, const Scene& scene, const TrainConfig& c, const Pose& T,
-                 long step) {
-  const RayBatch b = draw_ray_batch(scene, c, 7, step, [&](int) { return T; });
-  model.forward_backward(b, 7, step, true);
-  return model.read_loss().total();
-}
 
 }  // namespace
 
@@ -57,38 +52,13 @@ TEST_CASE("one training step's loss: analytic dL/dxi of its frame matches finite
   opt.show_progress = false;
   opt.resume = false;
   train(model, scene, c, opt);  // a field with structure, so the loss depends on the pose
-  const long step = 41;
-  const int frame = batch_frame(scene, 7, step);
   // An arbitrary non-zero correction on top of the frame's pose: the gradient is exact there too.
   Vec6 xi0;
   xi0 << 0.01, -0.02, 0.015, 0.004, -0.003, 0.002;
-  const Pose& T_init = scene.T_world_lidar[size_t(frame)];
-  const double l0 = step_loss(model, scene, c, corrected_pose(T_init, xi0), step);
-  REQUIRE(std::isfinite(l0));
-  const auto g = model.read_ray_grads();
-  const RayBatch b = draw_ray_batch(scene, c, 7, step);
-  std::vector<float> dirs;
-  for (int px : b.pixels)
-    for (int a = 0; a < 3; ++a) dirs.push_back(scene.directions[3 * size_t(px) + a]);
-  const Vec6 analytic = render::pose_gradient(T_init, xi0, {}, dirs, g.origin, g.direction);
-  Vec6 numeric;
-  for (int k = 0; k < 6; ++k) {
-    // Radians / normalised units (5e-5 ≈ 1 cm here). The hash grid's gradient is piecewise
-    // constant, so larger steps cross cell boundaries (1e-3 is off by 8 % of the largest
-    // component on this state); below ~2e-5 the float loss's rounding shows.
-    const double eps = 5e-5;
-    Vec6 xp = xi0, xm = xi0;
-    xp[k] += eps;
-    xm[k] -= eps;
-    numeric[k] = (step_loss(model, scene, c, corrected_pose(T_init, xp), step) -
-                  step_loss(model, scene, c, corrected_pose(T_init, xm), step)) /
-                 (2 * eps);
-  }
-  INFO("analytic " << analytic.transpose() << "\nnumeric  " << numeric.transpose());
-  const double scale = numeric.cwiseAbs().maxCoeff();
-  REQUIRE(scale > 1e-3);
-  for (int k = 0; k < 6; ++k) CHECK(std::abs(analytic[k] - numeric[k]) < 0.05 * scale);
-  CHECK(analytic.dot(numeric) > 0.98 * analytic.norm() * numeric.norm());
+  // eps in radians / normalised units (5e-5 ≈ 1 cm here). The hash grid's gradient is piecewise
+  // constant, so larger steps cross cell boundaries (1e-3 is off by 8 % of the largest
+  // component on this state); below ~2e-5 the float loss's rounding shows.
+  test::check_pose_step_gradients(test::pose_step_gradients(model, scene, c, 41, xi0, 5e-5));
 }
 
 TEST_CASE("PoseSet: corrections, per-frame Adam, set_pose and exact state round trip",

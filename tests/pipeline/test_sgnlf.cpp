@@ -17,6 +17,7 @@
 #include "render/pose_gradient.hpp"
 #include "spectral/hybrid_encoder.hpp"
 #include "support/test_device.hpp"
+#include "pose_step_fd.hpp"
 #include "tiny_scene.hpp"
 
 SGNLF_DEVICE_TESTS;
@@ -56,40 +57,12 @@ TEST_CASE("hybrid field: analytic dL/dxi of one training step matches finite dif
   opt.show_progress = false;
   opt.resume = false;
   train(model, scene, c, opt);
-  const long step = 41;
-  const int frame = batch_frame(scene, 7, step);
   Vec6 xi0;
   xi0 << 0.01, -0.02, 0.015, 0.004, -0.003, 0.002;
-  const Pose& T_init = scene.T_world_lidar[size_t(frame)];
-  auto loss_at = [&](const Vec6& xi) {
-    const Pose T = corrected_pose(T_init, xi);
-    const RayBatch b = draw_ray_batch(scene, c, 7, step, [&](int) { return T; });
-    model.forward_backward(b, 7, step, true);
-    return model.read_loss().total();
-  };
-  REQUIRE(std::isfinite(loss_at(xi0)));
-  const auto g = model.read_ray_grads();
-  const RayBatch b = draw_ray_batch(scene, c, 7, step);
-  std::vector<float> dirs;
-  for (int px : b.pixels)
-    for (int a = 0; a < 3; ++a) dirs.push_back(scene.directions[3 * size_t(px) + a]);
-  const Vec6 analytic = render::pose_gradient(T_init, xi0, {}, dirs, g.origin, g.direction);
-  Vec6 numeric;
-  for (int k = 0; k < 6; ++k) {
-    // Smaller than the hash-grid test's 5e-5: the trained hybrid state has a ~14× smaller
-    // gradient here, so cell crossings of the piecewise-trilinear grid weigh more (measured:
-    // 5e-5 puts one component 6.5 % of the largest off, 2e-5 all within 1.6 %).
-    const double eps = 2e-5;
-    Vec6 xp = xi0, xm = xi0;
-    xp[k] += eps;
-    xm[k] -= eps;
-    numeric[k] = (loss_at(xp) - loss_at(xm)) / (2 * eps);
-  }
-  INFO("analytic " << analytic.transpose() << "\nnumeric  " << numeric.transpose());
-  const double scale = numeric.cwiseAbs().maxCoeff();
-  REQUIRE(scale > 1e-3);
-  for (int k = 0; k < 6; ++k) CHECK(std::abs(analytic[k] - numeric[k]) < 0.05 * scale);
-  CHECK(analytic.dot(numeric) > 0.98 * analytic.norm() * numeric.norm());
+  // eps smaller than the hash-grid test's 5e-5: the trained hybrid state has a ~14× smaller
+  // gradient here, so cell crossings of the piecewise-trilinear grid weigh more (measured:
+  // 5e-5 puts one component 6.5 % of the largest off, 2e-5 all within 1.6 %).
+  test::check_pose_step_gradients(test::pose_step_gradients(model, scene, c, 41, xi0, 2e-5));
 }
 
 TEST_CASE("hybrid field run folder: spectral schedule, exact resume, evaluation restores Psi",
