@@ -19,6 +19,11 @@ class Encoder {
   virtual ~Encoder() = default;
   // Output features per point (the density MLP's input width).
   virtual int width() const = 0;
+  // How the width() output features split into parts of different kinds, in order (sums to
+  // width()): one part by default; the hybrid encoder's [f_geo, λΨ] are two. Users comparing
+  // features (the pose graph's cosine matching) normalise each part on its own so that one part
+  // cannot dominate the similarity by its scale.
+  virtual std::vector<int> parts() const { return {width()}; }
   // Floats in the model's flat parameter buffer.
   virtual size_t n_params() const = 0;
   // Deterministic initialisation of host_params[offset, offset + n_params()) (and of any

@@ -52,6 +52,7 @@ double geometric_tau_scale(const GeometricScheduleConfig& g, const Sensor& senso
 posegraph::FeatureProvider field_features(LidarNerfModel& model, const SceneNormalization& norm) {
   posegraph::FeatureProvider p;
   p.dim = model.encoder().width();
+  p.parts = model.encoder().parts();  // f_geo and λΨ normalised on their own
   p.name = "field encoding (f_hyb with the hybrid field)";
   p.eval = [&model, norm](const std::vector<Eigen::Vector3f>& x_world, std::vector<float>& out) {
     std::vector<float> x(x_world.size() * 3);

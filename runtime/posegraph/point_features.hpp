@@ -2,7 +2,8 @@
 // them. In SG-NLF they are the field's hybrid features f_hyb = [hash-grid features, λΨ(x)]
 // evaluated at the points' world positions under the current poses (on the OpenCL device); the
 // pose graph only needs a function from world points to n × dim features. Matching uses cosine
-// similarity, so the graph normalises each row (unit_features).
+// similarity, so the graph normalises each row (unit_features), part by part when the provider
+// says its features are made of parts of different kinds (f_hyb: [f_geo, λΨ]).
 #pragma once
 #include <functional>
 #include <string>
@@ -22,11 +23,16 @@ struct FeatureProvider {
   int dim = 0;
   FeatureFn eval;
   std::string name;  // shown in reports, e.g. "f_hyb" or "stand-in: random Fourier features"
+  // Widths of consecutive parts of a row (sum dim), each normalised on its own; empty: one part.
+  std::vector<int> parts;
 };
 
 // The provider's features at `x_world`, each row scaled to unit length (a zero row stays zero:
-// its cosine similarity with anything is 0). Throws sgnlf::Error when the provider is empty, has
-// dim < 1, returns the wrong number of values, and sgnlf::NumericError for a non-finite value.
+// its cosine similarity with anything is 0). With parts, each non-zero part of a row is scaled
+// to length 1/sqrt(m), m the row's non-zero parts, so the row has unit length and the cosine of
+// two rows is the mean of their parts' cosines when both have the same parts non-zero. Throws
+// sgnlf::Error when the provider is empty, has dim < 1, parts that do not sum to dim or returns
+// the wrong number of values, and sgnlf::NumericError for a non-finite value.
 std::vector<float> unit_features(const FeatureProvider& f,
                                  const std::vector<Eigen::Vector3f>& x_world);
 

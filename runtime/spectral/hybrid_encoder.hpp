@@ -23,6 +23,7 @@ class HybridEncoder : public field::Encoder {
                 const SpectralLossConfig& loss);
 
   int width() const override { return grid_.n_output() + psi_spec_.k; }
+  std::vector<int> parts() const override { return {grid_.n_output(), psi_spec_.k}; }
   size_t n_params() const override { return grid_.n_params(); }
   // The grid's slice from `seed`; Ψ from init_psi_params(seed ^ 0x5151); Ψ's Adam reset.
   void init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) override;

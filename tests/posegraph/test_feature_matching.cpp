@@ -243,6 +243,26 @@ TEST_CASE("feature provider output is checked and normalised", "[posegraph][conf
   };
   CHECK_THROWS_AS(unit_features(nan_out, x), NumericError);
   CHECK_THROWS_AS(unit_features(FeatureProvider{}, x), Error);
+  // Parts [2, 1] are normalised on their own: a huge third component no longer dominates.
+  FeatureProvider parted{3, [](const std::vector<Eigen::Vector3f>& p, std::vector<float>& out) {
+                           out.clear();
+                           for (const auto& v : p) out.insert(out.end(), {v.x(), v.y(), 1000.f * v.z()});
+                         }, "parted", {2, 1}};
+  const std::vector<Eigen::Vector3f> y = {Eigen::Vector3f(1, 0, 1), Eigen::Vector3f(0, 1, 1),
+                                          Eigen::Vector3f(3, 4, 0)};
+  const auto pf = unit_features(parted, y);
+  CHECK(cosine(pf.data(), pf.data() + 3, 3) == Approx(0.5f));  // mean of cosines 0 and 1
+  CHECK(pf[0] == Approx(std::sqrt(0.5f)));
+  CHECK(pf[6] == Approx(0.6f));  // the zero part is left out: [0.6, 0.8] with unit length
+  CHECK(pf[7] == Approx(0.8f));
+  CHECK(pf[8] == 0.f);
+  const auto whole = unit_features(FeatureProvider{3, parted.eval, "whole"}, y);
+  CHECK(cosine(whole.data(), whole.data() + 3, 3) > 0.99f);  // without parts the scale dominates
+  FeatureProvider bad_parts = parted;
+  bad_parts.parts = {2, 2};
+  CHECK_THROWS_AS(unit_features(bad_parts, y), Error);
+  bad_parts.parts = {3, 0};
+  CHECK_THROWS_AS(unit_features(bad_parts, y), Error);
   // The stand-in: unit rows, similarity ≈ 1 nearby and lower metres away.
   const auto s = standin_fourier_features({});
   const auto g = unit_features(s, {Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(0.05f, 0, 0),
