@@ -10,7 +10,7 @@ SEQS=${*:-kitti360-loop nuscenes-loop}
 mkdir -p "$WORK"
 for seq in $SEQS; do
   [ -d "$WORK/data/$seq" ] || "$BIN/sgnlf" simulate --sequence "$seq" --seed 1 --out "$WORK/data/$seq"
-  for row in geonlf sequential confidence; do
+  for row in ${ROWS:-confidence sequential geonlf}; do
     run="$WORK/runs/$seq-$row"
     [ -f "$run/metrics.json" ] && continue
     case $row in
