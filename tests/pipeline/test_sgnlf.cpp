@@ -38,7 +38,7 @@ TrainConfig tiny_hybrid(const Json& extra = Json::object()) {
          {"spectral", {{"fusion", {{"start", 4}, {"end", 14}}}, {"batch", 128},
                        {"points_per_frame", 300}}},
          {"pose_graph", {{"start_epoch", 1}, {"reevaluate_every", 1}, {"match_points", 300},
-                         {"min_matches", 5}}}};
+                         {"min_matches", 5}, {"steps_on_build", 6}}}};
   return resolve_config(kMethod, "smoke", merge_config_json(o, extra));
 }
 
@@ -109,9 +109,22 @@ TEST_CASE("hybrid field run folder: spectral schedule, exact resume, evaluation 
   const Json g1 = load_json_file(full + "/pose_graph/latest.json");
   CHECK(g1.at("edges").size() > 0);
   bool logged = false;
+  int build_runs = 0;
   std::ifstream glog(full + "/geometric_log.jsonl");
-  while (std::getline(glog, line)) logged = logged || Json::parse(line).contains("pose_graph");
+  while (std::getline(glog, line)) {
+    const Json j = Json::parse(line);
+    if (!j.contains("pose_graph")) continue;
+    logged = true;
+    // Each build settles the poses on the new graph: steps_on_build 6 shrunk by progress.
+    if (j.at("pose_graph").contains("build_run")) {
+      const Json& b = j.at("pose_graph").at("build_run");
+      CHECK(b.at("steps").get<int>() >= 1);
+      CHECK(b.at("steps").get<int>() <= 6);
+      ++build_runs;
+    }
+  }
   CHECK(logged);
+  CHECK(build_runs >= 1);
 
   // Killed after step 20 (after the graph was built, λ at 1) and resumed: bit-identical field,
   // Ψ, pose graph and poses.
@@ -145,6 +158,11 @@ TEST_CASE("hybrid field config: validated section, unknown keys rejected",
   CHECK_THROWS_WITH(tiny_hybrid(Json{{"spectral", {{"bogus", 1}}}}), Catch::Contains("bogus"));
   CHECK_THROWS_WITH(tiny_hybrid(Json{{"spectral", {{"every", 0}}}}), Catch::Contains("every"));
   CHECK_THROWS_WITH(tiny_hybrid(Json{{"spectral", {{"psi", {{"k", 0}}}}}}), Catch::Contains("k"));
+  CHECK_THROWS_WITH(tiny_hybrid(Json{{"pose_graph", {{"steps_on_build", -1}}}}),
+                    Catch::Contains("steps_on_build"));
+  CHECK_THROWS_WITH(tiny_hybrid(Json{{"pose_graph", {{"lr_on_build", 0.0}}}}),
+                    Catch::Contains("lr_on_build"));
+  CHECK_THROWS_WITH(tiny_hybrid(Json{{"pose_graph", {{"bogus", 1}}}}), Catch::Contains("bogus"));
   // A method without the hybrid field has no "spectral" section.
   CHECK_THROWS_WITH(resolve_config("geonlf", "smoke", Json{{"spectral", {{"every", 1}}}}),
                     Catch::Contains("spectral"));
