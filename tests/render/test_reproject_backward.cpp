@@ -56,7 +56,11 @@ std::pair<Vec6, Vec6> ref_pose_grad(const Problem& P, const test::RefReprojGeome
   return test::ref_reproject_xi_gradient(b, T_ji, P.xi_i, P.xi_j);
 }
 
-// Per-component tolerance for float sums of |w|·|dD/dξ_k| (u: |m| = 1; ω: |x × m| ≤ |x|).
+// The device's float sums differ from double by ~1e-9 of Σ|terms| here (random signs); 5e-8
+// still catches a 0.1 % error in the smallest gradient component (~2e-4 of Σ|terms|).
+constexpr double kFloatSum = 5e-8;
+
+// Per-component scale: float sums of |w|·|dD/dξ_k| (u: |m| = 1; ω: |x × m| ≤ |x|).
 Vec6 float_sum_scale(const Problem& P, const std::vector<int>& winner,
                      const std::vector<double>& w) {
   double su = 0, sw = 0;
@@ -134,12 +138,12 @@ TEST_CASE("Reprojection pose gradients match central differences (reference and 
     const double device = k < 6 ? dev.pose.xi_i[k] : dev.pose.xi_j[k - 6];
     INFO((k < 6 ? "xi_i[" : "xi_j[") << k % 6 << "] numeric " << numeric << " analytic " << analytic
                                      << " device " << device << " changed " << changed);
-    CHECK(std::abs(analytic - numeric) <= 1e-6 * std::abs(numeric) + 1e-7 * scale[k % 6]);
-    CHECK(std::abs(device - numeric) <= 1e-5 * scale[k % 6]);
+    CHECK(std::abs(analytic - numeric) <= 1e-6 * std::abs(numeric) + 1e-9 * scale[k % 6]);
+    CHECK(std::abs(device - numeric) <= kFloatSum * scale[k % 6]);
     if (k >= 6 && k < 9) {
       // Turning frame j about its own origin leaves every range in frame j unchanged.
       CHECK(analytic == 0.0);
-      CHECK(std::abs(numeric) <= 1e-7 * scale[k % 6]);
+      CHECK(std::abs(numeric) <= 1e-9 * scale[k % 6]);
     }
   }
 }
@@ -184,8 +188,8 @@ TEST_CASE("Reprojection depth gradients match central differences and the refere
   const Vec6 scale = float_sum_scale(P, dev.winner, P.w);
   for (int k = 0; k < 6; ++k) {
     INFO("component " << k);
-    CHECK(std::abs(dev.pose.xi_i[k] - ref_i[k]) <= 1e-5 * scale[k]);
-    CHECK(std::abs(dev.pose.xi_j[k] - ref_j[k]) <= 1e-5 * scale[k]);
+    CHECK(std::abs(dev.pose.xi_i[k] - ref_i[k]) <= kFloatSum * scale[k]);
+    CHECK(std::abs(dev.pose.xi_j[k] - ref_j[k]) <= kFloatSum * scale[k]);
   }
 }
 
