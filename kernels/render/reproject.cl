@@ -7,9 +7,11 @@
 // pass 1 takes the minimum of the bits of q = ||y||² (positive floats order as their bits),
 // pass 2 the smallest source index among the sources whose q bits equal that minimum. The
 // result does not depend on scheduling. Pixels are chosen by sign tests against the pixel
-// boundaries (geometry/pixel_boundaries.hpp) after an atan2 guess, so the choice (and the
-// mask and winners) is the same on every IEEE device; contraction into FMA is off so that the
-// host mirror (tests/render/reproject_reference.hpp) reproduces every bit.
+// boundaries (geometry/pixel_boundaries.hpp), walking from a polynomial atan2 guess, so the
+// choice (and the mask and winners) uses only IEEE multiplications, additions and comparisons
+// and is the same on every device; contraction into FMA is off so that the host mirror
+// (tests/render/reproject_reference.hpp) reproduces every bit. D_ij = √q is bit-identical
+// where sqrt is correctly rounded (PoCL on x86; elsewhere it may differ in the last bit).
 // Launchers: runtime/render/cross_frame_reprojection.cpp.
 
 #pragma OPENCL FP_CONTRACT OFF
@@ -43,26 +45,46 @@ inline int reproj_above_row(__global const float* row, const int k, const float 
   return a > 0.0f || a * a < b2;
 }
 
-// Column in [0, W] (W = outside): the protocol's rounding guessed from atan2, then settled by
-// two rounds of boundary tests, so the guess may be off by up to two columns.
+// atan2 to within ~1e-5 rad (a minimax polynomial of atan on [0, 1]); only the first guess of
+// a pixel uses it, the boundary tests decide.
+inline float reproj_atan2_guess(const float y, const float x) {
+  const float ax = fabs(x), ay = fabs(y);
+  const float hi = fmax(ax, ay);
+  const float a = hi > 0.0f ? fmin(ax, ay) / hi : 0.0f;
+  const float s = a * a;
+  float r = ((-0.0464964749f * s + 0.15931422f) * s - 0.327622764f) * s * a + a;
+  if (ay > ax) r = M_PI_2_F - r;
+  if (x < 0.0f) r = M_PI_F - r;
+  return y < 0.0f ? -r : r;
+}
+
+// Column in [0, W] (W = outside): a guess of the protocol's rounding, then boundary tests walk
+// to the column. The walk only ever goes one way, so it ends; where it ends does not depend on
+// the guess as long as the guess is less than half a turn off (a boundary test is only valid
+// within π of the boundary; the guess is off by ~1e-5 rad).
 inline int reproj_column(__global const float* col, const int W, const float x, const float y) {
-  const float u = (M_PI_F - atan2(y, x)) * ((float)W / (2.0f * M_PI_F));
+  const float u = (M_PI_F - reproj_atan2_guess(y, x)) * ((float)W / (2.0f * M_PI_F));
   int c = clamp((int)floor(u + 0.5f), 0, W);
-  for (int it = 0; it < 2; ++it) {
-    if (c < W && !reproj_above_col(col, c, x, y)) ++c;
-    else if (c > 0 && reproj_above_col(col, c - 1, x, y)) --c;
+  if (c < W && !reproj_above_col(col, c, x, y)) {
+    do ++c;
+    while (c < W && !reproj_above_col(col, c, x, y));
+  } else {
+    while (c > 0 && reproj_above_col(col, c - 1, x, y)) --c;
   }
   return c;
 }
 
-// Row in [−1, H] (−1 and H = outside the vertical field of view), as reproj_column.
+// Row in [−1, H] (−1 and H = outside the vertical field of view), as reproj_column (elevations
+// differ by less than π, so any guess ends in the same row).
 inline int reproj_row(__global const float* row, const int H, const float fov_up_rad,
                       const float inv_row_step, const float z, const float qxy) {
-  const float alpha = atan2(z, sqrt(qxy));
+  const float alpha = reproj_atan2_guess(z, sqrt(qxy));
   int r = clamp((int)floor((fov_up_rad - alpha) * inv_row_step + 0.5f), -1, H);
-  for (int it = 0; it < 2; ++it) {
-    if (r < H && !reproj_above_row(row, r, z, qxy)) ++r;
-    else if (r > -1 && reproj_above_row(row, r - 1, z, qxy)) --r;
+  if (r < H && !reproj_above_row(row, r, z, qxy)) {
+    do ++r;
+    while (r < H && !reproj_above_row(row, r, z, qxy));
+  } else {
+    while (r > -1 && reproj_above_row(row, r - 1, z, qxy)) --r;
   }
   return r;
 }

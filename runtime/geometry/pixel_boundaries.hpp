@@ -9,8 +9,9 @@
 // boundary belongs to the higher index. Hence, for a point (x, y, z):
 //   column c ⇔ (c = 0 or β ≤ b_{c−1}) and β > b_c, c = W being outside (the protocol drops it);
 //   row r    ⇔ (r = 0 or α ≤ e_{r−1}) and α > e_r, rows −1 and H being outside.
-// β > b ⇔ cos b·y − sin b·x > 0 and α > e ⇔ cos e·z − sin e·√(x² + y²) > 0 (angle differences
-// below π, which holds within two pixels of the boundary for W ≥ 8).
+// β > b ⇔ cos b·y − sin b·x > 0 and α > e ⇔ cos e·z − sin e·√(x² + y²) > 0, valid while the
+// angle between point and boundary is below π: always for rows, and for columns within half
+// a turn of the boundary (two columns are a quarter turn at most for W ≥ 8).
 #pragma once
 #include <vector>
 

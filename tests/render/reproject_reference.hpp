@@ -1,7 +1,9 @@
 // Host reference of kernels/render/reproject.cl (tests only; the runtime never calls it).
 // Templated on the scalar: the float version repeats the kernels' arithmetic operation by
 // operation (same order, no contraction into FMA) and must agree with the device bit for bit
-// on D_ij, M_ij and the winners; the double version serves the finite-difference tests.
+// on D_ij, M_ij and the winners; the double version serves the finite-difference tests. The
+// first guess of a pixel uses std::atan2 where the kernel uses a polynomial: the boundary walk
+// ends in the same pixel from any guess, and the tests rely on that.
 #pragma once
 #if defined(__clang__)
 #pragma clang fp contract(off)
@@ -80,27 +82,41 @@ bool ref_above_row(const std::vector<T>& row, int k, T z, T qxy) {
   return a > T(0) || a2 < b2;
 }
 
+// The boundary walk from the guess c (clamped to [0, W]).
 template <typename T>
-int ref_column(const std::vector<T>& col, int W, T x, T y) {
-  const T u = (T(M_PI) - std::atan2(y, x)) * (T(W) / (T(2) * T(M_PI)));
-  int c = std::min(std::max(int(std::floor(u + T(0.5))), 0), W);
-  for (int it = 0; it < 2; ++it) {
-    if (c < W && !ref_above_col(col, c, x, y)) ++c;
-    else if (c > 0 && ref_above_col(col, c - 1, x, y)) --c;
+int ref_column_from(const std::vector<T>& col, int W, T x, T y, int c) {
+  c = std::min(std::max(c, 0), W);
+  if (c < W && !ref_above_col(col, c, x, y)) {
+    do ++c;
+    while (c < W && !ref_above_col(col, c, x, y));
+  } else {
+    while (c > 0 && ref_above_col(col, c - 1, x, y)) --c;
   }
   return c;
 }
 
 template <typename T>
-int ref_row(const RefReprojGeometry<T>& g, T z, T qxy) {
-  const T alpha = std::atan2(z, std::sqrt(qxy));
-  int r = std::min(std::max(int(std::floor((g.fov_up_rad - alpha) * g.inv_row_step + T(0.5))), -1),
-                   g.Hj);
-  for (int it = 0; it < 2; ++it) {
-    if (r < g.Hj && !ref_above_row(g.row, r, z, qxy)) ++r;
-    else if (r > -1 && ref_above_row(g.row, r - 1, z, qxy)) --r;
+int ref_column(const std::vector<T>& col, int W, T x, T y) {
+  const T u = (T(M_PI) - std::atan2(y, x)) * (T(W) / (T(2) * T(M_PI)));
+  return ref_column_from(col, W, x, y, int(std::floor(u + T(0.5))));
+}
+
+template <typename T>
+int ref_row_from(const RefReprojGeometry<T>& g, T z, T qxy, int r) {
+  r = std::min(std::max(r, -1), g.Hj);
+  if (r < g.Hj && !ref_above_row(g.row, r, z, qxy)) {
+    do ++r;
+    while (r < g.Hj && !ref_above_row(g.row, r, z, qxy));
+  } else {
+    while (r > -1 && ref_above_row(g.row, r - 1, z, qxy)) --r;
   }
   return r;
+}
+
+template <typename T>
+int ref_row(const RefReprojGeometry<T>& g, T z, T qxy) {
+  const T alpha = std::atan2(z, std::sqrt(qxy));
+  return ref_row_from(g, z, qxy, int(std::floor((g.fov_up_rad - alpha) * g.inv_row_step + T(0.5))));
 }
 
 // Target pixel of source pixel p at depth d (−1 = none), and q = ||y||².

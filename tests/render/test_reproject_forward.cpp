@@ -47,7 +47,7 @@ size_t count(const std::vector<float>& mask) {
 }
 }  // namespace
 
-TEST_CASE("Pixel-boundary tests give the protocol's pixel", "[render][reproject]") {
+TEST_CASE("Pixel-boundary tests give the protocol's pixel from any first guess", "[render][reproject]") {
   for (const Sensor& s : {sensor_preset("kitti360"), sensor_preset("nuscenes")}) {
     const auto gd = test::ref_reproj_geometry<double>(s, s, 1.0);
     const auto gf = test::ref_reproj_geometry<float>(s, s, 1.0);
@@ -67,9 +67,15 @@ TEST_CASE("Pixel-boundary tests give the protocol's pixel", "[render][reproject]
       REQUIRE(r == std::clamp<long>(pr, -1, s.height));
       REQUIRE(c == pc);
       inside += r >= 0 && r < s.height;
-      const float xf = float(x), yf = float(y), zf = float(z);
-      float_differs += test::ref_row(gf, zf, xf * xf + yf * yf) != r ||
-                       test::ref_column(gf.col, s.width, xf, yf) != c;
+      const float xf = float(x), yf = float(y), zf = float(z), qf = xf * xf + yf * yf;
+      const int rf = test::ref_row(gf, zf, qf), cf = test::ref_column(gf.col, s.width, xf, yf);
+      float_differs += rf != r || cf != c;
+      // The walk ends in the same pixel from any first guess within a quarter turn (the
+      // kernel guesses differently, to within ~1e-5 rad), and from any row.
+      for (int guess : {-5, 0, rf - 3, rf + 3, s.height + 4})
+        REQUIRE(test::ref_row_from(gf, zf, qf, guess) == rf);
+      for (int guess : {cf - 9, cf + 9, cf - s.width / 4, cf + s.width / 4})
+        REQUIRE(test::ref_column_from(gf.col, s.width, xf, yf, guess) == cf);
     }
     CHECK(inside > n / 2);
     CHECK(float_differs < n / 1000);  // float rounding moves only points on a boundary
