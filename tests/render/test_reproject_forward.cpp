@@ -104,6 +104,16 @@ TEST_CASE("Device forward equals the float host mirror bit for bit on simulated 
       CHECK(covered < valid);
     }
   }
+  // Frame i at a quarter of the columns (a cheaper render) into frame j's full image.
+  const Dataset& narrow = test::reproj_pair("kitti360-low-a", 256);
+  const Dataset& full = test::reproj_pair("kitti360-low-a");
+  render::CrossFrameReprojection rp(rt, narrow.sensor, full.sensor, 1.0);
+  const auto g = test::ref_reproj_geometry<float>(narrow.sensor, full.sensor, 1.0);
+  const auto dev = test::device_reproject(rp, narrow.frames[0].image.range,
+                                          narrow.frames[0].T_world_lidar, full.frames[1].T_world_lidar);
+  const auto ref = test::ref_reproject_forward(g, narrow.frames[0].image.range, dev.ctx.rows_lidarj_lidari);
+  CHECK(mismatches(dev.images, ref) == 0);
+  CHECK(count(dev.images.mask) > count(narrow.frames[0].image.ray_drop) / 2);
 }
 
 TEST_CASE("Device forward agrees with project_points() of the moved points", "[render][reproject]") {
@@ -153,25 +163,30 @@ TEST_CASE("An identity relative pose reproduces D_i on its own pixels within the
   depth[size_t(10 * W + 8)] = 79.9f;   // kept
   depth[size_t(10 * W + 9)] = 1.9f;    // kept
   depth[size_t(11 * W + 9)] = 0.f;     // a hole
-  // The same non-trivial pose for both frames: T_lidarj_lidari is the identity.
-  const Pose T = test::make_pose(Vec3(0.3, -0.2, 1.1), Vec3(12.0, -3.0, 1.5));
-  render::CrossFrameReprojection rp(rt, s, s, 1.0);
-  const auto dev = test::device_reproject(rp, depth, T, T);
-  size_t kept = 0;
-  for (size_t p = 0; p < depth.size(); ++p) {
-    const bool expect = depth[p] > 1.8f && depth[p] < 80.f;
-    INFO("pixel " << p << " depth " << depth[p]);
-    REQUIRE((dev.images.mask[p] > 0.5f) == expect);
-    if (!expect) {
-      REQUIRE(dev.images.winner[p] == -1);
-      REQUIRE(dev.images.range[p] == 0.f);
-      continue;
+  // The same non-trivial pose for both frames: T_lidarj_lidari is the identity. In metres and
+  // in the normalised scene (depths and translations · scale, limits scaled by range_scale).
+  for (const double scale : {1.0, 0.0125}) {
+    std::vector<float> depth_s = depth;
+    for (auto& v : depth_s) v = float(v * scale);
+    const Pose T = test::make_pose(Vec3(0.3, -0.2, 1.1), Vec3(12.0, -3.0, 1.5) * scale);
+    render::CrossFrameReprojection rp(rt, s, s, scale);
+    const auto dev = test::device_reproject(rp, depth_s, T, T);
+    size_t kept = 0;
+    for (size_t p = 0; p < depth.size(); ++p) {
+      const bool expect = depth[p] > 1.8f && depth[p] < 80.f;
+      INFO("scale " << scale << " pixel " << p << " depth " << depth[p]);
+      REQUIRE((dev.images.mask[p] > 0.5f) == expect);
+      if (!expect) {
+        REQUIRE(dev.images.winner[p] == -1);
+        REQUIRE(dev.images.range[p] == 0.f);
+        continue;
+      }
+      ++kept;
+      REQUIRE(dev.images.winner[p] == int(p));
+      REQUIRE(dev.images.range[p] == Approx(depth_s[p]).epsilon(1e-6));
     }
-    ++kept;
-    REQUIRE(dev.images.winner[p] == int(p));
-    REQUIRE(dev.images.range[p] == Approx(depth[p]).epsilon(1e-6));
+    CHECK(kept > depth.size() / 3);
   }
-  CHECK(kept > depth.size() / 3);
 }
 
 TEST_CASE("A known translation towards a planar wall gives the wall's ranges in frame j",
