@@ -8,7 +8,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 OUT=${OUT:-runs/bench}
-BINARIES=${BINARIES:-"bench_roofline bench_field bench_render bench_pipeline bench_spectral bench_metrics bench_datasets"}
+BINARIES=${BINARIES:-"bench_roofline bench_field bench_render bench_reproject bench_pipeline bench_spectral bench_metrics bench_datasets"}
 mkdir -p "$OUT"
 for b in $BINARIES; do
   [ -x "build/bin/$b" ] || { echo "bench.sh: build/bin/$b missing (run scripts/build.sh)" >&2; exit 1; }
