@@ -14,13 +14,15 @@
 #define TAPS (K * K)
 #define N_ROWS (TAPS * C_IN)
 
-// Forward: out[n, oy, ox, :] = b + Σ_{ky,kx,c} in[n, oy·S − P + ky, ox·S − P + kx, c] · W[..].
+// Forward: out[n, oy, ox, :] = b + Σ_{ky,kx,c} in[n, oy·S − P + ky, ox·S − P + kx, c] · W[..],
+// and with `fuse_act` also act[…] = leaky_relu(out, slope) (saves a pass over the output).
 // Work-item = PTS consecutive output pixels of one row × 16 output channels.
 // dim 0: tile = (n·HO + oy)·TX + tx with TX = ceil(WO / PTS); dim 1: output channel block.
 __kernel void conv2d_fwd(const int n_img, const int H, const int W, const int HO, const int WO,
                          __global const float* params, const uint w_off,
                          __global const float* in, __global float* out,
-                         __global const float* zeros) {
+                         __global const float* zeros, const int fuse_act, const float slope,
+                         __global float* act) {
   const int TX = (WO + PTS - 1) / PTS;
   const int t = get_global_id(0);
   const int o0 = get_global_id(1) * 16;
@@ -54,8 +56,12 @@ __kernel void conv2d_fwd(const int n_img, const int H, const int W, const int HO
     }
   }
 #pragma unroll
-  for (int j = 0; j < PTS; ++j)
-    if (ox0 + j < WO) vstore16(acc[j], 0, out + ((size_t)row * WO + ox0 + j) * O_PAD + o0);
+  for (int j = 0; j < PTS; ++j) {
+    if (ox0 + j >= WO) continue;
+    const size_t at = ((size_t)row * WO + ox0 + j) * O_PAD + o0;
+    vstore16(acc[j], 0, out + at);
+    if (fuse_act) vstore16(select(acc[j] * slope, acc[j], acc[j] > (float16)(0.0f)), 0, act + at);
+  }
 }
 
 // W transposed per tap for the input backward: wt[(tap·C_OUT + o)·IN_PAD + c] (zero padded).
@@ -163,7 +169,7 @@ __kernel void conv2d_bwd_wgt(const int n_img, const int H, const int W, const in
     oy = (begin / WO) % HO;
     n = begin / (WO * HO);
   }
-#if C_IN % ROWS == 0
+#if C_IN % ROWS == 0 && ROWS == 16
   // Every row of the block belongs to one tap: one bounds check and contiguous channels.
   const int tap = r0 / C_IN, c0 = r0 % C_IN;
   const int dy = tap / K, dx = tap % K;
@@ -171,9 +177,24 @@ __kernel void conv2d_bwd_wgt(const int n_img, const int H, const int W, const in
     const float16 d = vload16(0, d_out + (size_t)p * O_PAD + o0);
     const int iy = oy * S - P + dy, ix = ox * S - P + dx;
     if (iy >= 0 && iy < H && ix >= 0 && ix < W) {
-      __global const float* src = in + ((size_t)(n * H + iy) * W + ix) * IN_CS + c0;
-#pragma unroll
-      for (int k = 0; k < ROWS; ++k) acc[k] = fma((float16)(src[k]), d, acc[k]);
+      // One vector load of the 16 input channels, broadcast lane by lane (ROWS == 16).
+      const float16 a = vload16(0, in + ((size_t)(n * H + iy) * W + ix) * IN_CS + c0);
+      acc[0] = fma((float16)(a.s0), d, acc[0]);
+      acc[1] = fma((float16)(a.s1), d, acc[1]);
+      acc[2] = fma((float16)(a.s2), d, acc[2]);
+      acc[3] = fma((float16)(a.s3), d, acc[3]);
+      acc[4] = fma((float16)(a.s4), d, acc[4]);
+      acc[5] = fma((float16)(a.s5), d, acc[5]);
+      acc[6] = fma((float16)(a.s6), d, acc[6]);
+      acc[7] = fma((float16)(a.s7), d, acc[7]);
+      acc[8] = fma((float16)(a.s8), d, acc[8]);
+      acc[9] = fma((float16)(a.s9), d, acc[9]);
+      acc[10] = fma((float16)(a.sa), d, acc[10]);
+      acc[11] = fma((float16)(a.sb), d, acc[11]);
+      acc[12] = fma((float16)(a.sc), d, acc[12]);
+      acc[13] = fma((float16)(a.sd), d, acc[13]);
+      acc[14] = fma((float16)(a.se), d, acc[14]);
+      acc[15] = fma((float16)(a.sf), d, acc[15]);
     }
     if (++ox == WO) {
       ox = 0;

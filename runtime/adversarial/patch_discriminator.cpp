@@ -182,11 +182,11 @@ void PatchDiscriminator::run_forward(int nb) {
     for (size_t l = 0; l <= hidden; ++l) {
       const cl::Buffer& in = l == 0 ? B.x : B.post[l - 1];
       cl::Buffer& out = l < hidden ? B.pre[l] : B.logits;
-      convs_[l]->forward(params_, off[l], in, nb, h, w, out);
+      // Hidden layers: the leaky ReLU is fused into the convolution (pre and post written).
+      convs_[l]->forward(params_, off[l], in, nb, h, w, out, l < hidden ? &B.post[l] : nullptr,
+                         cfg_.slope);
       h = B.hs[l];
       w = B.ws[l];
-      if (l < hidden)
-        act_.forward(B.pre[l], floats_of(nb, h, w, convs_[l]->spec().out_cs()), B.post[l]);
     }
   }
   last_n_ = nb;

@@ -99,15 +99,20 @@ int Conv2d::wgrad_chunks(int pixels) const {
 }
 
 void Conv2d::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& in, int n, int h,
-                     int w, cl::Buffer& out) {
+                     int w, cl::Buffer& out, cl::Buffer* act_out, float slope) {
   check_shape(n, h, w, "forward");
   const int ho = spec_.out_size(h), wo = spec_.out_size(w);
   check_bytes(params, offset + n_params(), "params");
   check_bytes(in, size_t(n) * h * w * spec_.input_cs(), "in");
   check_bytes(out, size_t(n) * ho * wo * spec_.out_cs(), "out");
+  if (act_out) {
+    check_bytes(*act_out, size_t(n) * ho * wo * spec_.out_cs(), "act_out");
+    check_range("conv2d", "slope", slope, 0.0f, 1.0f);
+  }
   const size_t tiles = size_t(n) * ho * ceil_div(size_t(wo), kPts);
   const size_t oblocks = size_t(spec_.out_cs() / 16);
-  fwd_.set_args(n, h, w, ho, wo, params, uint32_t(offset), in, out, zeros_);
+  fwd_.set_args(n, h, w, ho, wo, params, uint32_t(offset), in, out, zeros_, int(act_out != nullptr),
+                slope, act_out ? *act_out : out);
   fwd_.launch({cl::round_up(tiles, kLocalTiles), oblocks}, {kLocalTiles, oblocks});
 }
 

@@ -58,9 +58,11 @@ class Conv2d {
   void init_params(std::vector<float>& host_params, size_t offset, uint64_t seed,
                    float stddev) const;
 
-  // out (n × ho × wo × out_cs) = conv(in (n × h × w × input_cs)). Enqueued, no wait.
+  // out (n × ho × wo × out_cs) = conv(in (n × h × w × input_cs)); with `act_out` also
+  // act_out = leaky_relu(out, slope) in the same pass (out stays the pre-activation, which the
+  // backward of the activation needs). Enqueued, no wait.
   void forward(const cl::Buffer& params, size_t offset, const cl::Buffer& in, int n, int h,
-               int w, cl::Buffer& out);
+               int w, cl::Buffer& out, cl::Buffer* act_out = nullptr, float slope = 0.0f);
   // From d_out (the output's layout): overwrites grad[grad_offset, + n_params()) when grad is
   // given and writes d_in (the input's layout, its c_in channels only) when given. `in` is the
   // forward's input. Enqueued, no wait.

@@ -107,6 +107,11 @@ TEST_CASE("Conv2d forward and backward match the host reference", "[conv][conv2d
       for (int o = s.c_out; o < ocs; ++o) CHECK(g_dev[s.bias_index(o)] == 0.0f);
       for (size_t i = 0; i < out.size(); ++i)
         if (int(i % size_t(ocs)) >= s.c_out) REQUIRE(out[i] == 0.0f);  // padding channels
+      // Fused leaky ReLU: same pre-activation, activation of exactly that output.
+      cl::Buffer b_pre(rt, d_out.size() * 4), b_act(rt, d_out.size() * 4);
+      cv.forward(b_p, off, b_in, c.n, c.h, c.w, b_pre, &b_act, 0.2f);
+      CHECK(b_pre.read_all<float>() == out);
+      CHECK(b_act.read_all<float>() == test::ref::leaky_relu_fwd(out, 0.2f));
     }
   }
 }
@@ -174,4 +179,6 @@ TEST_CASE("Conv2d rejects bad specs and shapes with the bad value", "[conv][conv
   cl::Buffer p(rt, cv.n_params() * 4), x(rt, 64 * 4), y(rt, 64 * 4);
   REQUIRE_THROWS_WITH(cv.forward(p, 0, x, 1, 1, 8, y), Catch::Contains("too small"));
   REQUIRE_THROWS_WITH(cv.forward(p, 0, x, 1, 8, 8, y), Catch::Contains("'in'"));
+  cl::Buffer big(rt, size_t(16) * 8 * 8 * 4);
+  REQUIRE_THROWS_WITH(cv.forward(p, 0, big, 1, 8, 8, big, &big, 1.5f), Catch::Contains("'slope' = 1.5"));
 }
