@@ -19,7 +19,11 @@ constexpr size_t kMaxPartial = size_t(4) << 20;  // floats of partial sums at mo
 constexpr size_t kLocalTiles = 16;  // work-group size along the pixel-tile dimension
 constexpr size_t kLocalRows = 8;    // row blocks per work-group in the weight gradient
 
+constexpr size_t kMaxLocal = 256;   // work-group size at most (fits common GPU limits)
+
 size_t ceil_div(size_t a, size_t b) { return (a + b - 1) / b; }
+// Work-group extent along the tile dimension when `blocks` channel blocks share a group.
+size_t tile_local(size_t base, size_t blocks) { return std::max<size_t>(1, std::min(base, kMaxLocal / blocks)); }
 int pad16(int c) { return (c + 15) / 16 * 16; }
 
 void check_bytes(const cl::Buffer& b, size_t floats, const char* what) {
@@ -113,7 +117,8 @@ void Conv2d::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& 
   const size_t oblocks = size_t(spec_.out_cs() / 16);
   fwd_.set_args(n, h, w, ho, wo, params, uint32_t(offset), in, out, zeros_, int(act_out != nullptr),
                 slope, act_out ? *act_out : out);
-  fwd_.launch({cl::round_up(tiles, kLocalTiles), oblocks}, {kLocalTiles, oblocks});
+  const size_t lt = tile_local(kLocalTiles, oblocks);
+  fwd_.launch({cl::round_up(tiles, lt), oblocks}, {lt, oblocks});
 }
 
 void Conv2d::backward(const cl::Buffer& params, size_t offset, const cl::Buffer& in, int n,
@@ -138,8 +143,8 @@ void Conv2d::backward(const cl::Buffer& params, size_t offset, const cl::Buffer&
     const size_t rows = size_t(spec_.kernel) * spec_.kernel * spec_.c_in;
     const size_t row_blocks = ceil_div(rows, kRows) + 1;  // + the bias row block
     bwd_wgt_.set_args(n, h, w, ho, wo, per, in, d_out, partial_);
-    bwd_wgt_.launch({size_t(chunks), cl::round_up(row_blocks, kLocalRows), oblocks},
-                    {1, kLocalRows, oblocks});
+    const size_t lr = tile_local(kLocalRows, oblocks);
+    bwd_wgt_.launch({size_t(chunks), cl::round_up(row_blocks, lr), oblocks}, {1, lr, oblocks});
     reduce_.set_args(chunks, partial_, *grad, uint32_t(grad_offset));
     reduce_.launch({cl::round_up(count, 64)}, {64});
   }
@@ -153,7 +158,8 @@ void Conv2d::backward(const cl::Buffer& params, size_t offset, const cl::Buffer&
     const size_t tiles = size_t(n) * h * s * txr;
     const size_t iblocks = size_t(ip / 16);
     bwd_in_.set_args(n, h, w, ho, wo, wt_, d_out, *d_in, zeros_);
-    bwd_in_.launch({cl::round_up(tiles, kLocalTiles), iblocks}, {kLocalTiles, iblocks});
+    const size_t lt = tile_local(kLocalTiles, iblocks);
+    bwd_in_.launch({cl::round_up(tiles, lt), iblocks}, {lt, iblocks});
   }
 }
 
