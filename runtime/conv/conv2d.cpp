@@ -58,10 +58,12 @@ Conv2d::Conv2d(cl::Runtime& rt, const Conv2dSpec& spec) : rt_(rt), spec_(spec) {
                           d("S", spec_.stride) + d("P", spec_.pad) + d("PTS", kPts) +
                           d("ROWS", kRows);
   const std::string f = "conv/conv2d.cl";
-  fwd_ = rt_.kernel(f, "conv2d_fwd", opt);
+  // Must match the NARROW condition in kernels/conv/conv2d.cl.
+  narrow_ = spec_.c_out <= 2 && spec_.c_in % 16 == 0 && spec_.input_cs() % 16 == 0;
+  fwd_ = rt_.kernel(f, narrow_ ? "conv2d_fwd_narrow" : "conv2d_fwd", opt);
   transpose_ = rt_.kernel(f, "conv2d_transpose", opt);
   bwd_in_ = rt_.kernel(f, "conv2d_bwd_in", opt);
-  bwd_wgt_ = rt_.kernel(f, "conv2d_bwd_wgt", opt);
+  bwd_wgt_ = rt_.kernel(f, narrow_ ? "conv2d_bwd_wgt_narrow" : "conv2d_bwd_wgt", opt);
   reduce_ = rt_.kernel(f, "conv2d_bwd_reduce", opt);
   const size_t zeros = size_t(std::max({spec_.input_cs(), spec_.out_cs(), 16}));
   zeros_ = cl::Buffer::from(rt_, std::vector<float>(zeros, 0.0f));
@@ -115,6 +117,15 @@ void Conv2d::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& 
   }
   const size_t tiles = size_t(n) * ho * ceil_div(size_t(wo), kPts);
   const size_t oblocks = size_t(spec_.out_cs() / 16);
+  if (narrow_) {
+    transpose_.set_args(params, uint32_t(offset), wt_);
+    transpose_.launch({size_t(spec_.c_in), size_t(spec_.c_out),
+                       size_t(spec_.kernel) * spec_.kernel});
+    fwd_.set_args(n, h, w, ho, wo, params, uint32_t(offset), wt_, in, out, zeros_,
+                  int(act_out != nullptr), slope, act_out ? *act_out : out);
+    fwd_.launch({cl::round_up(tiles, kLocalTiles)}, {kLocalTiles});
+    return;
+  }
   fwd_.set_args(n, h, w, ho, wo, params, uint32_t(offset), in, out, zeros_, int(act_out != nullptr),
                 slope, act_out ? *act_out : out);
   const size_t lt = tile_local(kLocalTiles, oblocks);
@@ -143,8 +154,13 @@ void Conv2d::backward(const cl::Buffer& params, size_t offset, const cl::Buffer&
     const size_t rows = size_t(spec_.kernel) * spec_.kernel * spec_.c_in;
     const size_t row_blocks = ceil_div(rows, kRows) + 1;  // + the bias row block
     bwd_wgt_.set_args(n, h, w, ho, wo, per, in, d_out, partial_);
-    const size_t lr = tile_local(kLocalRows, oblocks);
-    bwd_wgt_.launch({size_t(chunks), cl::round_up(row_blocks, lr), oblocks}, {1, lr, oblocks});
+    if (narrow_) {
+      const size_t groups = size_t(spec_.kernel) * spec_.kernel * (spec_.c_in / 16) + 1;
+      bwd_wgt_.launch({size_t(chunks), cl::round_up(groups, kLocalRows)}, {1, kLocalRows});
+    } else {
+      const size_t lr = tile_local(kLocalRows, oblocks);
+      bwd_wgt_.launch({size_t(chunks), cl::round_up(row_blocks, lr), oblocks}, {1, lr, oblocks});
+    }
     reduce_.set_args(chunks, partial_, *grad, uint32_t(grad_offset));
     reduce_.launch({cl::round_up(count, 64)}, {64});
   }

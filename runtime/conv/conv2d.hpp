@@ -70,6 +70,8 @@ class Conv2d {
                 int w, const cl::Buffer& d_out, cl::Buffer* grad, size_t grad_offset,
                 cl::Buffer* d_in);
 
+  // True when the narrow-output kernels are used (c_out <= 2, c_in and input_cs % 16 == 0).
+  bool narrow() const { return narrow_; }
   // Chunks of the weight-gradient reduction for an output of `pixels` pixels (shapes only).
   int wgrad_chunks(int pixels) const;
 
@@ -77,6 +79,9 @@ class Conv2d {
   void check_shape(int n, int h, int w, const char* where) const;
   cl::Runtime& rt_;
   Conv2dSpec spec_;
+  // Narrow outputs (c_out <= 2, c_in and the input's channel stride multiples of 16): forward
+  // and weight gradient vectorised over input channels instead of output channels.
+  bool narrow_ = false;
   cl::Kernel fwd_, transpose_, bwd_in_, bwd_wgt_, reduce_;
   cl::Buffer zeros_, wt_, partial_;
   size_t partial_floats_ = 0;

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <tuple>
 
 #include "adversarial/patch_discriminator.hpp"
 #include "core/error.hpp"
@@ -180,6 +181,32 @@ void check_fd(const std::vector<float>& fd, const std::vector<float>& an, bool l
   }
 }
 }  // namespace
+
+TEST_CASE("PatchGAN buffers follow changing image sizes and batch sizes",
+          "[adversarial][patchgan]") {
+  auto& rt = test::runtime();
+  PatchDiscriminatorConfig cfg;
+  cfg.init_std = 0.1f;
+  PatchDiscriminator D(rt, cfg);
+  const auto p = D.initial_params();
+  // (n, h, w): growing and shrinking batches, a size change and back.
+  for (const auto& [n, h, w] : std::vector<std::tuple<int, int, int>>{
+           {1, 24, 32}, {3, 24, 32}, {2, 24, 32}, {2, 30, 50}, {1, 24, 32}}) {
+    const auto img = uniform(size_t(n) * h * w * 2, 0.0f, 80.0f, uint64_t(n * 1000 + h + w));
+    auto b = cl::Buffer::from(rt, img);
+    D.forward(b, n, h, w);
+    std::vector<float> x(img.size());
+    for (size_t i = 0; i < x.size(); ++i) x[i] = img[i] / cfg.depth_scale_m;
+    const auto ref = ref_logits(D, p, x, n, h, w);
+    for (int sc = 0; sc < cfg.scales; ++sc) {
+      const auto lg = D.read_logits(sc);
+      REQUIRE(lg.size() == ref[size_t(sc)].size());
+      double m = 0;
+      for (float v : ref[size_t(sc)]) m = std::max(m, double(std::fabs(v)));
+      CHECK(test::max_abs_err(lg, ref[size_t(sc)]) / m < 1e-4);
+    }
+  }
+}
 
 TEST_CASE("PatchGAN gradients agree with finite differences", "[adversarial][patchgan][fd]") {
   auto& rt = test::runtime();

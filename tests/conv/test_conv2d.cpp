@@ -61,11 +61,15 @@ TEST_CASE("Conv2d forward and backward match the host reference", "[conv][conv2d
       {"odd 5->20 k3 s2 in_cs 8", spec(5, 20, 3, 2, 1, 8), 3, 8, 11},
       {"odd 3->7 k4 s2 pad 0", spec(3, 7, 4, 2, 0), 1, 10, 21},
       {"many chunks 2->32 k4 s1", spec(2, 32, 4, 1, 1), 2, 41, 67},
+      {"narrow 32->2 k3 s2", spec(32, 2, 3, 2, 1), 2, 9, 14},
+      {"narrow 16->1 k3 s1 in_cs 32", spec(16, 1, 3, 1, 1, 32), 1, 7, 20},
   };
   for (const auto& c : cases) {
     SECTION(c.name) {
       conv::Conv2d cv(rt, c.spec);
       const auto& s = c.spec;
+      // The narrow-output kernels serve c_out <= 2 with 16-aligned input channels.
+      CHECK(cv.narrow() == (s.c_out <= 2 && s.c_in % 16 == 0 && s.input_cs() % 16 == 0));
       const int ho = s.out_size(c.h), wo = s.out_size(c.w), ics = s.input_cs(), ocs = s.out_cs();
       const size_t off = 32;
       std::vector<float> params(off + cv.n_params(), 0.0f);
@@ -119,7 +123,8 @@ TEST_CASE("Conv2d forward and backward match the host reference", "[conv][conv2d
 TEST_CASE("Conv2d gradients agree with finite differences of the device forward",
           "[conv][conv2d][fd]") {
   auto& rt = test::runtime();
-  for (const auto& s : {spec(3, 5, 3, 2, 1), spec(4, 6, 4, 1, 1), spec(2, 17, 4, 2, 1)}) {
+  for (const auto& s : {spec(3, 5, 3, 2, 1), spec(4, 6, 4, 1, 1), spec(2, 17, 4, 2, 1),
+                        spec(16, 1, 4, 1, 1), spec(32, 2, 3, 2, 1)}) {
     conv::Conv2d cv(rt, s);
     const int n = 2, h = 7, w = 9, ho = s.out_size(h), wo = s.out_size(w);
     std::vector<float> params(cv.n_params(), 0.0f);
