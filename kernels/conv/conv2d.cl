@@ -394,3 +394,79 @@ __kernel void conv2d_bwd_wgt_narrow(const int n_img, const int H, const int W, c
 #else
 #define NARROW 0
 #endif
+
+// Input backward for narrow inputs (C_IN <= 4, e.g. the 2-channel [D_ij, D_j] pair): the wide
+// kernel would fill 16 lanes of input channels for 2 useful ones, so this one vectorises over
+// output channels, d_in[c] = Σ_tap hsum(d_out[p'][o-block] · W[tap][c][o-block]), straight from
+// the parameter layout (no transpose). Work-item = PTS input pixels (same residue, as in
+// conv2d_bwd_in) × all C_IN channels; dim 0 as conv2d_bwd_in, no channel-block dimension.
+#if C_IN <= 4
+#ifndef NARROW_HSUM
+#define NARROW_HSUM
+inline float hsum16_in(const float16 v) {
+  const float8 a = v.lo + v.hi;
+  const float4 b = a.lo + a.hi;
+  const float2 c = b.lo + b.hi;
+  return c.x + c.y;
+}
+#endif
+__kernel void conv2d_bwd_in_narrow(const int n_img, const int H, const int W, const int HO,
+                                   const int WO, __global const float* params, const uint w_off,
+                                   __global const float* d_out, __global float* d_in,
+                                   __global const float* zeros) {
+  const int TXR = ((W + S - 1) / S + PTS - 1) / PTS;
+  const int t = get_global_id(0);
+  if (t >= n_img * H * S * TXR) return;
+  const int tx = t % TXR;
+  const int rr = t / TXR;
+  const int r = rr % S;
+  const int row = rr / S;
+  const int n = row / H, iy = row - n * H;
+  const int m0 = tx * PTS;
+  __global const float* Wg = params + w_off;
+  float16 acc[PTS][C_IN];
+#pragma unroll
+  for (int j = 0; j < PTS; ++j)
+#pragma unroll
+    for (int c = 0; c < C_IN; ++c) acc[j][c] = (float16)(0.0f);
+  for (int ky = 0; ky < K; ++ky) {
+    const int ty = iy + P - ky;
+    if (ty < 0 || ty % S != 0 || ty / S >= HO) continue;
+    __global const float* dout_row = d_out + (size_t)(n * HO + ty / S) * WO * O_PAD;
+    for (int kx = 0; kx < K; ++kx) {
+      const int a = r + P - kx;
+      const int am = ((a % S) + S) % S;
+      if (am != 0) continue;
+      const int base = (a - am) / S;
+      __global const float* src[PTS];
+#pragma unroll
+      for (int j = 0; j < PTS; ++j) {
+        const int ox = base + m0 + j;
+        const int ix = r + S * (m0 + j);
+        const int ok = ox >= 0 && ox < WO && ix < W;
+        src[j] = ok ? dout_row + (size_t)ox * O_PAD : zeros;
+      }
+      __global const float* wtap = Wg + (size_t)(ky * K + kx) * C_IN * O_PAD;
+      for (int o0 = 0; o0 < O_PAD; o0 += 16) {
+        float16 w[C_IN];
+#pragma unroll
+        for (int c = 0; c < C_IN; ++c) w[c] = vload16(0, wtap + c * O_PAD + o0);
+#pragma unroll
+        for (int j = 0; j < PTS; ++j) {
+          const float16 d = vload16(0, src[j] + o0);
+#pragma unroll
+          for (int c = 0; c < C_IN; ++c) acc[j][c] = fma(d, w[c], acc[j][c]);
+        }
+      }
+    }
+  }
+#pragma unroll
+  for (int j = 0; j < PTS; ++j) {
+    const int ix = r + S * (m0 + j);
+    if (ix >= W) continue;
+    __global float* dst = d_in + ((size_t)row * W + ix) * IN_CS;
+#pragma unroll
+    for (int c = 0; c < C_IN; ++c) dst[c] = hsum16_in(acc[j][c]);
+  }
+}
+#endif

@@ -62,7 +62,9 @@ Conv2d::Conv2d(cl::Runtime& rt, const Conv2dSpec& spec) : rt_(rt), spec_(spec) {
   narrow_ = spec_.c_out <= 2 && spec_.c_in % 16 == 0 && spec_.input_cs() % 16 == 0;
   fwd_ = rt_.kernel(f, narrow_ ? "conv2d_fwd_narrow" : "conv2d_fwd", opt);
   transpose_ = rt_.kernel(f, "conv2d_transpose", opt);
-  bwd_in_ = rt_.kernel(f, "conv2d_bwd_in", opt);
+  // Must match the C_IN <= 4 condition of conv2d_bwd_in_narrow (kernels/conv/conv2d.cl).
+  narrow_in_ = spec_.c_in <= 4;
+  bwd_in_ = rt_.kernel(f, narrow_in_ ? "conv2d_bwd_in_narrow" : "conv2d_bwd_in", opt);
   bwd_wgt_ = rt_.kernel(f, narrow_ ? "conv2d_bwd_wgt_narrow" : "conv2d_bwd_wgt", opt);
   reduce_ = rt_.kernel(f, "conv2d_bwd_reduce", opt);
   const size_t zeros = size_t(std::max({spec_.input_cs(), spec_.out_cs(), 16}));
@@ -167,11 +169,16 @@ void Conv2d::backward(const cl::Buffer& params, size_t offset, const cl::Buffer&
   if (d_in) {
     check_bytes(*d_in, size_t(n) * h * w * spec_.input_cs(), "d_in");
     const int ip = pad16(spec_.c_in), taps = spec_.kernel * spec_.kernel;
-    transpose_.set_args(params, uint32_t(offset), wt_);
-    transpose_.launch({size_t(ip), size_t(spec_.c_out), size_t(taps)});
     const int s = spec_.stride;
     const size_t txr = ceil_div(ceil_div(size_t(w), size_t(s)), kPts);
     const size_t tiles = size_t(n) * h * s * txr;
+    if (narrow_in_) {
+      bwd_in_.set_args(n, h, w, ho, wo, params, uint32_t(offset), d_out, *d_in, zeros_);
+      bwd_in_.launch({cl::round_up(tiles, kLocalTiles)}, {kLocalTiles});
+      return;
+    }
+    transpose_.set_args(params, uint32_t(offset), wt_);
+    transpose_.launch({size_t(ip), size_t(spec_.c_out), size_t(taps)});
     const size_t iblocks = size_t(ip / 16);
     bwd_in_.set_args(n, h, w, ho, wo, wt_, d_out, *d_in, zeros_);
     const size_t lt = tile_local(kLocalTiles, iblocks);

@@ -63,7 +63,10 @@ class Conv2d {
   // backward of the activation needs). Enqueued, no wait.
   void forward(const cl::Buffer& params, size_t offset, const cl::Buffer& in, int n, int h,
                int w, cl::Buffer& out, cl::Buffer* act_out = nullptr, float slope = 0.0f);
-  // From d_out (the output's layout): overwrites grad[grad_offset, + n_params()) when grad is
+  // From d_out (the output's layout; its padding channels c_out.. must be zero, as the
+  // adversarial hinge writes them and as they stay when c_out is a multiple of 16, since the
+  // input backward writes only the c_in channels of d_in): overwrites grad[grad_offset,
+  // + n_params()) when grad is
   // given and writes d_in (the input's layout, its c_in channels only) when given. `in` is the
   // forward's input. Enqueued, no wait.
   void backward(const cl::Buffer& params, size_t offset, const cl::Buffer& in, int n, int h,
@@ -72,6 +75,8 @@ class Conv2d {
 
   // True when the narrow-output kernels are used (c_out <= 2, c_in and input_cs % 16 == 0).
   bool narrow() const { return narrow_; }
+  // True when the input backward vectorises over output channels (c_in <= 4).
+  bool narrow_input() const { return narrow_in_; }
   // Chunks of the weight-gradient reduction for an output of `pixels` pixels (shapes only).
   int wgrad_chunks(int pixels) const;
 
@@ -82,6 +87,7 @@ class Conv2d {
   // Narrow outputs (c_out <= 2, c_in and the input's channel stride multiples of 16): forward
   // and weight gradient vectorised over input channels instead of output channels.
   bool narrow_ = false;
+  bool narrow_in_ = false;  // c_in <= 4: input backward vectorised over output channels
   cl::Kernel fwd_, transpose_, bwd_in_, bwd_wgt_, reduce_;
   cl::Buffer zeros_, wt_, partial_;
   size_t partial_floats_ = 0;

@@ -70,6 +70,7 @@ TEST_CASE("Conv2d forward and backward match the host reference", "[conv][conv2d
       const auto& s = c.spec;
       // The narrow-output kernels serve c_out <= 2 with 16-aligned input channels.
       CHECK(cv.narrow() == (s.c_out <= 2 && s.c_in % 16 == 0 && s.input_cs() % 16 == 0));
+      CHECK(cv.narrow_input() == (s.c_in <= 4));
       const int ho = s.out_size(c.h), wo = s.out_size(c.w), ics = s.input_cs(), ocs = s.out_cs();
       const size_t off = 32;
       std::vector<float> params(off + cv.n_params(), 0.0f);
