@@ -57,15 +57,17 @@ Conv2d::Conv2d(cl::Runtime& rt, const Conv2dSpec& spec) : rt_(rt), spec_(spec) {
                           d("O_PAD", spec_.out_cs()) + d("K", spec_.kernel) +
                           d("S", spec_.stride) + d("P", spec_.pad) + d("PTS", kPts) +
                           d("ROWS", kRows);
-  const std::string f = "conv/conv2d.cl";
-  // Must match the NARROW condition in kernels/conv/conv2d.cl.
+  const std::string f = "conv/conv2d.cl", fn = "conv/conv2d_narrow.cl";
+  // Must match the guards of kernels/conv/conv2d_narrow.cl.
   narrow_ = spec_.c_out <= 2 && spec_.c_in % 16 == 0 && spec_.input_cs() % 16 == 0;
-  fwd_ = rt_.kernel(f, narrow_ ? "conv2d_fwd_narrow" : "conv2d_fwd", opt);
+  fwd_ = narrow_ ? rt_.kernel(fn, "conv2d_fwd_narrow", opt) : rt_.kernel(f, "conv2d_fwd", opt);
   transpose_ = rt_.kernel(f, "conv2d_transpose", opt);
-  // Must match the C_IN <= 4 condition of conv2d_bwd_in_narrow (kernels/conv/conv2d.cl).
+  // Must match the C_IN <= 4 guard of conv2d_bwd_in_narrow (kernels/conv/conv2d_narrow.cl).
   narrow_in_ = spec_.c_in <= 4;
-  bwd_in_ = rt_.kernel(f, narrow_in_ ? "conv2d_bwd_in_narrow" : "conv2d_bwd_in", opt);
-  bwd_wgt_ = rt_.kernel(f, narrow_ ? "conv2d_bwd_wgt_narrow" : "conv2d_bwd_wgt", opt);
+  bwd_in_ = narrow_in_ ? rt_.kernel(fn, "conv2d_bwd_in_narrow", opt)
+                       : rt_.kernel(f, "conv2d_bwd_in", opt);
+  bwd_wgt_ = narrow_ ? rt_.kernel(fn, "conv2d_bwd_wgt_narrow", opt)
+                    : rt_.kernel(f, "conv2d_bwd_wgt", opt);
   reduce_ = rt_.kernel(f, "conv2d_bwd_reduce", opt);
   const size_t zeros = size_t(std::max({spec_.input_cs(), spec_.out_cs(), 16}));
   zeros_ = cl::Buffer::from(rt_, std::vector<float>(zeros, 0.0f));

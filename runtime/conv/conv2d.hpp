@@ -1,7 +1,8 @@
-// 2-D convolution on OpenCL (kernels/conv/conv2d.cl): forward, backward w.r.t. the input and
-// w.r.t. weights and bias, zero padding, any stride, square kernels (4×4 and 3×3 in use), batch
-// N >= 1. Register-tiled implicit GEMMs; the weight gradient is a deterministic two-phase
-// reduction (fixed chunking from the shapes alone, fixed summation order).
+// 2-D convolution on OpenCL (kernels/conv/conv2d.cl, conv2d_narrow.cl): forward, backward
+// w.r.t. the input and w.r.t. weights and bias, zero padding, any stride, square kernels (4×4
+// and 3×3 in use), batch N >= 1. Register-tiled implicit GEMMs; the weight gradient is a
+// deterministic two-phase reduction (fixed chunking from the shapes alone, fixed summation
+// order). Narrow shapes (c_out <= 2, c_in <= 4) use kernels vectorised over the other channels.
 //
 // Layout: NHWC with a channel stride, element (n, y, x, c) at ((n·H + y)·W + x)·cs + c. Chosen
 // over NCHW because the output channels of a pixel are contiguous: the kernels accumulate 16
