@@ -16,7 +16,7 @@ for seq in $SEQS; do
     case $row in
       geonlf) args=(--method geonlf) ;;
       sequential) args=(--method sg-nlf-no-consistency --config "$HERE/sequential-only.json") ;;
-      confidence) args=(--method sg-nlf-no-consistency) ;;
+      confidence) args=(--method sg-nlf-no-consistency --config "$HERE/confidence.json") ;;
     esac
     "$BIN/sgnlf" train "${args[@]}" --preset quick --seed 1 --data "$WORK/data/$seq" \
         --out "$run" > "$WORK/$seq-$row.log" 2>&1
