@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <limits>
 #include <set>
 #include <string>
 #include <type_traits>
@@ -48,12 +49,25 @@ class ConfigReader {
         if (!v.is_boolean()) throw ConfigError("");
         out = v.get<bool>();
       } else if constexpr (std::is_integral_v<T>) {
+        // Out-of-range values are refused, never narrowed (e.g. 2^32 into an int).
         if (!v.is_number_integer()) throw ConfigError("");
-        const auto x = v.get<long long>();
         if constexpr (std::is_unsigned_v<T>) {
-          if (x < 0) throw ConfigError("");
+          if (!v.is_number_unsigned() && v.get<long long>() < 0) throw ConfigError("");
+          const auto x = v.get<unsigned long long>();
+          if (x > static_cast<unsigned long long>(std::numeric_limits<T>::max()))
+            throw ConfigError("");
+          out = static_cast<T>(x);
+        } else {
+          if (v.is_number_unsigned() &&
+              v.get<unsigned long long>() > static_cast<unsigned long long>(
+                                                std::numeric_limits<long long>::max()))
+            throw ConfigError("");
+          const auto x = v.get<long long>();
+          if (x < static_cast<long long>(std::numeric_limits<T>::min()) ||
+              x > static_cast<long long>(std::numeric_limits<T>::max()))
+            throw ConfigError("");
+          out = static_cast<T>(x);
         }
-        out = static_cast<T>(x);
       } else if constexpr (std::is_floating_point_v<T>) {
         if (!v.is_number()) throw ConfigError("");
         out = v.get<T>();

@@ -1,6 +1,8 @@
 #include <catch2/catch.hpp>
 
+#include <cstdint>
 #include <fstream>
+#include <limits>
 
 #include "core/config.hpp"
 
@@ -54,4 +56,32 @@ TEST_CASE("json files: missing and invalid files name the file and offset", "[co
   CHECK_THROWS_WITH(load_json_file(p), Catch::Contains("test_config_bad.json") && Catch::Contains("byte"));
   write_json_file(p, Json{{"a", 1}});
   CHECK(load_json_file(p)["a"] == 1);
+}
+
+TEST_CASE("integers out of the field's range are refused, not narrowed", "[config]") {
+  auto read = [](const Json& j, auto& out) {
+    const Json doc{{"v", j}};  // the reader keeps a reference
+    ConfigReader r(doc, "range.json");
+    r.get("v", out);
+  };
+  int i = 0;
+  CHECK_THROWS_WITH(read(Json(4294967296LL), i), Catch::Contains("'v'") && Catch::Contains("4294967296"));
+  CHECK_THROWS_AS(read(Json(-2147483649LL), i), ConfigError);
+  CHECK_THROWS_AS(read(Json(18446744073709551615ULL), i), ConfigError);
+  read(Json(-2147483648LL), i);
+  CHECK(i == std::numeric_limits<int>::min());
+  uint32_t u = 0;
+  CHECK_THROWS_AS(read(Json(-1), u), ConfigError);
+  CHECK_THROWS_AS(read(Json(4294967296LL), u), ConfigError);
+  read(Json(4294967295LL), u);
+  CHECK(u == 4294967295u);
+  uint64_t big = 0;
+  read(Json(18446744073709551615ULL), big);
+  CHECK(big == std::numeric_limits<uint64_t>::max());
+  long long ll = 0;
+  CHECK_THROWS_AS(read(Json(18446744073709551615ULL), ll), ConfigError);
+  size_t sz = 0;
+  CHECK_THROWS_AS(read(Json(1.5), sz), ConfigError);
+  read(Json(300), sz);  // a signed JSON integer into an unsigned field
+  CHECK(sz == 300);
 }
