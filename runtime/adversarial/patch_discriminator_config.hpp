@@ -1,0 +1,42 @@
+// Configuration of the multi-scale PatchGAN discriminator (method.md §4.3): architecture,
+// leaky-ReLU slope, its own Adam, input depth normalisation, initialisation. Plain struct with
+// defaults; a strict JSON reader (unknown keys are an error) and a writer for resolved configs.
+//
+// JSON section, every key optional:
+//   {"scales": 2, "channels": [32, 64, 128], "strides": [2, 2, 1], "kernel": 4, "padding": 1,
+//    "slope": 0.2, "lr": 2e-4, "beta1": 0.5, "beta2": 0.999, "eps": 1e-8,
+//    "depth_scale_m": 80.0, "init_std": 0.02, "seed": 1}
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/config.hpp"
+
+namespace sgnlf::adversarial {
+
+struct PatchDiscriminatorConfig {
+  int scales = 2;                         // input pyramid levels (2×2 average pooling), 1..3
+  std::vector<int> channels{32, 64, 128};  // hidden conv layers, each followed by leaky ReLU
+  std::vector<int> strides{2, 2, 1};       // one per hidden layer ("stride 2 then 1")
+  int kernel = 4;                          // every layer, including the 1-channel logit layer
+  int padding = 1;                         // zero padding; the logit layer has stride 1
+  float slope = 0.2f;                      // leaky ReLU
+  float lr = 2e-4f;                        // the discriminator's own Adam
+  float beta1 = 0.5f;
+  float beta2 = 0.999f;
+  float eps = 1e-8f;
+  // Input depths in metres are divided by this (the sensor's range: inputs in [0, 1]); pixels
+  // without a return are 0 in the input and stay 0.
+  float depth_scale_m = 80.0f;
+  float init_std = 0.02f;  // weights N(0, init_std²) (pix2pix), biases 0
+  uint64_t seed = 1;
+
+  void validate(const std::string& where = "discriminator") const;  // throws ConfigError
+  // Reads a "discriminator" section object; `where` names it in errors.
+  static PatchDiscriminatorConfig from_json(const Json& section,
+                                            const std::string& where = "discriminator");
+  Json to_json() const;
+};
+
+}  // namespace sgnlf::adversarial
