@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/rng.hpp"
+#include "field/hash_grid.hpp"
 #include "pipeline/ray_batch.hpp"
 
 namespace sgnlf::pipeline {
@@ -53,6 +54,11 @@ void ConsistencySchedule::step(LidarNerfModel& model, uint64_t seed, long step, 
     const auto [i, j] = pair_at(seed, step);
     if (i >= 0) {
       const auto t0 = std::chrono::steady_clock::now();
+      // The coarse-to-fine mask of this step (the wrapped step sets the same one after us):
+      // rendering with the previous step's mask would make a resumed run differ.
+      if (cfg_.pose_free.coarse_to_fine)
+        model.set_level_weights(field::barf_level_weights(
+            double(step) / double(cfg_.schedule.iterations), model.levels()));
       ConsistencyPair p;
       p.i = i, p.j = j;
       p.T_init_i = poses_.initial(size_t(i)), p.xi_i = poses_.correction(size_t(i));

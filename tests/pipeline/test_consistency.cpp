@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -249,10 +250,11 @@ TEST_CASE("sg-nlf run folder: consistency logged, exact resume of field, discrim
     CHECK(a.model->state().params != b.model->state().params);
   }
 
-  // Killed after step 13 (between consistency steps, pose gradients of frame j pending) and
+  // Killed before step 6 (pose gradients of frame j pending; the resumed run's first step is a
+  // consistency step with rendered points, under the coarse-to-fine mask of its own step) and
   // resumed: bit-identical field, discriminator and poses.
   const std::string part = test::temp_dir("consistency_part");
-  run(part, 13, false);
+  run(part, 6, false);
   run(part, -1, true);
   const Checkpoint ca = load_latest_checkpoint(checkpoint_path(full), tiny_sgnlf().hash(), 3);
   const Checkpoint cb = load_latest_checkpoint(checkpoint_path(part), tiny_sgnlf().hash(), 3);
@@ -260,7 +262,11 @@ TEST_CASE("sg-nlf run folder: consistency logged, exact resume of field, discrim
                            "consistency.disc.adam_v", "consistency.disc.adam_t",
                            "consistency.pose_pending", "poses.xi", "poses.adam_m"}) {
     INFO(name);
-    CHECK(ca.array(name) == cb.array(name));
+    // Bitwise: doubles packed into float slots (pack_doubles) may read as float NaNs.
+    const auto& xa = ca.array(name);
+    const auto& xb = cb.array(name);
+    REQUIRE(xa.size() == xb.size());
+    CHECK(std::memcmp(xa.data(), xb.data(), xa.size() * sizeof(float)) == 0);
   }
   LoadedRun a = load_run(test::runtime(), full), b = load_run(test::runtime(), part);
   CHECK(a.model->state().params == b.model->state().params);
