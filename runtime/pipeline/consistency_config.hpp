@@ -5,7 +5,7 @@
 // Present only in the configs of methods with the term (method_registry: consistency), so the
 // other methods' config hashes do not change.
 //
-// Image sizes (the cost of one consistency step, results in the final report of issue 17):
+// Image sizes (the cost of one consistency step: results/benchmarks/consistency.md):
 // frame i is rendered on a sub-sensor of render_rows × render_cols pixels with the dataset
 // sensor's field of view (any size: the field renders any direction; at most the model's ray
 // capacity, since one forward keeps the activations of all its rays for the backward pass);
