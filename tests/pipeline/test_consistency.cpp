@@ -5,6 +5,7 @@
 // "consistency" section's validation.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -316,9 +317,21 @@ TEST_CASE("consistency config: validated section, unknown keys rejected, ablatio
   CHECK_THROWS_WITH(resolve_config("sg-nlf-no-consistency", "smoke",
                                    Json{{"consistency", {{"every", 1}}}}),
                     Catch::Contains("consistency"));
-  // Every preset of sg-nlf resolves with the term on.
+  // Every preset of sg-nlf resolves with the term on, and its sub-sensors and discriminator
+  // fit both sensors (the smoke tables simulate them 256 columns wide).
   for (const char* scale : {"smoke", "quick", "paper"}) {
-    INFO(scale);
-    CHECK(resolve_config("sg-nlf", scale, Json::object()).consistency_term());
+    const TrainConfig pc = resolve_config("sg-nlf", scale, Json::object());
+    CHECK(pc.consistency_term());
+    for (const char* sensor : {"kitti360", "nuscenes"}) {
+      INFO(scale << " " << sensor);
+      Scene sc;
+      sc.sensor = sensor_preset(sensor);
+      if (std::string(scale) == "smoke") sc.sensor.width = 256;
+      sc.norm.scale = 0.01;
+      sc.images.assign(2, RangeImage(sc.sensor.height, sc.sensor.width));
+      CHECK_NOTHROW(ConsistencyTerm(test::runtime(), sc, pc.consistency,
+                                    std::max(pc.schedule.rays_per_batch,
+                                             pc.schedule.render_chunk_rays)));
+    }
   }
 }
