@@ -367,6 +367,7 @@ std::vector<float> LidarNerfModel::encode_points(const std::vector<float>& x, in
           "LidarNerfModel::encode_points: " + std::to_string(x.size()) + " floats for " +
               std::to_string(n) + " points");
   const int w = encoder_->width();
+  fwd_rays_ = 0;  // x_ and enc_ are overwritten: forward_rays()'s activations are gone
   std::vector<float> out(size_t(n) * size_t(w));
   // x_ and enc_ hold max_rays × samples rows.
   const int chunk = max_rays_ * cfg_.render.n_samples;
