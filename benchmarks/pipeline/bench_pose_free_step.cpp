@@ -4,10 +4,15 @@
 // [f_geo, λ·Ψ] at λ = 1 (Ψ evaluated forward and backward for dL/dx), and one spectral step of Ψ
 // (1024 surface samples × 5 evaluations, loss and moments on the host, Adam) as the schedule
 // runs it every `spectral.every` steps. Ratios of these are the cost of the hybrid field.
+// And one step of SG-NLF's adversarial cross-frame consistency at the quick preset (issue 17,
+// item 4: render frame i on the 16 × 64 sub-sensor with the backward pass, reprojection into
+// frame j's 66 × 103 image, one discriminator step, generator gradient, pose gradients), paid
+// every `consistency.every` steps after the warm-up, against the quick pose-free step above.
 #include <benchmark/benchmark.h>
 
 #include "support/bench_support.hpp"
 #include "datasets/simulate.hpp"
+#include "pipeline/consistency_term.hpp"
 #include "pipeline/model.hpp"
 #include "pipeline/presets.hpp"
 #include "pipeline/ray_batch.hpp"
@@ -65,10 +70,29 @@ void BM_SpectralStep(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(h.spectral_step(batch, 1e-2f));
 }
 
+void BM_ConsistencyStep(benchmark::State& state) {
+  bench::add_device_context();
+  const TrainConfig c = resolve_config("sg-nlf", "quick");
+  const Scene scene = make_scene(bench_dataset());
+  LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), c.schedule.rays_per_batch);
+  model.init_params(1);
+  dynamic_cast<spectral::HybridEncoder&>(model.encoder()).set_lambda(1.0f);
+  ConsistencyTerm term(bench::runtime(), scene, c.consistency, c.schedule.rays_per_batch);
+  ConsistencyPair p;
+  p.i = 3, p.j = 4;
+  p.T_init_i = scene.T_world_lidar[3], p.T_init_j = scene.T_world_lidar[4];
+  long step = 0;
+  term.run(model, p, 1, step++, true, true);
+  for (auto _ : state) benchmark::DoNotOptimize(term.run(model, p, 1, step++, true, true).l_con);
+  state.counters["render_rays"] = term.render_sensor().height * term.render_sensor().width;
+  state.counters["image_px"] = term.image_sensor().height * term.image_sensor().width;
+}
+
 }  // namespace
 
 BENCHMARK_CAPTURE(BM_PoseFreeStep, geonlf_quick, "geonlf")
     ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 BENCHMARK_CAPTURE(BM_PoseFreeStep, hybrid_quick, "sg-nlf-no-consistency")
     ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+BENCHMARK(BM_ConsistencyStep)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 BENCHMARK(BM_SpectralStep)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);

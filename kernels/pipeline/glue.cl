@@ -147,3 +147,11 @@ __kernel void pipeline_row_ray(const int n_rays, __global const int* offset, __g
   if (r >= n_rays) return;
   for (int k = offset[r]; k < offset[r + 1]; ++k) ray[k] = r;
 }
+
+// dst[k] += src[k]: an external gradient (the adversarial consistency term) joins the range
+// loss's gradient before the Adam step (LidarNerfModel::update).
+__kernel void pipeline_add_inplace(const int n, __global const float* src, __global float* dst) {
+  const int k = get_global_id(0);
+  if (k >= n) return;
+  dst[k] += src[k];
+}

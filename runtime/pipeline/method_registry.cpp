@@ -17,10 +17,10 @@ const std::vector<MethodSpec>& method_registry() {
             {"geometric", {{"enabled", false}}}},
        true, true,
        "control (not in the paper): GeoNLF's field trained on the frozen initial poses"},
-      {"sg-nlf", "sg-nlf", Json::object(), true, false,
+      {"sg-nlf", "sg-nlf", Json::object(), true, true,
        "SG-NLF (method.md §4): hybrid field, confidence-aware pose graph, adversarial "
        "cross-frame consistency",
-       true, true},
+       true, true, true},
       {"sg-nlf-no-consistency", "sg-nlf", Json{{"method", "sg-nlf-no-consistency"}}, true, true,
        "SG-NLF without the adversarial cross-frame consistency (method.md §5 ablation): hybrid "
        "field and confidence-aware pose graph",

@@ -18,6 +18,10 @@ struct MethodSpec {
   std::string description;
   bool spectral_field = false; // SG-NLF's hybrid field: the config's "spectral" section
   bool confidence_graph = false;  // SG-NLF's pose graph: the config's "pose_graph" section
+  // SG-NLF's adversarial cross-frame consistency: the config's "consistency" section. A method
+  // without it drops the section of its family's presets (resolve_config), so that its config
+  // and hash stay those of a method that never had the term.
+  bool consistency = false;
 };
 
 const std::vector<MethodSpec>& method_registry();

@@ -131,6 +131,7 @@ int LidarNerfModel::sample(int n_rays, bool jitter, uint64_t seed, uint32_t step
   const int n_c = n_rays * S;
   encoded_ = false;
   compacted_ = false;
+  fwd_rays_ = 0;  // a new forward: forward_rays()'s activations are gone
   n_live_ = long(n_rays) * (S + I);
   if (I == 0) {
     sampler_.uniform(o_, d_, n_rays, jitter, seed, step, t_, x_);
@@ -242,7 +243,6 @@ void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long ste
   target_.write_vec(target);
   const int M = sample(R, cfg_.render.jitter, seed, uint32_t(step));
   field_forward(R, M);
-  const int n = R * M;
   // Loss (method.md §0) and its gradient; patch gradient loss on patch batches (§1).
   loss_buf_.fill_zero();
   loss_.range(out_, target_, R, grad_out_, terms_, loss_buf_);
@@ -250,6 +250,11 @@ void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long ste
     const int per_patch = cfg_.render.patch_rows * cfg_.render.patch_cols;
     loss_.patch_gradient(out_, target_, R / per_patch, grad_out_, terms_, loss_buf_);
   }
+  backward_chain(R, M, grad_, ray_grads);
+}
+
+void LidarNerfModel::backward_chain(int R, int M, cl::Buffer& grad, bool ray_grads) {
+  const int n = R * M;
   // Backward chain: renderer → head MLP (into columns 1..15 of g_dens_, and per ray into
   // g_dir_enc_) → density MLP → hash grid.
   renderer_.backward(t_, h0_, head_out_, weights_, grad_out_, R, M, g_h0_, g_head_);
@@ -266,14 +271,14 @@ void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long ste
     compact_rows_.launch({global}, {64});
     head_y = &head_l_, g_head = &g_head_l_, g_h0 = &g_h0_l_, x = &x_l_;
   }
-  head_.backward(params_, off_head_, head_ctx_, *head_y, *g_head, grad_, off_head_, &g_dens_,
+  head_.backward(params_, off_head_, head_ctx_, *head_y, *g_head, grad, off_head_, &g_dens_,
                  &g_dir_enc_);
   col_set_.set_args(rows, kDensStride, 0, *g_h0, g_dens_);
   col_set_.launch({cl::round_up(size_t(rows), 64)}, {64});
-  density_.backward(params_, off_density_, density_ctx_, dens_, g_dens_, grad_, off_density_,
+  density_.backward(params_, off_density_, density_ctx_, dens_, g_dens_, grad, off_density_,
                     &g_enc_);
   if (!ray_grads) {
-    encoder_->backward(params_, off_grid_, *x, rows, g_enc_, grad_, off_grid_, nullptr);
+    encoder_->backward(params_, off_grid_, *x, rows, g_enc_, grad, off_grid_, nullptr);
     return;
   }
   if (!g_x_) {  // allocated on the first pose-free step only
@@ -282,14 +287,52 @@ void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long ste
     g_o_ = floats(rt_, size_t(max_rays_) * 3), g_d_ = floats(rt_, size_t(max_rays_) * 3);
     g_dir_ = floats(rt_, size_t(max_rays_) * 3);
   }
-  encoder_->backward(params_, off_grid_, *x, rows, g_enc_, grad_, off_grid_, &g_x_);
+  encoder_->backward(params_, off_grid_, *x, rows, g_enc_, grad, off_grid_, &g_x_);
   ray_grad_.reduce_rows(compacted_ ? &offset_ : nullptr, t_, o_, d_, g_x_, R, M, kSceneBound,
                         g_o_, g_d_);
   dirs_.backward(d_, R, g_dir_enc_, g_dir_);
   grad_rays_ = R;
 }
 
+std::vector<float> LidarNerfModel::forward_rays(const std::vector<float>& origins,
+                                                const std::vector<float>& directions, int n,
+                                                uint64_t seed, long step) {
+  require(n > 0 && n <= max_rays_, "LidarNerfModel::forward_rays: " + std::to_string(n) +
+                                       " rays, capacity " + std::to_string(max_rays_));
+  require(origins.size() == size_t(n) * 3 && directions.size() == size_t(n) * 3,
+          "LidarNerfModel::forward_rays: origins/directions must hold n × 3 floats");
+  o_.write_vec(origins);
+  d_.write_vec(directions);
+  const int M = sample(n, cfg_.render.jitter, seed, uint32_t(step));
+  field_forward(n, M);
+  fwd_rays_ = n, fwd_samples_ = M;
+  return out_.read_vec<float>(size_t(n) * 3);
+}
+
+void LidarNerfModel::backward_external(const std::vector<float>& grad_out, bool ray_grads) {
+  if (fwd_rays_ == 0)
+    throw Error("LidarNerfModel::backward_external: no forward_rays() to differentiate");
+  require(grad_out.size() == size_t(fwd_rays_) * 3,
+          "LidarNerfModel::backward_external: " + std::to_string(grad_out.size()) +
+              " floats for " + std::to_string(fwd_rays_) + " rays × 3");
+  if (!grad_ext_) {
+    grad_ext_ = floats(rt_, layout_.total());
+    grad_ext_.fill_zero();  // alignment gaps between the slices stay zero
+    add_k_ = rt_.kernel("pipeline/glue.cl", "pipeline_add_inplace");
+  }
+  grad_out_.write_vec(grad_out);
+  backward_chain(fwd_rays_, fwd_samples_, grad_ext_, ray_grads);
+  fwd_rays_ = 0;  // the activations belong to this forward only
+  ext_pending_ = true;
+}
+
 void LidarNerfModel::update(float lr) {
+  if (ext_pending_) {  // the external term joins this step's gradient (see model.hpp)
+    const int n = int(layout_.total());
+    add_k_.set_args(n, grad_ext_, grad_);
+    add_k_.launch({cl::round_up(size_t(n), 64)}, {64});
+    ext_pending_ = false;
+  }
   adam_->begin_step();
   adam_->update(params_, grad_, 0, layout_.total(), lr);
 }
@@ -324,6 +367,7 @@ std::vector<float> LidarNerfModel::encode_points(const std::vector<float>& x, in
           "LidarNerfModel::encode_points: " + std::to_string(x.size()) + " floats for " +
               std::to_string(n) + " points");
   const int w = encoder_->width();
+  fwd_rays_ = 0;  // x_ and enc_ are overwritten: forward_rays()'s activations are gone
   std::vector<float> out(size_t(n) * size_t(w));
   // x_ and enc_ hold max_rays × samples rows.
   const int chunk = max_rays_ * cfg_.render.n_samples;

@@ -60,6 +60,32 @@ class LidarNerfModel {
   };
   RayGrads read_ray_grads() const;
 
+  // An externally given per-ray output gradient through the same backward chain (SG-NLF's
+  // adversarial consistency term, method.md §4.3–4.4): forward_rays() is the training-mode
+  // forward of forward_backward (same sampling, jitter per the config from (seed, step)) that
+  // keeps the activations and returns n × 3 (depth normalised, return probability, intensity);
+  // backward_external() takes dL/d(depth, return probability, intensity) per ray (n × 3, the
+  // caller's weight already applied) through renderer → head → density → encoder into a
+  // gradient buffer of its own, and, with `ray_grads`, the ray gradients read_ray_grads() returns.
+  //
+  // Combination: the external gradient is ACCUMULATED into the range-loss gradient of the next
+  // update(), which adds it to the gradient forward_backward() wrote before the one Adam step.
+  // method.md §4.4 defines one total loss L = L_range + … + λ_con·L_con: one Adam step on the
+  // sum of the gradients is that loss's step, and λ_con keeps its meaning as a relative weight.
+  // Its own Adam step would not: Adam divides by the running RMS, so a separate step moves the
+  // parameters by ≈ lr whatever λ_con is, and it would advance Adam's step count (bias
+  // correction, lr schedule) twice per iteration. Call order within one training step:
+  // forward_rays → backward_external → forward_backward → update. Without a pending external
+  // gradient update() is exactly what it was (forward_backward is untouched).
+  std::vector<float> forward_rays(const std::vector<float>& origins,
+                                  const std::vector<float>& directions, int n, uint64_t seed,
+                                  long step);
+  void backward_external(const std::vector<float>& grad_out, bool ray_grads);
+  bool external_gradient_pending() const { return ext_pending_; }
+  // The parameter gradient of the last update() (range loss + any external term), or of the
+  // last forward_backward() before its update. Blocking; for tests.
+  std::vector<float> read_gradient() const { return grad_.read_vec<float>(layout_.total()); }
+
   // Coarse-to-fine mask of the hash-grid levels (field::barf_level_weights); all ones by default.
   void set_level_weights(const std::vector<float>& w) { encoder_->set_level_weights(w); }
   int levels() const { return encoder_->levels(); }
@@ -100,6 +126,9 @@ class LidarNerfModel {
   // Early termination: counts the live merged samples per ray (one blocking read of n_rays
   // ints), then gathers their positions and encodings into x_l_/enc_l_.
   void compact(int n_rays, int M);
+  // The backward chain of the last forward (R rays, M samples per ray) from grad_out_ into
+  // `grad` (every slice overwritten), and the ray gradients when `ray_grads`.
+  void backward_chain(int R, int M, cl::Buffer& grad, bool ray_grads);
 
   cl::Runtime& rt_;
   TrainConfig cfg_;
@@ -128,6 +157,11 @@ class LidarNerfModel {
   // encoding's share of dL/dd.
   cl::Buffer g_x_, g_o_, g_d_, g_dir_;
   int grad_rays_ = 0;
+  // External gradient (backward_external): its parameter gradient, pending until update().
+  cl::Buffer grad_ext_;
+  cl::Kernel add_k_;
+  bool ext_pending_ = false;
+  int fwd_rays_ = 0, fwd_samples_ = 0;  // the last forward_rays()
   // Early termination: per-ray live counts and offsets (int32), each live row's ray, and the
   // compact (live rows only) positions, encodings, head outputs and their gradients.
   cl::Buffer count_, offset_, row_ray_, x_l_, enc_l_, head_l_, g_h0_l_, g_head_l_;

@@ -14,7 +14,9 @@ PoseSet::PoseSet(std::vector<Pose> T_init, const PoseOptimConfig& c, double lr_s
       xi_(T_init_.size(), Vec6::Zero()),
       m_(T_init_.size(), Vec6::Zero()),
       v_(T_init_.size(), Vec6::Zero()),
-      t_(T_init_.size(), 0) {}
+      t_(T_init_.size(), 0),
+      pending_(T_init_.size(), Vec6::Zero()),
+      pending_on_(T_init_.size(), 0) {}
 
 Pose PoseSet::pose(size_t i) const { return corrected_pose(T_init_.at(i), xi_.at(i)); }
 
@@ -24,7 +26,37 @@ std::vector<Pose> PoseSet::poses() const {
   return out;
 }
 
-void PoseSet::step(size_t i, const Vec6& g, double progress) {
+void PoseSet::add_pending(size_t i, const Vec6& g) {
+  if (!g.allFinite())
+    throw NumericError("pending pose gradient of frame index " + std::to_string(i) +
+                       " is not finite");
+  pending_.at(i) += g;
+  pending_on_.at(i) = 1;
+}
+
+std::vector<double> PoseSet::pending_flat() const {
+  std::vector<double> f;
+  for (size_t i = 0; i < size(); ++i) {
+    f.push_back(double(pending_on_[i]));
+    f.insert(f.end(), pending_[i].data(), pending_[i].data() + 6);
+  }
+  return f;
+}
+
+void PoseSet::set_pending_flat(const std::vector<double>& flat) {
+  require(flat.size() == 7 * size(), "PoseSet: pending state of " + std::to_string(flat.size()) +
+                                         " numbers for " + std::to_string(size()) + " frames");
+  for (size_t i = 0; i < size(); ++i) {
+    pending_on_[i] = flat[7 * i] != 0.0 ? 1 : 0;
+    for (int k = 0; k < 6; ++k) pending_[i][k] = flat[7 * i + 1 + size_t(k)];
+  }
+}
+
+void PoseSet::step(size_t i, const Vec6& g_step, double progress) {
+  // Bit-identical without a pending gradient: g is g_step itself.
+  const Vec6 g = pending_on_.at(i) ? Vec6(g_step + pending_[i]) : g_step;
+  pending_[i].setZero();
+  pending_on_[i] = 0;
   if (!g.allFinite())
     throw NumericError("pose gradient of frame index " + std::to_string(i) + " is not finite");
   const double decay = std::pow(cfg_.final_factor, std::min(1.0, std::max(0.0, progress)));

@@ -25,8 +25,19 @@ class PoseSet {
   Pose pose(size_t i) const;
   std::vector<Pose> poses() const;
 
-  // One Adam step of frame i's correction from g = (dL/dω, dL/du) at training progress ∈ [0, 1].
+  // One Adam step of frame i's correction from g = (dL/dω, dL/du) at training progress ∈ [0, 1],
+  // plus the frame's pending gradient (added, then cleared) when it has one.
   void step(size_t i, const Vec6& g, double progress);
+  // Pending gradient: a term computed outside frame i's own step (SG-NLF's cross-frame
+  // consistency, consistency_schedule.hpp) is summed here and joins frame i's next step(), so
+  // that each frame keeps one Adam step per visit and the term's weight stays a weight
+  // relative to the range loss (a separate Adam step would normalise it away).
+  void add_pending(size_t i, const Vec6& g);
+  bool has_pending(size_t i) const { return pending_on_.at(i) != 0; }
+  const Vec6& pending(size_t i) const { return pending_.at(i); }
+  // Checkpoint form: 7 doubles per frame (flag, then the gradient), and its restoration.
+  std::vector<double> pending_flat() const;
+  void set_pending_flat(const std::vector<double>& flat);
   // Re-expresses T as frame i's correction: ω = Log(R_initᵀ R), u = R_initᵀ (t − t_init).
   // Adam moments are kept. Throws NumericError for a non-finite pose.
   void set_pose(size_t i, const Pose& T);
@@ -54,6 +65,8 @@ class PoseSet {
   double lr_scale_;
   std::vector<Vec6> xi_, m_, v_;
   std::vector<long> t_;
+  std::vector<Vec6> pending_;
+  std::vector<char> pending_on_;
 };
 
 }  // namespace sgnlf::pipeline

@@ -35,8 +35,10 @@ Json preset_json(const std::string& method, const std::string& preset) {
 TrainConfig resolve_config(const std::string& method, const std::string& preset,
                            const Json& overrides) {
   const MethodSpec& spec = method_spec(method);
-  const Json merged = merge_config_json(
-      merge_config_json(preset_json(spec.preset_family, preset), spec.overrides), overrides);
+  Json base = preset_json(spec.preset_family, preset);
+  if (!spec.consistency) base.erase("consistency");  // see MethodSpec::consistency
+  const Json merged =
+      merge_config_json(merge_config_json(std::move(base), spec.overrides), overrides);
   return train_config_from_json(merged, "preset " + method + "-" + preset + " + overrides");
 }
 

@@ -9,6 +9,7 @@
 #include "datasets/loader.hpp"
 #include "io/png_writer.hpp"
 #include "io/range_array.hpp"
+#include "pipeline/consistency_schedule.hpp"
 #include "pipeline/evaluate.hpp"
 #include "pipeline/render_view.hpp"
 #include "datasets/protocol.hpp"
@@ -89,13 +90,22 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
             : make_geometric_stage(d, scene, c));
     opt.policy = pose_step.get();
   }
-  // SG-NLF's hybrid field: Ψ trains on the current surface around the pose-free step.
+  // SG-NLF's adversarial cross-frame consistency around the pose-free step.
+  std::unique_ptr<ConsistencySchedule> consistency_step;
+  if (c.consistency_term()) {
+    require(pose_step != nullptr, "the cross-frame consistency needs a pose-free method");
+    consistency_step = std::make_unique<ConsistencySchedule>(
+        *pose_step, rt, scene, c, *poses, model_capacity(c), req.manifest.seed);
+    opt.policy = consistency_step.get();
+  }
+  // SG-NLF's hybrid field: Ψ trains on the current surface around the steps above (it sets
+  // λ(t) before they render).
   std::unique_ptr<SpectralSchedule> spectral_step;
   if (c.hybrid_encoder()) {
     require(pose_step != nullptr, "the hybrid spectral field needs a pose-free method");
     const PoseSet& ps = *poses;
     spectral_step = std::make_unique<SpectralSchedule>(
-        *pose_step, dynamic_cast<spectral::HybridEncoder&>(model.encoder()), c,
+        *opt.policy, dynamic_cast<spectral::HybridEncoder&>(model.encoder()), c,
         make_surface_pool_source(d, scene, c.spectral.points_per_frame, req.manifest.seed),
         [&ps](int frame) { return ps.pose(size_t(frame)); }, req.manifest.seed);
     opt.policy = spectral_step.get();
@@ -132,6 +142,10 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
     j["initial_pose_metrics"] = pose_metrics_json(rs.T_world_lidar_init, gt_poses(d));
     j["geometric_seconds"] = pose_step->geometric_seconds();
     if (spectral_step) j["spectral_seconds"] = spectral_step->seconds();
+    if (consistency_step) {
+      j["consistency_seconds"] = consistency_step->seconds();
+      j["consistency_steps"] = consistency_step->steps_taken();
+    }
     j["trajectories"] = write_run_trajectories(req.run_dir, d, rs.T_world_lidar_init, current_poses());
   }
   write_json_file((run / "summary.json").string(), j);

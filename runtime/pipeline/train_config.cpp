@@ -1,6 +1,7 @@
 // TrainConfig: JSON reading (strict), writing, validation and hashing.
 #include "pipeline/train_config.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "pipeline/method_registry.hpp"
@@ -46,6 +47,7 @@ void ScheduleConfig::validate(const std::string& w) const {
 bool TrainConfig::is_pose_free() const { return method_spec(method).pose_free; }
 bool TrainConfig::has_spectral_field() const { return method_spec(method).spectral_field; }
 bool TrainConfig::has_pose_graph() const { return method_spec(method).confidence_graph; }
+bool TrainConfig::has_consistency() const { return method_spec(method).consistency; }
 
 void TrainConfig::validate() const {
   const std::string w = "config";
@@ -61,6 +63,16 @@ void TrainConfig::validate() const {
   if (spec->pose_free) pose_free.validate(w);
   if (spec->spectral_field) spectral.validate(w);
   if (spec->confidence_graph) pose_graph.validate(w);
+  if (spec->consistency) {
+    consistency.validate(w);
+    const long rays = long(consistency.render_rows) * consistency.render_cols;
+    const long capacity = std::max(schedule.rays_per_batch, schedule.render_chunk_rays);
+    if (consistency.enabled && rays > capacity)
+      throw ConfigError(w + ".consistency: the render grid render_rows × render_cols = " +
+                        std::to_string(rays) + " rays exceeds the model's ray capacity " +
+                        std::to_string(capacity) +
+                        " (the larger of schedule.rays_per_batch and render_chunk_rays)");
+  }
   field.validate(w + ".field");
   render.validate(w + ".render");
   optim.validate(w + ".optim");
@@ -109,6 +121,7 @@ TrainConfig train_config_from_json(const Json& j, const std::string& where) {
   if (c.is_pose_free()) c.pose_free = PoseFreeConfig::from_json(r);
   if (c.has_spectral_field()) c.spectral = SpectralFieldConfig::from_json(r);
   if (c.has_pose_graph()) c.pose_graph = PoseGraphConfig::from_json(r);
+  if (c.has_consistency()) c.consistency = ConsistencyConfig::from_json(r);
   r.finish();
   c.validate();
   return c;
@@ -148,6 +161,7 @@ Json train_config_to_json(const TrainConfig& c) {
   if (c.is_pose_free()) c.pose_free.to_json(j);
   if (c.has_spectral_field()) c.spectral.to_json(j);
   if (c.has_pose_graph()) c.pose_graph.to_json(j);
+  if (c.has_consistency()) c.consistency.to_json(j);
   return j;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/config.hpp"
+#include "pipeline/consistency_config.hpp"
 #include "pipeline/pose_free_config.hpp"
 #include "pipeline/pose_graph_config.hpp"
 #include "pipeline/spectral_field_config.hpp"
@@ -71,6 +72,11 @@ struct TrainConfig {
   PoseGraphConfig pose_graph;
   bool has_pose_graph() const;
   bool confidence_graph() const { return has_pose_graph() && pose_graph.enabled; }
+  // Methods with SG-NLF's adversarial cross-frame consistency only (method_registry:
+  // consistency); absent otherwise.
+  ConsistencyConfig consistency;
+  bool has_consistency() const;
+  bool consistency_term() const { return has_consistency() && consistency.enabled; }
 
   bool is_pose_free() const;
   void validate() const;

@@ -1,0 +1,96 @@
+// ConsistencyConfig (consistency_config.hpp).
+#include "pipeline/consistency_config.hpp"
+
+#include "core/error.hpp"
+#include "geometry/pixel_boundaries.hpp"
+
+namespace sgnlf::pipeline {
+namespace {
+
+const std::string kWhere = "config.consistency";
+
+void check_width(const Sensor& s, const std::string& what) {
+  if (s.width < kMinBoundaryWidth)
+    throw ConfigError(kWhere + ": the " + what + " is " + std::to_string(s.height) + " × " +
+                      std::to_string(s.width) + " pixels, narrower than the reprojection's " +
+                      std::to_string(kMinBoundaryWidth) + " columns");
+}
+
+}  // namespace
+
+void ConsistencyConfig::validate(const std::string& where) const {
+  const std::string w = where + ".consistency";
+  check_range(w, "every", every, 1L, 100000000L);
+  check_range(w, "warmup_steps", warmup_steps, 0L, 100000000L);
+  check_range(w, "weight", weight, 0.0, 1e6);
+  if (offsets.empty()) throw ConfigError(w + ": 'offsets' is empty (expected e.g. [1])");
+  for (size_t k = 0; k < offsets.size(); ++k)
+    check_range(w, "offsets[" + std::to_string(k) + "]", offsets[k], 1, 1000);
+  check_range(w, "render_rows", render_rows, 1, 4096);
+  check_range(w, "render_cols", render_cols, kMinBoundaryWidth, 65536);
+  check_range(w, "image_row_stride", image_row_stride, 1, 4096);
+  check_range(w, "image_col_stride", image_col_stride, 1, 65536);
+  check_range(w, "return_threshold", return_threshold, 0.0, 1.0);
+  discriminator.validate(w + ".discriminator");
+}
+
+ConsistencyConfig ConsistencyConfig::from_json(ConfigReader& r) {
+  ConsistencyConfig c;
+  if (!r.has("consistency")) return c;
+  auto s = r.child("consistency");
+  s.get("enabled", c.enabled).get("every", c.every).get("warmup_steps", c.warmup_steps);
+  s.get("weight", c.weight).get("offsets", c.offsets);
+  s.get("render_rows", c.render_rows).get("render_cols", c.render_cols);
+  s.get("image_row_stride", c.image_row_stride).get("image_col_stride", c.image_col_stride);
+  s.get("return_threshold", c.return_threshold);
+  if (s.has("discriminator")) {
+    Json d;
+    s.get("discriminator", d);
+    c.discriminator = adversarial::PatchDiscriminatorConfig::from_json(
+        d, r.where() + ".consistency.discriminator");
+  }
+  s.finish();
+  return c;
+}
+
+void ConsistencyConfig::to_json(Json& j) const {
+  j["consistency"] = Json{{"enabled", enabled},
+                          {"every", every},
+                          {"warmup_steps", warmup_steps},
+                          {"weight", weight},
+                          {"offsets", offsets},
+                          {"render_rows", render_rows},
+                          {"render_cols", render_cols},
+                          {"image_row_stride", image_row_stride},
+                          {"image_col_stride", image_col_stride},
+                          {"return_threshold", return_threshold},
+                          {"discriminator", discriminator.to_json()}};
+}
+
+Sensor consistency_render_sensor(const ConsistencyConfig& c, const Sensor& s) {
+  Sensor r = s;
+  r.name = s.name + "-render-" + std::to_string(c.render_rows) + "x" + std::to_string(c.render_cols);
+  r.height = c.render_rows;
+  r.width = c.render_cols;
+  r.validate();
+  check_width(r, "render sub-sensor (render_rows × render_cols)");
+  return r;
+}
+
+Sensor consistency_image_sensor(const ConsistencyConfig& c, const Sensor& s) {
+  if (s.height % c.image_row_stride != 0)
+    throw ConfigError(kWhere + ": 'image_row_stride' = " + std::to_string(c.image_row_stride) +
+                      " does not divide the sensor's " + std::to_string(s.height) + " rows");
+  if (s.width % c.image_col_stride != 0)
+    throw ConfigError(kWhere + ": 'image_col_stride' = " + std::to_string(c.image_col_stride) +
+                      " does not divide the sensor's " + std::to_string(s.width) + " columns");
+  Sensor r = s;
+  r.height = s.height / c.image_row_stride;
+  r.width = s.width / c.image_col_stride;
+  r.name = s.name + "-image-" + std::to_string(r.height) + "x" + std::to_string(r.width);
+  r.validate();
+  check_width(r, "image sub-sensor (sensor / image strides)");
+  return r;
+}
+
+}  // namespace sgnlf::pipeline

@@ -1,0 +1,55 @@
+// Configuration of SG-NLF's adversarial cross-frame consistency (method.md §4.3–4.4), the
+// config's "consistency" section: when the term runs (every `every` steps after `warmup_steps`),
+// its weight λ_con, which adjacent frames pair up, the sub-sampled images it works on, and the
+// PatchGAN discriminator (adversarial::PatchDiscriminatorConfig, its "discriminator" object).
+// Present only in the configs of methods with the term (method_registry: consistency), so the
+// other methods' config hashes do not change.
+//
+// Image sizes (the cost of one consistency step: results/benchmarks/consistency.md):
+// frame i is rendered on a sub-sensor of render_rows × render_cols pixels with the dataset
+// sensor's field of view (any size: the field renders any direction; at most the model's ray
+// capacity, since one forward keeps the activations of all its rays for the backward pass);
+// frame j's observed range image D_j is taken at every image_row_stride-th row and
+// image_col_stride-th column (the strides must divide the sensor's height and width: then the
+// sub-image is exactly the protocol's range image of a sensor with H/stride rows and W/stride
+// columns, geometry/range_image.hpp's pixel_direction). D_ij is formed on that sub-sensor.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "adversarial/patch_discriminator_config.hpp"
+#include "core/config.hpp"
+#include "geometry/sensor.hpp"
+
+namespace sgnlf::pipeline {
+
+struct ConsistencyConfig {
+  bool enabled = true;       // false: the ablation "without cross-frame consistency"
+  long every = 4;            // one consistency step every `every` training steps …
+  long warmup_steps = 10000;  // … from this step on (method.md §4.3: after a warm-up)
+  double weight = 0.05;      // λ_con (method.md §4.4); not published: chosen by the sweep
+  // Partners of the step's frame i: j = i ± offset (dataset frame indices), both trainable
+  // (in scene.train and not pose-only); one is drawn per step from (seed, step).
+  std::vector<int> offsets{1};
+  int render_rows = 16, render_cols = 64;            // frame i's render sub-sensor
+  int image_row_stride = 2, image_col_stride = 10;  // frame j's image (D_j, D_ij, M_ij)
+  // Rendered depths whose predicted return probability is ≤ this are set to 0 (no point:
+  // the pixel is predicted as a drop), as the evaluation's masked prediction does.
+  double return_threshold = 0.5;
+  adversarial::PatchDiscriminatorConfig discriminator;
+
+  void validate(const std::string& where) const;  // where + ".consistency" in errors
+  static ConsistencyConfig from_json(ConfigReader& r);  // reads "consistency"
+  void to_json(Json& j) const;                         // adds the "consistency" section
+  bool active_at(long step) const {
+    return enabled && step >= warmup_steps && (step - warmup_steps) % every == 0;
+  }
+};
+
+// Frame i's render sub-sensor and frame j's image sub-sensor for a dataset sensor. The image
+// sensor throws ConfigError naming the key when a stride does not divide the sensor's size;
+// both throw when the sub-sensor is narrower than the reprojection's minimum width.
+Sensor consistency_render_sensor(const ConsistencyConfig& c, const Sensor& s);
+Sensor consistency_image_sensor(const ConsistencyConfig& c, const Sensor& s);
+
+}  // namespace sgnlf::pipeline
