@@ -1,5 +1,5 @@
-// `sgnlf bench --table T --scale S [--data-root DIR] [--seed N] --out DIR`: runs every row of a
-// table on every sequence (runtime/harness), records the context and the device's roofline,
+// `sgnlf bench --table T --scale S [--data-root DIR] [--seed N] [--rows A,B] [--sequences X,Y]
+// --out DIR`: runs every row (or the chosen ones) of a table on every sequence (runtime/harness), records the context and the device's roofline,
 // and writes <out>/results.json (results/schema.md) and <out>/table.md.
 #include <iostream>
 #include <memory>
@@ -15,6 +15,12 @@
 
 namespace sgnlf::app {
 namespace {
+
+std::string join_list(const std::string& flag, const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? flag : ",") + x;
+  return s;
+}
 
 int list_tables() {
   for (const auto& name : harness::table_names()) {
@@ -43,6 +49,10 @@ const Registrar reg("bench", "Run a table of the paper (every row on every seque
   sub.add_option("--seed", o->seed, "Seed of every run")->capture_default_str();
   sub.add_option("--out", o->out_dir, "Output folder");
   sub.add_option("--device", o->device, "OpenCL device index or name (default $SGNLF_DEVICE)");
+  sub.add_option("--rows", o->rows, "Only these rows (comma-separated methods; see --list)")
+      ->delimiter(',');
+  sub.add_option("--sequences", o->sequences, "Only these sequences of the scale (comma-separated)")
+      ->delimiter(',');
   sub.add_flag("--no-roofline", *no_roofline, "Skip the roofline probe (~1-2 s)");
   sub.add_flag("--list", *list, "List the tables, rows and sequences");
   return std::function<int()>([=] {
@@ -53,7 +63,8 @@ const Registrar reg("bench", "Run a table of the paper (every row on every seque
                  (o->data_root.empty() ? "" : " --data-root " + o->data_root) +
                  " --seed " + std::to_string(o->seed) + " --out " + o->out_dir +
                  (o->device.empty() ? "" : " --device " + o->device) +
-                 (o->roofline ? "" : " --no-roofline");
+                 (o->roofline ? "" : " --no-roofline") + join_list(" --rows ", o->rows) +
+                 join_list(" --sequences ", o->sequences);
     o->validate();
     if (!harness::hooks_wired())
       log::warn("bench: built without the pipeline/datasets modules: every row is 'not implemented'");

@@ -27,6 +27,7 @@ std::string status_cell(const Json& row) {
   const std::string s = row.value("status", "");
   if (s == "not_implemented") return "not implemented";
   if (s == "failed") return "failed";
+  if (s == "skipped") return "not run (--rows)";
   return "—";
 }
 

@@ -25,11 +25,28 @@ void BenchOptions::validate() const {
   if (out_dir.empty()) throw ConfigError("bench: --out is required");
   if (!data_root.empty() && !fs::is_directory(data_root))
     throw ConfigError("bench: --data-root '" + data_root + "' is not a directory");
+  const TableDef t = table_def(table);
+  for (const auto& r : rows) {
+    const bool known = std::any_of(t.rows.begin(), t.rows.end(),
+                                   [&](const RowDef& d) { return d.method == r; });
+    if (!known) throw ConfigError("bench: --rows: table " + table + " has no row '" + r + "'");
+  }
+  const auto seqs = table_sequences(t, scale, !data_root.empty());
+  for (const auto& q : sequences) {
+    const bool known = std::any_of(seqs.begin(), seqs.end(),
+                                   [&](const SequenceDef& d) { return d.name == q; });
+    if (!known)
+      throw ConfigError("bench: --sequences: table " + table + " at scale " + scale +
+                        " has no sequence '" + q + "'");
+  }
 }
 
 Json BenchOptions::to_json() const {
-  return Json{{"table", table}, {"scale", scale},   {"data_root", data_root},
-              {"device", device}, {"seed", seed}, {"roofline", roofline}};
+  Json j{{"table", table},   {"scale", scale}, {"data_root", data_root},
+         {"device", device}, {"seed", seed},   {"roofline", roofline}};
+  if (!rows.empty()) j["rows"] = rows;
+  if (!sequences.empty()) j["sequences"] = sequences;
+  return j;
 }
 
 namespace {
@@ -66,15 +83,26 @@ Json run_table(const BenchOptions& opt, const BenchHooks& hooks, Json context) {
   opt.validate();
   const TableDef t = table_def(opt.table);
   const bool real = !opt.data_root.empty();
-  const auto seqs = table_sequences(t, opt.scale, real);
+  auto seqs = table_sequences(t, opt.scale, real);
+  if (!opt.sequences.empty())
+    seqs.erase(std::remove_if(seqs.begin(), seqs.end(),
+                              [&](const SequenceDef& d) {
+                                return std::find(opt.sequences.begin(), opt.sequences.end(),
+                                                 d.name) == opt.sequences.end();
+                              }),
+               seqs.end());
+  const auto selected = [&](const std::string& method) {
+    return opt.rows.empty() ||
+           std::find(opt.rows.begin(), opt.rows.end(), method) != opt.rows.end();
+  };
   const double t0 = now_s();
 
   std::vector<bool> impl;
   long implemented_rows = 0;
   for (const auto& row : t.rows) {
     impl.push_back(hooks.implemented && hooks.implemented(row.method));
-    implemented_rows += impl.back();
     if (!impl.back()) log::info("[bench] row ", row.method, ": not implemented");
+    implemented_rows += impl.back() && selected(row.method);
   }
   TableProgress prog;
   prog.total = implemented_rows * long(seqs.size());
@@ -84,6 +112,10 @@ Json run_table(const BenchOptions& opt, const BenchHooks& hooks, Json context) {
   Json runs = Json::array(), rows = Json::array();
   for (size_t ri = 0; ri < t.rows.size(); ++ri) {
     const RowDef& row = t.rows[ri];
+    if (!selected(row.method)) {
+      rows.push_back(make_row(t.name, row, "skipped", {}));
+      continue;
+    }
     if (!impl[ri]) {
       rows.push_back(make_row(t.name, row, "not_implemented", {}));
       continue;

@@ -5,6 +5,7 @@
 #pragma once
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "core/config.hpp"
 #include "harness/tables.hpp"
@@ -21,6 +22,10 @@ struct BenchOptions {
   uint64_t seed = 1;
   bool roofline = true;   // measure and record the device's roofline
   std::string command;    // the command line, recorded verbatim
+  // Subsets (empty = all): rows outside `rows` are kept in the result as status "skipped";
+  // `sequences` narrows the scale's sequences (means are over the ones run). Recorded in the
+  // config only when non-empty, so a full table's config_hash does not change.
+  std::vector<std::string> rows, sequences;
   void validate() const;
   Json to_json() const;   // the resolved harness config (without `command` and `out_dir`)
 };

@@ -126,23 +126,15 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
         const int build_steps = int(std::lround(
             pg.steps_on_build * std::max(0.0, 1.0 - progress / g.stop_progress)));
         if (build_steps > 0) {  // settle the poses on the new graph (pose_graph_config.hpp)
-          const auto pose_loss = posegraph::GraphLoss::as_pose_loss(graph->loss);
-          const int per_call = 10, calls = (build_steps + per_call - 1) / per_call;
-          double before = 0.0, after = 0.0;
-          for (int k = 0; k < calls; ++k) {
-            posegraph::GeometricConfig run_cfg = gc;
-            run_cfg.steps = std::min(per_call, build_steps - k * per_call);
-            const double factor =
-                pg.lr_on_build * std::pow(g.lr_final / pg.lr_on_build, double(k) / calls);
-            run_cfg.lr_rotation *= factor;
-            run_cfg.lr_translation *= factor;
-            const posegraph::GeometricOptimizer opt(pose_loss, poses.size(), run_cfg);
-            const auto rk = opt.run(T, 1.0);
-            if (k == 0) before = rk.loss_before;
-            after = rk.loss_after;
-          }
-          graph_line["build_run"] = Json{{"steps", build_steps}, {"loss_before", before},
-                                         {"loss_after", after}};
+          posegraph::AnnealConfig a;
+          a.steps = build_steps;
+          a.lr_start = pg.lr_on_build;
+          a.lr_final = g.lr_final;
+          a.hold_clock = true;
+          const auto calls = posegraph::run_annealed(graph->loss, gc, a, T);
+          graph_line["build_run"] = Json{{"steps", build_steps},
+                                         {"loss_before", calls.front().loss_before},
+                                         {"loss_after", calls.back().loss_after}};
         }
       }
       posegraph::GeometricConfig run_cfg = gc;

@@ -13,6 +13,7 @@ void AnnealConfig::validate() const {
   check_range("annealed run", "steps", steps, 1, 1 << 24);
   check_range("annealed run", "per_call", per_call, 1, 1 << 24);
   check_range("annealed run", "lr_final", lr_final, 1e-6, 1.0);
+  check_range("annealed run", "lr_start", lr_start, 1e-6, 1.0);
 }
 
 std::vector<GeometricResult> run_annealed(
@@ -32,11 +33,11 @@ std::vector<GeometricResult> run_annealed(
   for (int k = 1; k <= calls; ++k) {
     GeometricConfig c = base;
     c.steps = std::min(a.per_call, a.steps - (k - 1) * a.per_call);
-    const double decay = std::pow(a.lr_final, double(k - 1) / calls);
+    const double decay = a.lr_start * std::pow(a.lr_final / a.lr_start, double(k - 1) / calls);
     c.lr_rotation *= decay;
     c.lr_translation *= decay;
     const GeometricOptimizer opt(loss, frames, c);
-    const double clock = double(k) / calls;
+    const double clock = a.hold_clock ? 1.0 : double(k) / calls;
     out.push_back(opt.run(T, clock));
     if (on_call) on_call(k, clock, out.back());
   }

@@ -1,7 +1,9 @@
 // The geometric optimiser run as a schedule of calls (method.md §3: coarse alignment from the
 // protocol's initial poses): `steps` pose-only Adam steps in calls of `per_call`, a fresh Adam
 // each call, on a clock c_k = k / calls (k = 1 … calls): τ = tau_scale · c_k sharpens the robust
-// weights as the poses converge, and the learning rates decay as lr · lr_final^((k − 1) / calls).
+// weights as the poses converge, and the learning rates decay as
+// lr · lr_start · (lr_final / lr_start)^((k − 1) / calls). With hold_clock the clock stays at 1
+// (τ at its final value: a refinement run on a new graph, pipeline/geometric_stage.cpp).
 // Measured with `sgnlf posegraph` (README, "GeoNLF"): this recipe brings the noisy protocol
 // start (≈ 3.25 m ATE) to ≈ 0.27 m on kitti360-low-a and nuscenes-low-a with 200 steps.
 #pragma once
@@ -17,6 +19,8 @@ struct AnnealConfig {
   int steps = 200;
   int per_call = 10;
   double lr_final = 0.05;
+  double lr_start = 1.0;
+  bool hold_clock = false;
   void validate() const;  // ConfigError naming the field
 };
 

@@ -81,6 +81,34 @@ TEST_CASE("run_table: rows, means, paper differences, seeds", "[harness]") {
   CHECK(nerf["sequences"][1]["dataset"]["name"] == "kitti360-1728");
 }
 
+TEST_CASE("run_table: --rows and --sequences run a subset, the others are marked skipped",
+          "[harness]") {
+  harness::BenchOptions o;
+  o.table = "kitti360-standard";
+  o.scale = "smoke";
+  o.out_dir = "/nonexistent/out";
+  o.rows = {"sg-nlf"};
+  o.sequences = {"kitti360-1728"};
+  int prepares = 0;
+  const Json r = harness::run_table(o, test::fake_hooks(&prepares), test::fake_context());
+  CHECK(prepares == 1);
+  REQUIRE(r["rows"].size() == 5);  // every row kept, in table order
+  CHECK(r["rows"][0]["status"] == "skipped");  // lidar-nerf would run but was not chosen
+  CHECK(r["rows"][4]["status"] == "ok");
+  REQUIRE(r["rows"][4]["sequences"].size() == 1);
+  CHECK(r["rows"][4]["mean"]["cd"].get<double>() == Approx(0.5 * 0.12));
+  CHECK(r["config"]["rows"] == Json::array({"sg-nlf"}));
+  CHECK(r["config_hash"] != test::fake_results()["config_hash"]);
+  CHECK(harness::render_markdown(r).find("not run (--rows)") != std::string::npos);
+  // A full table's config has no subset keys (its hash is unchanged by the feature).
+  CHECK_FALSE(test::fake_results()["config"].contains("rows"));
+  o.rows = {"lidar-nerf", "nope"};
+  CHECK_THROWS_WITH(o.validate(), Catch::Contains("no row 'nope'"));
+  o.rows = {};
+  o.sequences = {"kitti360-3353"};  // a quick/paper sequence, not in smoke
+  CHECK_THROWS_WITH(o.validate(), Catch::Contains("no sequence 'kitti360-3353'"));
+}
+
 TEST_CASE("a failing row is recorded with its error and the table goes on", "[harness]") {
   const Json r = test::fake_results(true);
   CHECK(r["rows"][0]["status"] == "ok");

@@ -192,17 +192,8 @@ TEST_CASE("sg-nlf run folder: consistency logged, exact resume of field, discrim
   const std::string data = test::temp_dir("consistency_data") + "/seq";
   test::write_tiny_dataset(data);
   auto run = [&](const std::string& dir, long stop_at, bool resume) {
-    TrainRequest req;
-    req.manifest.method = "sg-nlf";
-    req.manifest.preset = "smoke";
-    req.manifest.dataset = data;
-    req.manifest.seed = 3;
-    req.manifest.config = tiny_sgnlf();
-    req.run_dir = dir;
-    req.stop_at = stop_at;
-    req.resume = resume;
-    req.show_progress = false;
-    return train_run(test::runtime(), req);
+    return train_run(test::runtime(),
+                     test::tiny_request("sg-nlf", data, tiny_sgnlf(), dir, 3, stop_at, resume));
   };
   const std::string full = test::temp_dir("consistency_full");
   const Json s = run(full, -1, false);
@@ -237,14 +228,9 @@ TEST_CASE("sg-nlf run folder: consistency logged, exact resume of field, discrim
   CHECK(with_points >= 1);
   // The term reached the field: without it the same run ends elsewhere.
   {
-    TrainRequest req;
-    req.manifest.method = "sg-nlf";
-    req.manifest.preset = "smoke";
-    req.manifest.dataset = data;
-    req.manifest.seed = 3;
-    req.manifest.config = tiny_sgnlf(Json{{"consistency", {{"enabled", false}}}});
-    req.run_dir = test::temp_dir("consistency_off");
-    req.show_progress = false;
+    const TrainRequest req =
+        test::tiny_request("sg-nlf", data, tiny_sgnlf(Json{{"consistency", {{"enabled", false}}}}),
+                           test::temp_dir("consistency_off"), 3);
     const Json off = train_run(test::runtime(), req);
     CHECK_FALSE(off.contains("consistency_steps"));
     LoadedRun a = load_run(test::runtime(), full), b = load_run(test::runtime(), req.run_dir);

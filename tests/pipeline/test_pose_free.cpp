@@ -102,17 +102,8 @@ TEST_CASE("pose-free run folder: trajectories, pose metrics, frozen control, exa
   const std::string data = test::temp_dir("posefree_data") + "/seq";
   test::write_tiny_dataset(data);
   auto run = [&](const std::string& method, const std::string& dir, long stop_at, bool resume) {
-    TrainRequest req;
-    req.manifest.method = method;
-    req.manifest.preset = "smoke";
-    req.manifest.dataset = data;
-    req.manifest.seed = 3;
-    req.manifest.config = tiny_pose_free(method);
-    req.run_dir = dir;
-    req.stop_at = stop_at;
-    req.resume = resume;
-    req.show_progress = false;
-    return train_run(test::runtime(), req);
+    return train_run(test::runtime(), test::tiny_request(method, data, tiny_pose_free(method), dir,
+                                                         3, stop_at, resume));
   };
   const std::string full = test::temp_dir("posefree_full");
   const Json s = run("geonlf", full, -1, false);

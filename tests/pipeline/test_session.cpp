@@ -23,13 +23,7 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
   const std::string data = test::temp_dir("session_data") + "/seq";
   test::write_tiny_dataset(data);
   const std::string run_dir = test::temp_dir("session_run");
-  TrainRequest req;
-  req.manifest.preset = "smoke";
-  req.manifest.dataset = data;
-  req.manifest.seed = 5;
-  req.manifest.config = test::tiny_config();
-  req.run_dir = run_dir;
-  req.show_progress = false;
+  const TrainRequest req = test::tiny_request("lidar-nerf", data, test::tiny_config(), run_dir, 5);
   const Json summary = train_run(test::runtime(), req);
   CHECK(summary.at("finished").get<bool>());
   CHECK(summary.at("end_step").get<long>() == 12);

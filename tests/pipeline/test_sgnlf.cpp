@@ -70,17 +70,8 @@ TEST_CASE("hybrid field run folder: spectral schedule, exact resume, evaluation 
   const std::string data = test::temp_dir("sgnlf_data") + "/seq";
   test::write_tiny_dataset(data);
   auto run = [&](const std::string& dir, long stop_at, bool resume) {
-    TrainRequest req;
-    req.manifest.method = kMethod;
-    req.manifest.preset = "smoke";
-    req.manifest.dataset = data;
-    req.manifest.seed = 3;
-    req.manifest.config = tiny_hybrid();
-    req.run_dir = dir;
-    req.stop_at = stop_at;
-    req.resume = resume;
-    req.show_progress = false;
-    return train_run(test::runtime(), req);
+    return train_run(test::runtime(),
+                     test::tiny_request(kMethod, data, tiny_hybrid(), dir, 3, stop_at, resume));
   };
   const std::string full = test::temp_dir("sgnlf_full");
   const Json s = run(full, -1, false);

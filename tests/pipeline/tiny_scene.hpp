@@ -6,6 +6,7 @@
 #include "datasets/simulate.hpp"
 #include "pipeline/presets.hpp"
 #include "pipeline/scene.hpp"
+#include "pipeline/session.hpp"
 
 namespace sgnlf::test {
 
@@ -32,6 +33,25 @@ inline pipeline::TrainConfig tiny_config(const Json& extra = Json::object()) {
                        {"rays_per_batch", 128}, {"render_chunk_rays", 512}}},
          {"render", {{"n_samples", 16}, {"n_importance", 4}}}};
   return pipeline::resolve_config("lidar-nerf", "smoke", pipeline::merge_config_json(o, extra));
+}
+
+// The request every run-folder test starts from: `method` on the dataset folder `data` with the
+// smoke preset's `config`, progress off.
+inline pipeline::TrainRequest tiny_request(const std::string& method, const std::string& data,
+                                           const pipeline::TrainConfig& config,
+                                           const std::string& run_dir, uint64_t seed,
+                                           long stop_at = -1, bool resume = true) {
+  pipeline::TrainRequest req;
+  req.manifest.method = method;
+  req.manifest.preset = "smoke";
+  req.manifest.dataset = data;
+  req.manifest.seed = seed;
+  req.manifest.config = config;
+  req.run_dir = run_dir;
+  req.stop_at = stop_at;
+  req.resume = resume;
+  req.show_progress = false;
+  return req;
 }
 
 }  // namespace sgnlf::test

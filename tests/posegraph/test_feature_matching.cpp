@@ -230,7 +230,7 @@ TEST_CASE("feature provider output is checked and normalised", "[posegraph][conf
   FeatureProvider ok{3, [](const std::vector<Eigen::Vector3f>& p, std::vector<float>& out) {
                        out.clear();
                        for (const auto& v : p) out.insert(out.end(), {v.x(), v.y(), v.z()});
-                     }, "identity"};
+                     }, "identity", {}};
   const auto f = unit_features(ok, x);
   CHECK(f[0] * f[0] + f[1] * f[1] + f[2] * f[2] == Approx(1.0f));
   CHECK(f[3] == 0.f);  // a zero row stays zero
@@ -256,7 +256,7 @@ TEST_CASE("feature provider output is checked and normalised", "[posegraph][conf
   CHECK(pf[6] == Approx(0.6f));  // the zero part is left out: [0.6, 0.8] with unit length
   CHECK(pf[7] == Approx(0.8f));
   CHECK(pf[8] == 0.f);
-  const auto whole = unit_features(FeatureProvider{3, parted.eval, "whole"}, y);
+  const auto whole = unit_features(FeatureProvider{3, parted.eval, "whole", {}}, y);
   CHECK(cosine(whole.data(), whole.data() + 3, 3) > 0.99f);  // without parts the scale dominates
   FeatureProvider bad_parts = parted;
   bad_parts.parts = {2, 2};
