@@ -116,8 +116,8 @@ NamedArrays ConsistencySchedule::state() const {
   return a;
 }
 
-void ConsistencySchedule::load_state(const Checkpoint& ck) {
-  inner_.load_state(ck);
+void ConsistencySchedule::load_state(const Checkpoint& ck, LidarNerfModel& model) {
+  inner_.load_state(ck, model);
   auto& disc = term_.discriminator();
   const size_t n = disc.n_params();
   disc.params().write_vec(ck.array("consistency.disc.params", n));

@@ -35,7 +35,7 @@ class ConsistencySchedule : public StepPolicy {
   Json log_fields() override;
   std::string progress_text() override;
   NamedArrays state() const override;
-  void load_state(const Checkpoint& ck) override;
+  void load_state(const Checkpoint& ck, LidarNerfModel& model) override;
 
   // The pair of `step` (i = batch frame), or {-1, -1} when the step has none.
   std::pair<int, int> pair_at(uint64_t seed, long step) const;

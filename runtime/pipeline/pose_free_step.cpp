@@ -133,7 +133,12 @@ NamedArrays PoseFreeStep::state() const {
   return a;
 }
 
-void PoseFreeStep::load_state(const Checkpoint& ck) {
+void PoseFreeStep::load_state(const Checkpoint& ck, LidarNerfModel& model) {
+  if (cfg_.pose_free.coarse_to_fine && ck.step > 0) {  // the mask of the last step (step_policy.hpp)
+    level_w_ = field::barf_level_weights(
+        double(ck.step - 1) / double(cfg_.schedule.iterations), model.levels());
+    model.set_level_weights(level_w_);
+  }
   poses_.load_state([&](const std::string& name, size_t n) { return ck.array(name, n); });
   ema_ = unpack_doubles(ck.array("reweight.ema", 2 * ema_.size()));
   seen_ = unpack_doubles(ck.array("reweight.seen", 2 * seen_.size()));

@@ -39,7 +39,7 @@ class PoseFreeStep : public StepPolicy {
   Json log_fields() override;
   std::string progress_text() override;
   NamedArrays state() const override;
-  void load_state(const Checkpoint& ck) override;
+  void load_state(const Checkpoint& ck, LidarNerfModel& model) override;
 
   // Current poses in the dataset's world frame (metres).
   std::vector<Pose> poses_world() const;

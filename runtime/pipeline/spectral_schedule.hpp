@@ -39,7 +39,7 @@ class SpectralSchedule : public StepPolicy {
   Json log_fields() override;
   std::string progress_text() override;
   NamedArrays state() const override;
-  void load_state(const Checkpoint& ck) override;
+  void load_state(const Checkpoint& ck, LidarNerfModel& model) override;
 
   size_t pool_size() const { return pool_.size(); }
   double seconds() const { return seconds_; }  // pool builds + spectral steps, this process

@@ -28,9 +28,12 @@ class StepPolicy {
   // Extra fields for train_log.jsonl at logged steps, and a short progress text.
   virtual Json log_fields() { return Json::object(); }
   virtual std::string progress_text() { return ""; }
-  // Named arrays saved beside the model's in checkpoints, and their restoration.
+  // Named arrays saved beside the model's in checkpoints, and their restoration. load_state
+  // also puts back what the policy sets on the model at every step (the coarse-to-fine level
+  // weights, the fusion λ) as the checkpoint's last step left it: an epoch that starts right
+  // at the checkpoint uses the model (pose-graph features) before the next step sets them.
   virtual NamedArrays state() const { return {}; }
-  virtual void load_state(const Checkpoint& ck) { (void)ck; }
+  virtual void load_state(const Checkpoint& ck, LidarNerfModel& model) { (void)ck, (void)model; }
 };
 
 // The ground-truth-pose methods (LiDAR-NeRF): batches from scene.T_world_lidar, one fused step.

@@ -97,7 +97,7 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
     st.adam_v = ck.array("adam_v", model.n_params());
     st.adam_step = ck.step;
     model.set_state(st);
-    if (opt.policy) opt.policy->load_state(ck);
+    if (opt.policy) opt.policy->load_state(ck, model);
     tracker.best = ck.best_loss;
     tracker.smoothed = ck.smoothed_loss;
     sum.start_step = last_good = ck.step;

@@ -40,12 +40,14 @@ struct Outcome {
   double seconds = 0.0;
 };
 
-// Runs `sgnlf train` on `data` into `out` (output to <out>.log); `fault` goes to
+// Runs `sgnlf train --method method` on `data` into `out` (output to <out>.log); `fault` goes to
 // SGNLF_FAULT_KILL; kill_after_s >= 0 sends SIGKILL after that many seconds.
 Outcome run_train(const std::string& data, const std::string& out, const std::string& fault,
-                  double kill_after_s = -1.0) {
-  std::vector<std::string> args = {SGNLF_BIN, "train", "--method", "lidar-nerf", "--preset", "smoke",
+                  double kill_after_s = -1.0, const std::string& method = "lidar-nerf",
+                  const std::string& config = "") {
+  std::vector<std::string> args = {SGNLF_BIN, "train", "--method", method, "--preset", "smoke",
                                    "--data", data, "--out", out, "--seed", "7"};
+  if (!config.empty()) args.insert(args.end(), {"--config", config});
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -147,4 +149,51 @@ TEST_CASE("sgnlf train killed with SIGKILL and resumed equals the uninterrupted 
   CHECK(logged_steps(b) == logged_steps(a));
   CHECK(logged_steps(a) == std::vector<long>{1, 10, 20, 30, 40, 50, 60});
   CHECK_FALSE(fs::exists(pipeline::checkpoint_path(b) + ".tmp"));
+}
+
+TEST_CASE("sg-nlf killed with SIGKILL and resumed equals the uninterrupted run",
+          "[pipeline][train][crash][sgnlf][device]") {
+  // The whole SG-NLF, shrunk to the tiny scene (28 steps, checkpoints every 7): the kills fall
+  // after the adversarial warm-up (4), with the pose graph built and λ ramping (4 → 14), so the
+  // resumed run must restore the discriminator and its Adam, the graph and the spectral state.
+  const std::string root = test::temp_dir("kill_resume_sgnlf");
+  const std::string data = root + "/data";
+  test::write_tiny_dataset(data);
+  const std::string config = root + "/tiny.json";
+  std::ofstream(config) << Json{
+      {"schedule", {{"iterations", 28}, {"checkpoint_every", 7}, {"log_every", 7},
+                    {"rays_per_batch", 128}, {"render_chunk_rays", 512}}},
+      {"render", {{"n_samples", 24}}},
+      {"geometric", {{"points_per_frame", 400}, {"first_steps", 5}, {"steps_per_epoch", 4.0},
+                     {"stop_progress", 1.0}}},
+      {"spectral", {{"fusion", {{"start", 4}, {"end", 14}}}, {"batch", 128},
+                    {"points_per_frame", 300}}},
+      {"pose_graph", {{"start_epoch", 1}, {"reevaluate_every", 1}, {"match_points", 300},
+                      {"min_matches", 5}, {"steps_on_build", 6}}},
+      {"consistency", {{"every", 2}, {"warmup_steps", 4}, {"render_rows", 8},
+                       {"render_cols", 32}, {"image_row_stride", 1}, {"image_col_stride", 2},
+                       {"discriminator", {{"scales", 1}, {"channels", {16, 32, 32}}}}}}}
+                                .dump();
+  const std::string a = root + "/uninterrupted";
+  const Outcome full = run_train(data, a, "", -1.0, "sg-nlf", config);
+  INFO(contents(a + ".log"));
+  REQUIRE(full.exited);
+  REQUIRE(full.code == 0);
+  REQUIRE(latest_step(a) == 28);
+
+  const std::string b = root + "/killed";
+  Outcome o = run_train(data, b, "after-step@17", -1.0, "sg-nlf", config);
+  CHECK(o.signal == SIGKILL);
+  CHECK(latest_step(b) == 14);
+  o = run_train(data, b, "checkpoint-partial@21", -1.0, "sg-nlf", config);
+  CHECK(o.signal == SIGKILL);
+  CHECK(latest_step(b) == 14);
+  o = run_train(data, b, "", -1.0, "sg-nlf", config);
+  INFO(contents(b + ".log"));
+  REQUIRE(o.exited);
+  REQUIRE(o.code == 0);
+  CHECK(latest_step(b) == 28);
+  CHECK(contents(pipeline::checkpoint_path(b)) == contents(pipeline::checkpoint_path(a)));
+  CHECK(logged_steps(b) == logged_steps(a));
+  CHECK(logged_steps(a) == std::vector<long>{1, 7, 14, 21, 28});
 }
