@@ -30,12 +30,7 @@ __kernel void conv2d_fwd(const int n_img, const int H, const int W, const int HO
     __global const float* in_row = in + (size_t)(n * H + iy) * W * IN_CS;
     for (int kx = 0; kx < K; ++kx) {
       __global const float* src[PTS];
-#pragma unroll
-      for (int j = 0; j < PTS; ++j) {
-        const int ix = (ox0 + j) * S - P + kx;
-        const int ok = row_ok && ix >= 0 && ix < W && ox0 + j < WO;
-        src[j] = ok ? in_row + (size_t)ix * IN_CS : zeros;
-      }
+      CONV_GATHER_TAP(src, in_row, row_ok, ox0, kx, zeros);
       __global const float* wrow = Wg + (size_t)(ky * K + kx) * C_IN * O_PAD + o0;
       for (int c = 0; c < C_IN; ++c) {
         const float16 w = vload16(0, wrow + c * O_PAD);

@@ -33,12 +33,7 @@ __kernel void conv2d_fwd_narrow(const int n_img, const int H, const int W, const
     __global const float* in_row = in + (size_t)(n * H + iy) * W * IN_CS;
     for (int kx = 0; kx < K; ++kx) {
       __global const float* src[PTS];
-#pragma unroll
-      for (int j = 0; j < PTS; ++j) {
-        const int ix = (ox0 + j) * S - P + kx;
-        const int ok = row_ok && ix >= 0 && ix < W && ox0 + j < WO;
-        src[j] = ok ? in_row + (size_t)ix * IN_CS : zeros;
-      }
+      CONV_GATHER_TAP(src, in_row, row_ok, ox0, kx, zeros);
       __global const float* wtap = wt + (size_t)(ky * K + kx) * C_OUT * IN_PAD;
       for (int c0 = 0; c0 < C_IN; c0 += 16) {
 #pragma unroll
