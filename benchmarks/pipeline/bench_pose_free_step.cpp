@@ -11,7 +11,7 @@
 #include <benchmark/benchmark.h>
 
 #include "support/bench_support.hpp"
-#include "datasets/simulate.hpp"
+#include "bench_dataset.hpp"
 #include "pipeline/consistency_term.hpp"
 #include "pipeline/model.hpp"
 #include "pipeline/presets.hpp"
@@ -24,16 +24,7 @@ using namespace sgnlf::pipeline;
 
 namespace {
 
-const Dataset& bench_dataset() {
-  static const Dataset d = [] {
-    SimOptions o;
-    o.sequence = "kitti360-low-a";
-    o.frames = 12;
-    o.threads = 1;
-    return simulate(o).dataset;
-  }();
-  return d;
-}
+const Dataset& bench_dataset() { return bench::simulated_dataset("kitti360-low-a", 12); }
 
 void BM_PoseFreeStep(benchmark::State& state, const char* method) {
   bench::add_device_context();

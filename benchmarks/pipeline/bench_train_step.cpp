@@ -9,7 +9,7 @@
 #include <benchmark/benchmark.h>
 
 #include "support/bench_support.hpp"
-#include "datasets/simulate.hpp"
+#include "bench_dataset.hpp"
 #include "pipeline/model.hpp"
 #include "pipeline/presets.hpp"
 #include "pipeline/ray_batch.hpp"
@@ -19,16 +19,7 @@ using namespace sgnlf::pipeline;
 
 namespace {
 
-const Dataset& bench_dataset() {
-  static const Dataset d = [] {
-    SimOptions o;
-    o.sequence = "kitti360-1538";
-    o.frames = 14;
-    o.threads = 1;
-    return simulate(o).dataset;
-  }();
-  return d;
-}
+const Dataset& bench_dataset() { return bench::simulated_dataset("kitti360-1538", 14); }
 
 // stop_transmittance < 0 keeps the preset's.
 void BM_TrainStep(benchmark::State& state, const char* preset, bool reuse_coarse,
