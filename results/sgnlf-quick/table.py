@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """SG-NLF beside GeoNLF at quick: python3 table.py WORK_DIR > table.md.
-Reads WORK_DIR/quick-<table>-<row>/results.json (run.sh); a missing file prints "not run"."""
+Reads WORK_DIR/quick-<table>-<row>/results.json (run.sh), else the committed whole table
+results/quick-<table>/results.json; a row in neither prints "not run"."""
 import json, os, sys
 
 work = sys.argv[1]
@@ -9,18 +10,26 @@ COLS = [("cd", "CD (m²) ↓", 4), ("fscore", "F-score ↑", 4), ("depth_rmse", 
         ("rpe_t_cm", "RPE t (cm) ↓", 2), ("rpe_r_deg", "RPE r (°) ↓", 3)]
 
 
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
 def row(table, method):
-    p = os.path.join(work, f"quick-{table}-{method.replace('-', '')}", "results.json")
-    if not os.path.exists(p):
+    """The row from run.sh's output, else from the committed whole quick table (older binary)."""
+    for p in (os.path.join(work, f"quick-{table}-{method.replace('-', '')}", "results.json"),
+              os.path.join(HERE, "..", f"quick-{table}", "results.json")):
+        if os.path.exists(p):
+            r = json.load(open(p))
+            x = next((x for x in r["rows"] if x["method"] == method), None)
+            if x is not None and x["status"] == "ok":
+                break
+    else:
         return None, None
-    r = json.load(open(p))
-    x = next(x for x in r["rows"] if x["method"] == method)
-    return x, r["context"]["git"]["describe"] + ("-dirty" if r["context"]["git"]["dirty"] else "")
+    return x, r["context"]["git"]["sha"][:7]
 
 
 for table in ("kitti360-low", "nuscenes-low"):
     print(f"\n### {table}, quick, seed 1\n")
-    print("| row | sequence | " + " | ".join(c[1] for c in COLS) + " | train s | binary |")
+    print("| row | sequence | " + " | ".join(c[1] for c in COLS) + " | train s | tree at run |")
     print("|---|---|" + "---:|" * (len(COLS) + 1) + "---|")
     means = {}
     for method, label in (("geonlf", "GeoNLF"), ("sg-nlf", "SG-NLF")):
@@ -35,6 +44,8 @@ for table in ("kitti360-low", "nuscenes-low"):
             name = "**mean**" if s is None else s["sequence"]
             print(f"| {label} | {name} | " + " | ".join(cells) + f" | {secs} | {sha} |")
         means[method] = x["mean"]
+    print("\n*tree at run*: `context.git.sha`, the source tree's HEAD when the run started "
+          "(results/schema.md), not necessarily the binary's commit: see README.md.")
     if len(means) == 2:
         g, o = means["geonlf"], means["sg-nlf"]
         print("\nSG-NLF against GeoNLF (means): " + ", ".join(
