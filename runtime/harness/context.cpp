@@ -121,6 +121,7 @@ Json context_block(const cl::DeviceInfo* device) {
   Json c;
   c["git"] = git_info();
   c["build"] = build_info();
+  c["build"]["git"] = build_git();
   c["machine"] = machine_info();
   c["opencl"] = device ? opencl_info(*device) : Json(nullptr);
   c["pocl_env"] = pocl_env();

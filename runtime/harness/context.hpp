@@ -15,8 +15,12 @@ namespace sgnlf::harness {
 // {sha, dirty, describe, source: "git" | "configure"}: read with `git` from the source tree at
 // run time; falls back to the sha baked at configure time when git or the tree is absent.
 Json git_info();
-// Compiler, flags, build type, library versions (generated at configure time).
+// Compiler, flags, build type, library versions (generated at configure time), and `git`:
+// build_git() below.
 Json build_info();
+// {sha, dirty, changed_paths} of the source tree when this binary was built (null dirty and
+// changed_paths when git was unavailable then; cmake/GitStamp.cmake).
+Json build_git();
 // CPU model, logical cores, MemTotal, OS (/etc/os-release), kernel release.
 Json machine_info();
 // Platform, device, driver and OpenCL C strings of one device.

@@ -119,6 +119,9 @@ TEST_CASE("context block: git, build, machine, OpenCL", "[harness]") {
   CHECK(c["git"]["dirty"].is_boolean());
   CHECK(c["build"]["compiler"] != "");
   CHECK(c["build"]["libraries"]["eigen"] != "");
+  const std::string built = c["build"]["git"]["sha"];  // stamped when this test was built
+  CHECK(built.size() == 40);
+  CHECK(c["build"]["git"]["dirty"].is_boolean());
   CHECK(c["machine"]["logical_cores"].get<int>() > 0);
   CHECK(c["machine"]["mem_total_kib"].get<long long>() > 0);
   CHECK(c["opencl"]["device"] == dev.name);
