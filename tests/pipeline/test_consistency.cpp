@@ -30,19 +30,8 @@ namespace {
 
 // The tiny sequence is 16 × 128: frame j's image at every 2nd column (16 × 64), one scale.
 TrainConfig tiny_sgnlf(const Json& extra = Json::object()) {
-  Json o{{"schedule", {{"iterations", 28}, {"checkpoint_every", 7}, {"log_every", 7},
-                       {"rays_per_batch", 128}, {"render_chunk_rays", 512}}},
-         {"render", {{"n_samples", 24}}},
-         {"geometric", {{"points_per_frame", 400}, {"first_steps", 5}, {"steps_per_epoch", 4.0},
-                        {"stop_progress", 1.0}}},
-         {"spectral", {{"fusion", {{"start", 4}, {"end", 14}}}, {"batch", 128},
-                       {"points_per_frame", 300}}},
-         {"pose_graph", {{"start_epoch", 1}, {"reevaluate_every", 1}, {"match_points", 300},
-                         {"min_matches", 5}, {"steps_on_build", 6}}},
-         {"consistency", {{"every", 2}, {"warmup_steps", 4}, {"render_rows", 8},
-                          {"render_cols", 32}, {"image_row_stride", 1}, {"image_col_stride", 2},
-                          {"discriminator", {{"scales", 1}, {"channels", {16, 32, 32}}}}}}};
-  return resolve_config("sg-nlf", "smoke", merge_config_json(o, extra));
+  return resolve_config("sg-nlf", "smoke",
+                        merge_config_json(test::tiny_sgnlf_overrides(true), extra));
 }
 
 // Rays of the tiny scene's frame `f` at its ground-truth pose, pixels [0, n).

@@ -160,20 +160,7 @@ TEST_CASE("sg-nlf killed with SIGKILL and resumed equals the uninterrupted run",
   const std::string data = root + "/data";
   test::write_tiny_dataset(data);
   const std::string config = root + "/tiny.json";
-  std::ofstream(config) << Json{
-      {"schedule", {{"iterations", 28}, {"checkpoint_every", 7}, {"log_every", 7},
-                    {"rays_per_batch", 128}, {"render_chunk_rays", 512}}},
-      {"render", {{"n_samples", 24}}},
-      {"geometric", {{"points_per_frame", 400}, {"first_steps", 5}, {"steps_per_epoch", 4.0},
-                     {"stop_progress", 1.0}}},
-      {"spectral", {{"fusion", {{"start", 4}, {"end", 14}}}, {"batch", 128},
-                    {"points_per_frame", 300}}},
-      {"pose_graph", {{"start_epoch", 1}, {"reevaluate_every", 1}, {"match_points", 300},
-                      {"min_matches", 5}, {"steps_on_build", 6}}},
-      {"consistency", {{"every", 2}, {"warmup_steps", 4}, {"render_rows", 8},
-                       {"render_cols", 32}, {"image_row_stride", 1}, {"image_col_stride", 2},
-                       {"discriminator", {{"scales", 1}, {"channels", {16, 32, 32}}}}}}}
-                                .dump();
+  std::ofstream(config) << test::tiny_sgnlf_overrides(true).dump();
   const std::string a = root + "/uninterrupted";
   const Outcome full = run_train(data, a, "", -1.0, "sg-nlf", config);
   INFO(contents(a + ".log"));

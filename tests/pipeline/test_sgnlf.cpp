@@ -30,16 +30,8 @@ namespace {
 const char* kMethod = "sg-nlf-no-consistency";
 
 TrainConfig tiny_hybrid(const Json& extra = Json::object()) {
-  Json o{{"schedule", {{"iterations", 28}, {"checkpoint_every", 7}, {"log_every", 7},
-                       {"rays_per_batch", 128}, {"render_chunk_rays", 512}}},
-         {"render", {{"n_samples", 24}}},
-         {"geometric", {{"points_per_frame", 400}, {"first_steps", 5}, {"steps_per_epoch", 4.0},
-                        {"stop_progress", 1.0}}},
-         {"spectral", {{"fusion", {{"start", 4}, {"end", 14}}}, {"batch", 128},
-                       {"points_per_frame", 300}}},
-         {"pose_graph", {{"start_epoch", 1}, {"reevaluate_every", 1}, {"match_points", 300},
-                         {"min_matches", 5}, {"steps_on_build", 6}}}};
-  return resolve_config(kMethod, "smoke", merge_config_json(o, extra));
+  return resolve_config(kMethod, "smoke",
+                        merge_config_json(test::tiny_sgnlf_overrides(false), extra));
 }
 
 }  // namespace

@@ -35,6 +35,26 @@ inline pipeline::TrainConfig tiny_config(const Json& extra = Json::object()) {
   return pipeline::resolve_config("lidar-nerf", "smoke", pipeline::merge_config_json(o, extra));
 }
 
+// The SG-NLF smoke preset shrunk to the tiny scene (28 steps, checkpoints every 7, graph from
+// epoch 1, λ ramping over steps 4–14); with_consistency adds the adversarial term (every 2
+// steps after 4, one-scale discriminator on 8 × 32 renders). Config overrides, as JSON.
+inline Json tiny_sgnlf_overrides(bool with_consistency) {
+  Json o{{"schedule", {{"iterations", 28}, {"checkpoint_every", 7}, {"log_every", 7},
+                       {"rays_per_batch", 128}, {"render_chunk_rays", 512}}},
+         {"render", {{"n_samples", 24}}},
+         {"geometric", {{"points_per_frame", 400}, {"first_steps", 5}, {"steps_per_epoch", 4.0},
+                        {"stop_progress", 1.0}}},
+         {"spectral", {{"fusion", {{"start", 4}, {"end", 14}}}, {"batch", 128},
+                       {"points_per_frame", 300}}},
+         {"pose_graph", {{"start_epoch", 1}, {"reevaluate_every", 1}, {"match_points", 300},
+                         {"min_matches", 5}, {"steps_on_build", 6}}}};
+  if (with_consistency)
+    o["consistency"] = Json{{"every", 2},          {"warmup_steps", 4},     {"render_rows", 8},
+                            {"render_cols", 32},   {"image_row_stride", 1}, {"image_col_stride", 2},
+                            {"discriminator", {{"scales", 1}, {"channels", {16, 32, 32}}}}};
+  return o;
+}
+
 // The request every run-folder test starts from: `method` on the dataset folder `data` with the
 // smoke preset's `config`, progress off.
 inline pipeline::TrainRequest tiny_request(const std::string& method, const std::string& data,
