@@ -1,5 +1,6 @@
 // `sgnlf bench --table T --scale S [--data-root DIR] [--seed N] [--rows A,B] [--sequences X,Y]
-// --out DIR`: runs every row (or the chosen ones) of a table on every sequence (runtime/harness), records the context and the device's roofline,
+// --out DIR`: runs every row (or the chosen ones) of a table on every sequence (or the chosen
+// ones; runtime/harness), records the context and the device's roofline,
 // and writes <out>/results.json (results/schema.md) and <out>/table.md.
 #include <iostream>
 #include <memory>
