@@ -137,9 +137,7 @@ NamedArrays SpectralSchedule::state() const {
 
 void SpectralSchedule::load_state(const Checkpoint& ck, LidarNerfModel& model) {
   inner_.load_state(ck, model);
-  encoder_.set_psi_state(psi_state_from(ck, encoder_.psi_params()));
-  // λ as the checkpoint's last step left it (step_policy.hpp).
-  encoder_.set_lambda(float(cfg_.spectral.fusion.lambda(int(std::max(0L, ck.step - 1)))));
+  restore_hybrid_encoder(model, cfg_, ck);  // Ψ, and λ as the last step left it (step_policy.hpp)
   last_loss_ = unpack_doubles(ck.array("spectral.last_loss", 2)).at(0);
   const long epoch = long(unpack_doubles(ck.array("spectral.pool_epoch", 2)).at(0));
   pool_.clear();
