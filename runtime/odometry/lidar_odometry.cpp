@@ -68,9 +68,14 @@ FrameResult LidarOdometry::register_frame(const Cloud& scan_lidar, double timest
             starts.push_back(s);
           }
       }
+      // With several starts each is probed with at most initial_search_iterations coarse
+      // iterations (0: to convergence), and only the kept one is then run to convergence.
+      const bool probe = starts.size() > 1 && cfg_.initial_search_iterations > 0;
+      RegistrationOptions op = oc;
+      if (probe) op.max_iterations = std::min(oc.max_iterations, cfg_.initial_search_iterations);
       double best_overlap = -1.0;
       for (const Pose& start : starts) {
-        const RegistrationResult rc = register_scan(coarse_source, coarse_map_, start, oc);
+        const RegistrationResult rc = register_scan(coarse_source, coarse_map_, start, op);
         coarse_iterations += rc.iterations;
         if (!(rc.failure.empty() || rc.failure.rfind("no convergence", 0) == 0)) continue;
         const double overlap = starts.size() == 1 ? 1.0
@@ -79,6 +84,12 @@ FrameResult LidarOdometry::register_frame(const Cloud& scan_lidar, double timest
           best_overlap = overlap;
           guess = rc.T_world_source;
         }
+      }
+      if (probe) {
+        const RegistrationResult rc = register_scan(coarse_source, coarse_map_, guess, oc);
+        coarse_iterations += rc.iterations;
+        if (rc.failure.empty() || rc.failure.rfind("no convergence", 0) == 0)
+          guess = rc.T_world_source;
       }
     }
     // Step 3b (KISS-ICP §III-D): 3σ correspondences, Geman-McClure κ = σ/3.

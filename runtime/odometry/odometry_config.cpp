@@ -17,6 +17,7 @@ void OdometryConfig::validate(const std::string& w) const {
   check_range(w, "initial_search", initial_search, 0.0, 100.0);
   if (initial_search > 0) check_range(w, "initial_search_step", initial_search_step, 0.1, 100.0);
   check_range(w, "inlier_distance", inlier_distance, 0.01, 100.0);
+  check_range(w, "initial_search_iterations", initial_search_iterations, 0, 100000);
   check_range(w, "min_points", min_points, 3, 1 << 24);
   check_range(w, "min_fitness", min_fitness, 0.0, 1.0);
   check_range(w, "threads", threads, 1, 256);
@@ -31,6 +32,7 @@ OdometryConfig OdometryConfig::from_json(ConfigReader& r) {
   r.get("coarse_stage", c.coarse_stage).get("coarse_threshold", c.coarse_threshold);
   r.get("coarse_voxel_factor", c.coarse_voxel_factor).get("initial_search", c.initial_search);
   r.get("initial_search_step", c.initial_search_step).get("inlier_distance", c.inlier_distance);
+  r.get("initial_search_iterations", c.initial_search_iterations);
   r.get("min_points", c.min_points).get("min_fitness", c.min_fitness).get("threads", c.threads);
   r.finish();
   c.validate(r.where());
@@ -52,6 +54,7 @@ Json OdometryConfig::to_json() const {
               {"initial_search", initial_search},
               {"initial_search_step", initial_search_step},
               {"inlier_distance", inlier_distance},
+              {"initial_search_iterations", initial_search_iterations},
               {"min_points", min_points},
               {"min_fitness", min_fitness},
               {"threads", threads}};

@@ -30,6 +30,10 @@ TEST_CASE("odometry config is read strictly", "[odometry][config]") {
   bad["min_range"] = 100.0;  // above max_range
   ConfigReader rb(bad, "odo");
   CHECK_THROWS_WITH(OdometryConfig::from_json(rb), Catch::Contains("min_range"));
+  Json probe = j;
+  probe["initial_search_iterations"] = -1;
+  ConfigReader rp(probe, "odo");
+  CHECK_THROWS_WITH(OdometryConfig::from_json(rp), Catch::Contains("initial_search_iterations"));
 }
 
 TEST_CASE("adaptive threshold follows KISS-ICP eq. 5-6", "[odometry]") {
