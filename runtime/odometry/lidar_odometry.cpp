@@ -73,11 +73,15 @@ FrameResult LidarOdometry::register_frame(const Cloud& scan_lidar, double timest
       const bool probe = starts.size() > 1 && cfg_.initial_search_iterations > 0;
       RegistrationOptions op = oc;
       if (probe) op.max_iterations = std::min(oc.max_iterations, cfg_.initial_search_iterations);
+      // A coarse result is usable when it converged or only ran out of iterations.
+      const auto usable = [](const RegistrationResult& rc) {
+        return rc.failure.empty() || rc.failure.rfind("no convergence", 0) == 0;
+      };
       double best_overlap = -1.0;
       for (const Pose& start : starts) {
         const RegistrationResult rc = register_scan(coarse_source, coarse_map_, start, op);
         coarse_iterations += rc.iterations;
-        if (!(rc.failure.empty() || rc.failure.rfind("no convergence", 0) == 0)) continue;
+        if (!usable(rc)) continue;
         const double overlap = starts.size() == 1 ? 1.0
             : overlap_fraction(source, map_, rc.T_world_source, cfg_.inlier_distance);
         if (overlap > best_overlap) {  // strict: ties keep the earlier start (the prediction)
@@ -88,8 +92,7 @@ FrameResult LidarOdometry::register_frame(const Cloud& scan_lidar, double timest
       if (probe) {
         const RegistrationResult rc = register_scan(coarse_source, coarse_map_, guess, oc);
         coarse_iterations += rc.iterations;
-        if (rc.failure.empty() || rc.failure.rfind("no convergence", 0) == 0)
-          guess = rc.T_world_source;
+        if (usable(rc)) guess = rc.T_world_source;
       }
     }
     // Step 3b (KISS-ICP §III-D): 3σ correspondences, Geman-McClure κ = σ/3.
