@@ -63,25 +63,32 @@ const ModelState& trained_state() {
   return st;
 }
 
-void BM_TrainStepTrained(benchmark::State& state, float stop_transmittance) {
+void BM_TrainStepTrained(benchmark::State& state, float stop_transmittance, int coarse_waves = 1,
+                         float head_threshold = 0.0f) {
   bench::add_device_context();
   const Scene scene = make_scene(bench_dataset());
   TrainConfig c = resolve_config("lidar-nerf", "quick");
   c.render.stop_transmittance = stop_transmittance;
+  c.render.coarse_waves = coarse_waves;
+  c.render.head_weight_threshold = head_threshold;
   LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), c.schedule.rays_per_batch);
   model.set_state(trained_state());
   long step = kWarmSteps;
-  double live = 0.0;
+  double live = 0.0, coarse = 0.0, head = 0.0;
   const double samples = double(c.schedule.rays_per_batch) * (c.render.n_samples + c.render.n_importance);
   for (auto _ : state) {
     const RayBatch b = draw_ray_batch(scene, c, 1, step);
     model.train_step(b, 1, step++, 1e-3f);
     benchmark::DoNotOptimize(model.read_loss());
     live += double(model.live_samples()) / samples;
+    coarse += double(model.coarse_evaluated()) / double(c.schedule.rays_per_batch * c.render.n_samples);
+    head += head_threshold > 0.0f ? double(model.head_rows()) / double(std::max(model.live_samples(), 1L)) : 1.0;
   }
   state.counters["samples/s"] =
       benchmark::Counter(samples * double(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["live/sample"] = live / double(std::max<int64_t>(state.iterations(), 1));
+  state.counters["coarse/uniform"] = coarse / double(std::max<int64_t>(state.iterations(), 1));
+  state.counters["head/live"] = head / double(std::max<int64_t>(state.iterations(), 1));
 }
 
 }  // namespace
@@ -99,4 +106,18 @@ BENCHMARK_CAPTURE(BM_TrainStep, quick_reencode, "quick", false)
 BENCHMARK_CAPTURE(BM_TrainStepTrained, quick_trained_exact, 0.0f)
     ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
 BENCHMARK_CAPTURE(BM_TrainStepTrained, quick_trained_terminate, 1e-4f)
+    ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
+// Early termination of the coarse pass too (render.coarse_waves, issue 19); coarse/uniform is
+// the fraction of the uniform samples the coarse pass evaluated.
+BENCHMARK_CAPTURE(BM_TrainStepTrained, quick_trained_waves4, 1e-4f, 4)
+    ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
+BENCHMARK_CAPTURE(BM_TrainStepTrained, quick_trained_waves8, 1e-4f, 8)
+    ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
+// The LiDAR head only on the band of samples with weight > 1e-4 (render.head_weight_threshold);
+// head/live is the fraction of the live samples the head ran on. Then both options.
+BENCHMARK_CAPTURE(BM_TrainStepTrained, quick_trained_band, 1e-4f, 1, 1e-4f)
+    ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
+BENCHMARK_CAPTURE(BM_TrainStepTrained, quick_trained_waves4_band, 1e-4f, 4, 1e-4f)
+    ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
+BENCHMARK_CAPTURE(BM_TrainStepTrained, quick_trained_waves8_band, 1e-4f, 8, 1e-4f)
     ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);

@@ -155,3 +155,140 @@ __kernel void pipeline_add_inplace(const int n, __global const float* src, __glo
   if (k >= n) return;
   dst[k] += src[k];
 }
+
+// buf[k] = value.
+__kernel void pipeline_fill(const int n, const float value, __global float* buf) {
+  const int k = get_global_id(0);
+  if (k >= n) return;
+  buf[k] = value;
+}
+
+// Coarse waves (render.coarse_waves): the rows of wave [s0, s0 + width) of the rays still
+// alive. Row q = a·width + i holds coarse sample s0 + i of ray alive[a]:
+// x_w[q] = x_c[alive[a]·S + s0 + i] (3 floats).
+__kernel void pipeline_wave_gather(const int n_alive, const int S, const int s0, const int width,
+                                   __global const int* alive, __global const float* x_c,
+                                   __global float* x_w) {
+  const int q = get_global_id(0);
+  if (q >= n_alive * width) return;
+  const int a = q / width, i = q - a * width;
+  const size_t src = ((size_t)alive[a] * S + s0 + i) * 3;
+  x_w[3 * (size_t)q + 0] = x_c[src + 0];
+  x_w[3 * (size_t)q + 1] = x_c[src + 1];
+  x_w[3 * (size_t)q + 2] = x_c[src + 2];
+}
+
+// The inverse for the wave's outputs: the encodings (lf floats per row) into the coarse
+// layout (enc_c, reused by the merged pass) and the σ logit (column 0 of dens_w, dens_stride
+// floats per row) into h0_c.
+__kernel void pipeline_wave_scatter(const int n_alive, const int S, const int s0, const int width,
+                                    const int lf, const int dens_stride,
+                                    __global const int* alive, __global const float* enc_w,
+                                    __global const float* dens_w, __global float* enc_c,
+                                    __global float* h0_c) {
+  const int q = get_global_id(0);
+  if (q >= n_alive * width) return;
+  const int a = q / width, i = q - a * width;
+  const size_t dst = (size_t)alive[a] * S + s0 + i;
+  for (int k = 0; k < lf; ++k) enc_c[dst * lf + k] = enc_w[(size_t)q * lf + k];
+  h0_c[dst] = dens_w[(size_t)q * dens_stride];
+}
+
+// done[r] = 1 when ray r needs no coarse sample at or beyond `end`: the termination index of
+// pipeline_live_count (j + 2, same accumulation in the same order) lies below `end`. Samples
+// not evaluated yet sit at a dead σ (zero weight) and move no sum, so the first j found over
+// the evaluated prefix is the one the complete pass finds.
+__kernel void pipeline_wave_done(const int n_rays, const int S, const int end, const float eps,
+                                 __global const float* w_c, __global int* done) {
+  const int r = get_global_id(0);
+  if (r >= n_rays) return;
+  __global const float* wr = w_c + (size_t)r * S;
+  float acc = 0.0f;
+  int stop = -1;
+  for (int j = 0; j + 2 < S; ++j) {
+    acc += wr[j];
+    if (1.0f - acc < eps) {
+      stop = j + 2;
+      break;
+    }
+  }
+  done[r] = stop >= 0 && stop < end ? 1 : 0;
+}
+
+// Head band (render.head_weight_threshold, LiDAR-NeRF evaluates its heads only where the
+// weight exceeds 1e-4): per ray, the contiguous band of its live samples [0, live[r]) from the
+// first to the last with w > thr. begin[r] = its first sample, count[r] = its length (0: none).
+__kernel void pipeline_head_band(const int n_rays, const int M, const float thr,
+                                 __global const int* live_offset, __global const float* w,
+                                 __global int* begin, __global int* count) {
+  const int r = get_global_id(0);
+  if (r >= n_rays) return;
+  const int live = live_offset[r + 1] - live_offset[r];
+  __global const float* wr = w + (size_t)r * M;
+  int first = -1, last = -1;
+  for (int s = 0; s < live; ++s)
+    if (wr[s] > thr) {
+      if (first < 0) first = s;
+      last = s;
+    }
+  begin[r] = first < 0 ? 0 : first;
+  count[r] = first < 0 ? 0 : last - first + 1;
+}
+
+// Band rows from a layout of `ray_stride`-spaced rays: out[band_offset[r] + i] =
+// in[base(r) + begin[r] + i] (`width` floats per row), base(r) = r·M for the full sample layout
+// (base_offset null) or base_offset[r] for the live (compacted) layout.
+__kernel void pipeline_band_gather(const int n_rays, const int M, const int width,
+                                   __global const int* base_offset, __global const int* begin,
+                                   __global const int* band_offset, __global const float* in,
+                                   __global float* out, const int use_base) {
+  const int q = get_global_id(0);
+  if (q >= n_rays * M) return;
+  const int r = q / M, i = q - r * M;
+  const int o = band_offset[r];
+  if (i >= band_offset[r + 1] - o) return;
+  const size_t src = (size_t)(use_base ? base_offset[r] : r * M) + begin[r] + i;
+  for (int k = 0; k < width; ++k) out[(size_t)(o + i) * width + k] = in[src * width + k];
+}
+
+// The inverse into the live layout: live rows of the band get the band's row, the other live
+// rows zeros (`width` floats per row).
+__kernel void pipeline_band_scatter_live(const int n_rays, const int M, const int width,
+                                         __global const int* live_offset,
+                                         __global const int* begin,
+                                         __global const int* band_offset,
+                                         __global const float* band, __global float* live) {
+  const int q = get_global_id(0);
+  if (q >= n_rays * M) return;
+  const int r = q / M, s = q - r * M;
+  const int lo = live_offset[r];
+  if (s >= live_offset[r + 1] - lo) return;
+  const int i = s - begin[r], n_band = band_offset[r + 1] - band_offset[r];
+  __global float* dst = live + (size_t)(lo + s) * width;
+  if (i >= 0 && i < n_band) {
+    __global const float* src = band + (size_t)(band_offset[r] + i) * width;
+    for (int k = 0; k < width; ++k) dst[k] = src[k];
+  } else {
+    for (int k = 0; k < width; ++k) dst[k] = 0.0f;
+  }
+}
+
+// The head outputs into the full sample layout: band samples get the band's 2 logits, every
+// other sample `off_logit` in both (sigmoid ≈ 0: LiDAR-NeRF's zero outside its weight mask).
+__kernel void pipeline_band_expand_head(const int n_rays, const int M, const float off_logit,
+                                        __global const int* begin,
+                                        __global const int* band_offset,
+                                        __global const float* head_b, __global float* head) {
+  const int q = get_global_id(0);
+  if (q >= n_rays * M) return;
+  const int r = q / M, s = q - r * M;
+  const int i = s - begin[r], n_band = band_offset[r + 1] - band_offset[r];
+  if (i >= 0 && i < n_band) {
+    const size_t row = (size_t)(band_offset[r] + i);
+    head[2 * (size_t)q + 0] = head_b[2 * row + 0];
+    head[2 * (size_t)q + 1] = head_b[2 * row + 1];
+  } else {
+    head[2 * (size_t)q + 0] = off_logit;
+    head[2 * (size_t)q + 1] = off_logit;
+  }
+}

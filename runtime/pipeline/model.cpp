@@ -13,6 +13,8 @@ constexpr int kDensStride = 16;  // density MLP output: σ logit + 15 geometric 
 constexpr float kSceneBound = 1.0f;  // normalised scene box (protocol §2)
 // σ logit of samples behind early ray termination: σ = exp(−100) ≈ 4e-44, α = 0 in float.
 constexpr float kDeadLogit = -100.0f;
+// Head logits of samples outside the head band: sigmoid(−30) ≈ 9e-14, LiDAR-NeRF's zero.
+constexpr float kOffLogit = -30.0f;
 
 field::HashGridConfig grid_config(const FieldSizes& f) {
   field::HashGridConfig g;
@@ -89,6 +91,12 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
   compact_rows_ = rt.kernel("pipeline/glue.cl", "pipeline_compact_rows");
   expand_ = rt.kernel("pipeline/glue.cl", "pipeline_expand_outputs");
   row_ray_k_ = rt.kernel("pipeline/glue.cl", "pipeline_row_ray");
+  // Coarse waves only with early termination and importance sampling (a sampling override at
+  // render time may drop the importance samples: one wave then).
+  const auto& rc = c.render;
+  waves_ = rc.stop_transmittance > 0.0f && rc.n_importance > 0
+               ? std::max(1, std::min(rc.coarse_waves, rc.n_samples))
+               : 1;
 
   const size_t R = size_t(max_rays), S = size_t(c.render.n_samples),
                M = S + size_t(c.render.n_importance), N = R * M;
@@ -114,6 +122,25 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
     x_l_ = floats(rt, N * 3), enc_l_ = floats(rt, N * lf), head_l_ = floats(rt, N * 2);
     g_h0_l_ = floats(rt, N), g_head_l_ = floats(rt, N * 2);
   }
+  band_thr_ = rc.stop_transmittance > 0.0f && rc.n_importance > 0 ? rc.head_weight_threshold : 0.0f;
+  if (band_thr_ > 0.0f) {
+    band_begin_ = floats(rt, R), band_count_ = floats(rt, R), band_offset_ = floats(rt, R + 1);
+    band_row_ray_ = floats(rt, N), dens_b_ = floats(rt, N * kDensStride);
+    head_b_ = floats(rt, N * 2), g_head_b_ = floats(rt, N * 2), g_dens_b_ = floats(rt, N * kDensStride);
+    band_k_ = rt.kernel("pipeline/glue.cl", "pipeline_head_band");
+    band_gather_ = rt.kernel("pipeline/glue.cl", "pipeline_band_gather");
+    band_scatter_ = rt.kernel("pipeline/glue.cl", "pipeline_band_scatter_live");
+    band_expand_ = rt.kernel("pipeline/glue.cl", "pipeline_band_expand_head");
+  }
+  if (waves_ > 1) {
+    const size_t wmax = (S + size_t(waves_) - 1) / size_t(waves_);  // the widest wave
+    alive_ = floats(rt, R), done_ = floats(rt, R);
+    x_w_ = floats(rt, R * wmax * 3), enc_w_ = floats(rt, R * wmax * lf);
+    fill_ = rt.kernel("pipeline/glue.cl", "pipeline_fill");
+    wave_gather_ = rt.kernel("pipeline/glue.cl", "pipeline_wave_gather");
+    wave_scatter_ = rt.kernel("pipeline/glue.cl", "pipeline_wave_scatter");
+    wave_done_ = rt.kernel("pipeline/glue.cl", "pipeline_wave_done");
+  }
   loss_buf_.fill_zero();
 }
 
@@ -133,6 +160,8 @@ int LidarNerfModel::sample(int n_rays, bool jitter, uint64_t seed, uint32_t step
   compacted_ = false;
   fwd_rays_ = 0;  // a new forward: forward_rays()'s activations are gone
   n_live_ = long(n_rays) * (S + I);
+  n_coarse_ = 0;
+  n_band_ = 0;
   if (I == 0) {
     sampler_.uniform(o_, d_, n_rays, jitter, seed, step, t_, x_);
     clamp_.set_args(n_c * 3, kSceneBound, x_);
@@ -143,11 +172,16 @@ int LidarNerfModel::sample(int n_rays, bool jitter, uint64_t seed, uint32_t step
   sampler_.uniform(o_, d_, n_rays, jitter, seed, step, t_c_, x_c_);
   clamp_.set_args(n_c * 3, kSceneBound, x_c_);
   clamp_.launch({cl::round_up(size_t(n_c) * 3, 64)}, {64});
-  encoder_->forward(params_, off_grid_, x_c_, n_c, enc_c_);
-  density_.forward(params_, off_density_, enc_c_, n_c, dens_, density_ctx_);
-  col_get_.set_args(n_c, kDensStride, 0, dens_, h0_);
-  col_get_.launch({cl::round_up(size_t(n_c), 64)}, {64});
-  renderer_.weights(t_c_, h0_, n_rays, S, w_c_);
+  if (waves_ > 1) {
+    coarse_waves(n_rays);
+  } else {
+    encoder_->forward(params_, off_grid_, x_c_, n_c, enc_c_);
+    density_.forward(params_, off_density_, enc_c_, n_c, dens_, density_ctx_);
+    col_get_.set_args(n_c, kDensStride, 0, dens_, h0_);
+    col_get_.launch({cl::round_up(size_t(n_c), 64)}, {64});
+    renderer_.weights(t_c_, h0_, n_rays, S, w_c_);
+    n_coarse_ = n_c;
+  }
   sampler_.importance(o_, d_, n_rays, S, t_c_, w_c_, jitter, seed, step, t_, x_, src_);
   const int M = S + I, n = n_rays * M;
   clamp_.set_args(n * 3, kSceneBound, x_);
@@ -167,6 +201,42 @@ int LidarNerfModel::sample(int n_rays, bool jitter, uint64_t seed, uint32_t step
   encoded_ = reuse_coarse_;
   if (cfg_.render.stop_transmittance > 0.0f) compact(n_rays, M);
   return M;
+}
+
+void LidarNerfModel::coarse_waves(int n_rays) {
+  const int S = cfg_.render.n_samples, n_c = n_rays * S, lf = encoder_->width();
+  const float eps = cfg_.render.stop_transmittance;
+  fill_.set_args(n_c, kDeadLogit, h0_);
+  fill_.launch({cl::round_up(size_t(n_c), 64)}, {64});
+  std::vector<int32_t> alive(static_cast<size_t>(n_rays));
+  for (int r = 0; r < n_rays; ++r) alive[size_t(r)] = r;
+  n_coarse_ = 0;
+  for (int k = 0; k < waves_ && !alive.empty(); ++k) {
+    // Wave k: coarse samples [s0, s1) of the rays still alive (an even split of S).
+    const int s0 = int(long(S) * k / waves_), s1 = int(long(S) * (k + 1) / waves_);
+    const int width = s1 - s0, n_alive = int(alive.size()), rows = n_alive * width;
+    alive_.write(alive.data(), alive.size() * sizeof(int32_t));
+    const size_t global = cl::round_up(size_t(rows), 64);
+    wave_gather_.set_args(n_alive, S, s0, width, alive_, x_c_, x_w_);
+    wave_gather_.launch({global}, {64});
+    encoder_->forward(params_, off_grid_, x_w_, rows, enc_w_);
+    density_.forward(params_, off_density_, enc_w_, rows, dens_, density_ctx_);
+    wave_scatter_.set_args(n_alive, S, s0, width, lf, kDensStride, alive_, enc_w_, dens_, enc_c_,
+                           h0_);
+    wave_scatter_.launch({global}, {64});
+    n_coarse_ += rows;
+    renderer_.weights(t_c_, h0_, n_rays, S, w_c_);
+    if (k + 1 == waves_) break;
+    // One host sync per wave: which rays go on (their termination index is not below s1).
+    wave_done_.set_args(n_rays, S, s1, eps, w_c_, done_);
+    wave_done_.launch({cl::round_up(size_t(n_rays), 64)}, {64});
+    const std::vector<int32_t> done = done_.read_vec<int32_t>(size_t(n_rays));
+    std::vector<int32_t> next;
+    next.reserve(alive.size());
+    for (int32_t r : alive)
+      if (!done[size_t(r)]) next.push_back(r);
+    alive.swap(next);
+  }
 }
 
 void LidarNerfModel::compact(int n_rays, int M) {
@@ -212,7 +282,10 @@ void LidarNerfModel::field_forward(int n_rays, int samples) {
   if (!encoded_ && !compacted_) encoder_->forward(params_, off_grid_, x_, n, enc_);
   density_.forward(params_, off_density_, compacted_ ? enc_l_ : enc_, rows, dens_, density_ctx_);
   dirs_.forward(d_, n_rays, dir_enc_);
-  if (compacted_) {
+  banded_ = false;
+  if (compacted_ && band_thr_ > 0.0f) {
+    head_band(n_rays, samples);
+  } else if (compacted_) {
     const field::GroupIndex index{&row_ray_, &offset_, n_rays};
     head_.forward(params_, off_head_, dens_, rows, head_l_, head_ctx_, &dir_enc_, 1, &index);
     expand_.set_args(n_rays, samples, kDensStride, kDeadLogit, offset_, dens_, head_l_, h0_,
@@ -224,6 +297,32 @@ void LidarNerfModel::field_forward(int n_rays, int samples) {
     head_.forward(params_, off_head_, dens_, n, head_out_, head_ctx_, &dir_enc_, samples);
   }
   renderer_.forward(t_, h0_, head_out_, n_rays, samples, out_, weights_);
+}
+
+void LidarNerfModel::head_band(int n_rays, int M) {
+  const size_t global = cl::round_up(size_t(n_rays) * size_t(M), 64);
+  // σ logits into the full layout (the head outputs written here are replaced below), then the
+  // weights the band is cut from: the renderer's own (same kernel arithmetic as its forward).
+  expand_.set_args(n_rays, M, kDensStride, kDeadLogit, offset_, dens_, head_l_, h0_, head_out_);
+  expand_.launch({global}, {64});
+  renderer_.weights(t_, h0_, n_rays, M, weights_);
+  band_k_.set_args(n_rays, M, band_thr_, offset_, weights_, band_begin_, band_count_);
+  band_k_.launch({cl::round_up(size_t(n_rays), 64)}, {64});
+  // The step's second host sync: the band's size sets the head's row count.
+  const std::vector<int32_t> count = band_count_.read_vec<int32_t>(size_t(n_rays));
+  std::vector<int32_t> offset(size_t(n_rays) + 1, 0);
+  for (int r = 0; r < n_rays; ++r) offset[size_t(r) + 1] = offset[size_t(r)] + count[size_t(r)];
+  n_band_ = offset.back();
+  band_offset_.write_vec(offset);
+  row_ray_k_.set_args(n_rays, band_offset_, band_row_ray_);
+  row_ray_k_.launch({cl::round_up(size_t(n_rays), 64)}, {64});
+  band_gather_.set_args(n_rays, M, kDensStride, offset_, band_begin_, band_offset_, dens_, dens_b_, 1);
+  band_gather_.launch({global}, {64});
+  const field::GroupIndex index{&band_row_ray_, &band_offset_, n_rays};
+  head_.forward(params_, off_head_, dens_b_, int(n_band_), head_b_, head_ctx_, &dir_enc_, 1, &index);
+  band_expand_.set_args(n_rays, M, kOffLogit, band_begin_, band_offset_, head_b_, head_out_);
+  band_expand_.launch({global}, {64});
+  banded_ = true;
 }
 
 void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long step,
@@ -267,12 +366,26 @@ void LidarNerfModel::backward_chain(int R, int M, cl::Buffer& grad, bool ray_gra
     const size_t global = cl::round_up(size_t(n), 64);
     compact_rows_.set_args(R, M, 1, offset_, g_h0_, g_h0_l_);
     compact_rows_.launch({global}, {64});
-    compact_rows_.set_args(R, M, 2, offset_, g_head_, g_head_l_);
-    compact_rows_.launch({global}, {64});
+    if (!banded_) {
+      compact_rows_.set_args(R, M, 2, offset_, g_head_, g_head_l_);
+      compact_rows_.launch({global}, {64});
+    }
     head_y = &head_l_, g_head = &g_head_l_, g_h0 = &g_h0_l_, x = &x_l_;
   }
-  head_.backward(params_, off_head_, head_ctx_, *head_y, *g_head, grad, off_head_, &g_dens_,
-                 &g_dir_enc_);
+  if (banded_) {
+    // The head ran on the band rows: its gradient goes into the band layout, then into the
+    // live rows (zeros outside the band: the head outputs there are constants).
+    const size_t global = cl::round_up(size_t(n), 64);
+    band_gather_.set_args(R, M, 2, offset_, band_begin_, band_offset_, g_head_, g_head_b_, 0);
+    band_gather_.launch({global}, {64});
+    head_.backward(params_, off_head_, head_ctx_, head_b_, g_head_b_, grad, off_head_, &g_dens_b_,
+                   &g_dir_enc_);
+    band_scatter_.set_args(R, M, kDensStride, offset_, band_begin_, band_offset_, g_dens_b_, g_dens_);
+    band_scatter_.launch({global}, {64});
+  } else {
+    head_.backward(params_, off_head_, head_ctx_, *head_y, *g_head, grad, off_head_, &g_dens_,
+                   &g_dir_enc_);
+  }
   col_set_.set_args(rows, kDensStride, 0, *g_h0, g_dens_);
   col_set_.launch({cl::round_up(size_t(rows), 64)}, {64});
   density_.backward(params_, off_density_, density_ctx_, dens_, g_dens_, grad, off_density_,

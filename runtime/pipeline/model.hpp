@@ -114,6 +114,11 @@ class LidarNerfModel {
   // are not evaluated (zero density). Live samples of the last sample()/train_step/render call:
   std::vector<int> live_counts() const;  // per ray (blocking read)
   long live_samples() const { return n_live_; }
+  // Coarse samples evaluated by the last sample()/train_step/render call (importance sampling
+  // only; 0 without): n_rays × n_samples in one pass, fewer with render.coarse_waves > 1.
+  long coarse_evaluated() const { return n_coarse_; }
+  // Samples the LiDAR head ran on in the last call with render.head_weight_threshold > 0.
+  long head_rows() const { return n_band_; }
 
   ModelState state() const;
   void set_state(const ModelState& s);
@@ -126,6 +131,12 @@ class LidarNerfModel {
   // Early termination: counts the live merged samples per ray (one blocking read of n_rays
   // ints), then gathers their positions and encodings into x_l_/enc_l_.
   void compact(int n_rays, int M);
+  // The coarse pass in render.coarse_waves waves (see render_config.hpp): fills enc_c_, h0_
+  // (σ logits, dead where not evaluated) and w_c_ for the n_rays × n_samples coarse samples.
+  void coarse_waves(int n_rays);
+  // The head on the band of samples with weight above render.head_weight_threshold (after the
+  // density on the live rows): fills h0_, weights_, head_out_ (full layout) and head_b_.
+  void head_band(int n_rays, int M);
   // The backward chain of the last forward (R rays, M samples per ray) from grad_out_ into
   // `grad` (every slice overwritten), and the ray gradients when `ray_grads`.
   void backward_chain(int R, int M, cl::Buffer& grad, bool ray_grads);
@@ -145,7 +156,11 @@ class LidarNerfModel {
   cl::Kernel col_get_, col_set_, clamp_, fine_points_, merge_, live_count_, compact_rows_,
       expand_, row_ray_k_;
   bool reuse_coarse_ = true, encoded_ = false, compacted_ = false;
-  long n_live_ = 0;
+  long n_live_ = 0, n_coarse_ = 0;
+  int waves_ = 1;
+  float band_thr_ = 0.0f;
+  bool banded_ = false;  // the last field_forward ran the head on the band
+  long n_band_ = 0;
   int ray_count_ = 0;
   size_t off_grid_, off_density_, off_head_;
   field::MlpContext density_ctx_, head_ctx_;
@@ -165,6 +180,15 @@ class LidarNerfModel {
   // Early termination: per-ray live counts and offsets (int32), each live row's ray, and the
   // compact (live rows only) positions, encodings, head outputs and their gradients.
   cl::Buffer count_, offset_, row_ray_, x_l_, enc_l_, head_l_, g_h0_l_, g_head_l_;
+  // Coarse waves: the alive rays of a wave, per-ray done flags (int32), the wave's positions
+  // and encodings.
+  cl::Buffer alive_, done_, x_w_, enc_w_;
+  cl::Kernel fill_, wave_gather_, wave_scatter_, wave_done_;
+  // Head band: per-ray begin / count / offsets (int32), each band row's ray, the band's
+  // density rows (head input), head outputs and their gradients.
+  cl::Buffer band_begin_, band_count_, band_offset_, band_row_ray_, dens_b_, head_b_, g_head_b_,
+      g_dens_b_;
+  cl::Kernel band_k_, band_gather_, band_scatter_, band_expand_;
 };
 
 }  // namespace sgnlf::pipeline

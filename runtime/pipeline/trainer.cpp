@@ -138,7 +138,7 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
   // uninterrupted run logs, so that its train_log.jsonl reads the same.
   bool first = true;
   const bool log_first = sum.start_step == 0;
-  double live_sum = 0.0;
+  double live_sum = 0.0, eval_s = 0.0;
   const long epoch_len = long(scene.train.size());
   for (long step = sum.start_step; step < end; ++step) {
     if (step % epoch_len == 0) policy.on_epoch(step / epoch_len, step);
@@ -173,6 +173,9 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
       const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       Json line{{"step", done}, {"lr", lr}, {"elapsed_s", el}, {"live_fraction", live},
                 {"loss", loss_json(loss)}};
+      if (cfg.render.coarse_waves > 1)  // the coarse samples the waves evaluated
+        line["coarse_fraction"] = double(model.coarse_evaluated()) /
+                                  double(long(cfg.schedule.rays_per_batch) * cfg.render.n_samples);
       line.update(policy.log_fields());
       append_line(log_path, line);
       char extra[96];
@@ -180,7 +183,15 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
       if (opt.show_progress) progress.update(done, extra + policy.progress_text());
     }
     if (ck_due) save(done);
-    if (eval_due) append_line(eval_path, Json{{"step", done}, {"metrics", opt.evaluate(done)}});
+    if (eval_due) {
+      // train_seconds: this session's wall time up to here without the evaluations (the
+      // time-to-quality clock of issue 19).
+      const auto e0 = std::chrono::steady_clock::now();
+      const double train_s = std::chrono::duration<double>(e0 - t0).count() - eval_s;
+      Json m = opt.evaluate(done);
+      eval_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - e0).count();
+      append_line(eval_path, Json{{"step", done}, {"train_seconds", train_s}, {"metrics", std::move(m)}});
+    }
   }
   sum.end_step = std::max(sum.start_step, end);
   sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -30,6 +30,17 @@ void RenderConfig::validate(const std::string& where) const {
     throw ConfigError(where + ": 'eval_depth' = '" + eval_depth +
                       "' (expected \"expected\" or \"median\")");
   check_range(where, "stop_transmittance", stop_transmittance, 0.0f, 0.5f);
+  check_range(where, "coarse_waves", coarse_waves, 1, n_samples);
+  check_range(where, "head_weight_threshold", head_weight_threshold, 0.0f, 0.1f);
+  if (head_weight_threshold > 0.0f && !(stop_transmittance > 0.0f && n_importance > 0))
+    throw ConfigError(where + ": 'head_weight_threshold' = " +
+                      std::to_string(head_weight_threshold) +
+                      " needs early termination ('stop_transmittance' > 0) and importance "
+                      "sampling ('n_importance' > 0)");
+  if (coarse_waves > 1 && !(stop_transmittance > 0.0f && n_importance > 0))
+    throw ConfigError(where + ": 'coarse_waves' = " + std::to_string(coarse_waves) +
+                      " needs early termination ('stop_transmittance' > 0) and importance "
+                      "sampling ('n_importance' > 0)");
   check_range(where, "weights.depth", weights.depth, 0.0f, 1e9f);
   check_range(where, "weights.ret", weights.ret, 0.0f, 1e9f);
   check_range(where, "weights.intensity", weights.intensity, 0.0f, 1e9f);
@@ -47,6 +58,7 @@ RenderConfig RenderConfig::from_json(const Json& j, const std::string& where, Re
   r.get("n_importance", c.n_importance).get("jitter", c.jitter);
   r.get("eval_samples", c.eval_samples).get("eval_importance", c.eval_importance);
   r.get("stop_transmittance", c.stop_transmittance).get("eval_depth", c.eval_depth);
+  r.get("coarse_waves", c.coarse_waves).get("head_weight_threshold", c.head_weight_threshold);
   r.get("patch_rows", c.patch_rows).get("patch_cols", c.patch_cols);
   r.get("grad_l1", c.grad_l1).get("grad_clip_m", c.grad_clip_m);
   if (r.has("weights")) {
@@ -83,6 +95,8 @@ Json RenderConfig::to_json() const {
   if (eval_importance != -1) j["eval_importance"] = eval_importance;
   if (eval_depth != "expected") j["eval_depth"] = eval_depth;
   if (stop_transmittance != 0.0f) j["stop_transmittance"] = stop_transmittance;
+  if (coarse_waves != 1) j["coarse_waves"] = coarse_waves;
+  if (head_weight_threshold != 0.0f) j["head_weight_threshold"] = head_weight_threshold;
   return j;
 }
 

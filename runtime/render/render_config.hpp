@@ -37,6 +37,21 @@ struct RenderConfig {
   // below this (plus one coarse bin) are not evaluated; their weight is below it. 0: off, every
   // sample evaluated (exact). Applies to training and rendering.
   float stop_transmittance = 0.0f;
+  // Early termination of the coarse pass too (issue 19): the uniform samples are evaluated in
+  // this many waves front to back, and a ray whose coarse transmittance fell below
+  // stop_transmittance (plus the termination's margin bin) takes no part in later waves. The
+  // samples it skips lie behind the termination point: the merged samples' live prefix, its
+  // encodings and the renderer's output are those of the one-wave pass, the importance pdf
+  // loses at most the weight behind termination (< stop_transmittance). 1: every coarse sample
+  // evaluated in one pass (the published behaviour). Needs stop_transmittance and importance
+  // sampling.
+  int coarse_waves = 1;
+  // The LiDAR head only where a sample's weight exceeds this (LiDAR-NeRF's released code uses
+  // 1e-4): per ray, the band from the first to the last live sample above it; the head
+  // outputs of the other samples are taken as zero (their share of the return probability and
+  // intensity is below this weight each; depth is untouched). 0: the head runs on every live
+  // sample. Needs stop_transmittance and importance sampling (it works on the live samples).
+  float head_weight_threshold = 0.0f;
   RangeLossWeights weights;
   // Gradient loss on patch batches (LiDAR-NeRF: 2 × 8 patches, L1, GT steps ≥ 1 cm ignored).
   int patch_rows = 2;
@@ -50,7 +65,8 @@ struct RenderConfig {
   // Reads the keys of this struct (all optional, unknown keys rejected) and validates.
   static RenderConfig from_json(const Json& j, const std::string& where);
   static RenderConfig from_json(const Json& j, const std::string& where, RenderConfig defaults);
-  // eval_samples / eval_importance / eval_depth / stop_transmittance appear only when set, so configs without them keep their
+  // eval_samples / eval_importance / eval_depth / stop_transmittance / coarse_waves /
+  // head_weight_threshold appear only when set, so configs without them keep their
   // JSON and hash (run folders and baselines written before they existed still load).
   Json to_json() const;
   // Uniform bin width in normalised units: also the last sample's δ (see kernels/render/volume.cl).

@@ -63,6 +63,15 @@ TEST_CASE("bad values are named", "[pipeline][config]") {
   j = preset_json("lidar-nerf", "smoke");
   j["render"]["stop_transmittance"] = 0.9;  // a threshold that would cut visible surfaces
   CHECK(error_of([&] { train_config_from_json(j, "c"); }).find("stop_transmittance") != std::string::npos);
+  j = preset_json("lidar-nerf", "smoke");
+  j["render"]["stop_transmittance"] = 0.0;  // waves need early termination
+  j["render"]["coarse_waves"] = 4;
+  CHECK(error_of([&] { train_config_from_json(j, "c"); }).find("coarse_waves") != std::string::npos);
+  j["render"]["stop_transmittance"] = 1e-4;
+  j["render"]["coarse_waves"] = 0;
+  CHECK(error_of([&] { train_config_from_json(j, "c"); }).find("coarse_waves") != std::string::npos);
+  j["render"]["coarse_waves"] = 4;
+  CHECK(train_config_from_json(j, "c").render.coarse_waves == 4);
   CHECK(error_of([&] { preset_json("lidar-nerf", "huge"); }).find("huge") != std::string::npos);
 }
 

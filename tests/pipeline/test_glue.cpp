@@ -193,3 +193,183 @@ TEST_CASE("early ray termination kernels match the host reference", "[pipeline][
   CHECK(bh0.read_vec<float>(h0_ref.size()) == h0_ref);
   CHECK(bhead.read_vec<float>(head_ref.size()) == head_ref);
 }
+
+TEST_CASE("coarse wave kernels match the host reference", "[pipeline][glue][device]") {
+  auto& rt = test::runtime();
+  const int R = 41, S = 16, lf = 5, stride = 16;
+  const float eps = 1e-3f;
+  Rng rng(23);
+  // Coarse weights of rays that become opaque at a random sample (≥ S: never).
+  std::vector<float> w_c(size_t(R) * S);
+  for (int r = 0; r < R; ++r) {
+    const int hit = int(rng.next_u64() % uint64_t(S + 3));
+    float trans = 1.0f;
+    for (int j = 0; j < S; ++j) {
+      const float alpha = j == hit ? 0.99999f : (j > hit ? 0.5f : 0.02f);
+      w_c[size_t(r) * S + j] = trans * alpha;
+      trans *= 1.0f - alpha;
+    }
+  }
+  auto bwc = cl::Buffer::from(rt, w_c);
+  cl::Buffer bdone(rt, size_t(R) * 4);
+  auto done_k = rt.kernel("pipeline/glue.cl", "pipeline_wave_done");
+  int n_done_mid = 0, n_done_end = 0;
+  for (int end : {4, 8, 12, 16}) {
+    done_k.set_args(R, S, end, eps, bwc, bdone).launch({cl::round_up(size_t(R), 64)}, {64}).wait();
+    const auto done = bdone.read_vec<int32_t>(size_t(R));
+    for (int r = 0; r < R; ++r) {
+      // Reference: the termination index j + 2 of pipeline_live_count lies below `end`.
+      float acc = 0.0f;
+      int stop = -1;
+      for (int j = 0; j + 2 < S; ++j) {
+        acc += w_c[size_t(r) * S + j];
+        if (1.0f - acc < eps) {
+          stop = j + 2;
+          break;
+        }
+      }
+      const int expect = stop >= 0 && stop < end ? 1 : 0;
+      CHECK(done[size_t(r)] == expect);
+      if (end == 8) n_done_mid += expect;
+      if (end == 16) n_done_end += expect;
+    }
+  }
+  CHECK(n_done_mid > 3);        // some rays stop in the first half
+  CHECK(n_done_end > n_done_mid);  // more by the end
+  CHECK(n_done_end < R);        // and some never
+
+  // Gather of one wave's rows of the alive rays, and the scatter of its outputs back.
+  const int s0 = 5, width = 6;
+  std::vector<int32_t> alive;
+  for (int r = 0; r < R; ++r)
+    if (rng.uniform(0, 1) < 0.6f) alive.push_back(r);
+  const int n_alive = int(alive.size()), rows = n_alive * width;
+  std::vector<float> x_c(size_t(R) * S * 3), enc_w(size_t(rows) * lf), dens_w(size_t(rows) * stride);
+  for (auto& v : x_c) v = rng.uniform(-1, 1);
+  for (auto& v : enc_w) v = rng.uniform(-1, 1);
+  for (auto& v : dens_w) v = rng.uniform(-3, 3);
+  auto balive = cl::Buffer::from(rt, alive), bxc = cl::Buffer::from(rt, x_c);
+  cl::Buffer bxw(rt, size_t(rows) * 3 * 4);
+  const size_t global = cl::round_up(size_t(rows), 64);
+  rt.kernel("pipeline/glue.cl", "pipeline_wave_gather")
+      .set_args(n_alive, S, s0, width, balive, bxc, bxw)
+      .launch({global}, {64})
+      .wait();
+  std::vector<float> xw_ref;
+  for (int a = 0; a < n_alive; ++a)
+    for (int i = 0; i < width; ++i)
+      for (int c = 0; c < 3; ++c) xw_ref.push_back(x_c[(size_t(alive[size_t(a)]) * S + s0 + i) * 3 + c]);
+  CHECK(bxw.read_vec<float>(xw_ref.size()) == xw_ref);
+  std::vector<float> enc_ref(size_t(R) * S * lf, 7.0f), h0_ref(size_t(R) * S, -100.0f);
+  auto bencw = cl::Buffer::from(rt, enc_w), bdensw = cl::Buffer::from(rt, dens_w);
+  auto benc = cl::Buffer::from(rt, enc_ref), bh0 = cl::Buffer::from(rt, h0_ref);
+  rt.kernel("pipeline/glue.cl", "pipeline_wave_scatter")
+      .set_args(n_alive, S, s0, width, lf, stride, balive, bencw, bdensw, benc, bh0)
+      .launch({global}, {64})
+      .wait();
+  for (int a = 0; a < n_alive; ++a)
+    for (int i = 0; i < width; ++i) {
+      const size_t q = size_t(a) * width + i, dst = size_t(alive[size_t(a)]) * S + s0 + i;
+      for (int k = 0; k < lf; ++k) enc_ref[dst * lf + k] = enc_w[q * lf + k];
+      h0_ref[dst] = dens_w[q * stride];
+    }
+  CHECK(benc.read_vec<float>(enc_ref.size()) == enc_ref);
+  CHECK(bh0.read_vec<float>(h0_ref.size()) == h0_ref);
+  // pipeline_fill.
+  cl::Buffer bf(rt, 70 * 4);
+  rt.kernel("pipeline/glue.cl", "pipeline_fill").set_args(70, -3.5f, bf).launch({128}, {64}).wait();
+  CHECK(bf.read_vec<float>(70) == std::vector<float>(70, -3.5f));
+}
+
+TEST_CASE("head band kernels match the host reference", "[pipeline][glue][device]") {
+  auto& rt = test::runtime();
+  const int R = 37, M = 20, stride = 16;
+  const float thr = 1e-4f;
+  Rng rng(29);
+  // Live prefixes of random length, weights with a random band above thr (some rays none).
+  std::vector<int32_t> live_off{0};
+  std::vector<float> w(size_t(R) * M, 0.0f);
+  for (int r = 0; r < R; ++r) {
+    const int live = int(rng.next_u64() % uint64_t(M + 1));
+    live_off.push_back(live_off.back() + live);
+    for (int s = 0; s < M; ++s)
+      w[size_t(r) * M + s] = rng.uniform(0, 1) < 0.3f ? rng.uniform(0.0f, 0.5f) : rng.uniform(0.0f, 0.9f * thr);
+  }
+  auto blo = cl::Buffer::from(rt, live_off), bw = cl::Buffer::from(rt, w);
+  cl::Buffer bbegin(rt, size_t(R) * 4), bcount(rt, size_t(R) * 4);
+  rt.kernel("pipeline/glue.cl", "pipeline_head_band")
+      .set_args(R, M, thr, blo, bw, bbegin, bcount)
+      .launch({cl::round_up(size_t(R), 64)}, {64})
+      .wait();
+  const auto begin = bbegin.read_vec<int32_t>(size_t(R)), count = bcount.read_vec<int32_t>(size_t(R));
+  std::vector<int32_t> band_off{0};
+  int empty = 0, partial = 0;
+  for (int r = 0; r < R; ++r) {
+    const int live = live_off[size_t(r) + 1] - live_off[size_t(r)];
+    int first = -1, last = -1;
+    for (int s = 0; s < live; ++s)
+      if (w[size_t(r) * M + s] > thr) {
+        if (first < 0) first = s;
+        last = s;
+      }
+    const int eb = first < 0 ? 0 : first, ec = first < 0 ? 0 : last - first + 1;
+    CHECK(begin[size_t(r)] == eb);
+    CHECK(count[size_t(r)] == ec);
+    empty += ec == 0;
+    partial += ec > 0 && ec < live;
+    band_off.push_back(band_off.back() + ec);
+  }
+  CHECK(empty > 0);
+  CHECK(partial > 5);
+  const int n_band = band_off.back(), n_live = live_off.back();
+  auto bbo = cl::Buffer::from(rt, band_off);
+  const size_t global = cl::round_up(size_t(R) * M, 64);
+  // Gather from the live layout (width 16) and from the full layout (width 2).
+  std::vector<float> live_rows(size_t(n_live) * stride), full_rows(size_t(R) * M * 2);
+  for (auto& v : live_rows) v = rng.uniform(-1, 1);
+  for (auto& v : full_rows) v = rng.uniform(-1, 1);
+  auto blive = cl::Buffer::from(rt, live_rows), bfull = cl::Buffer::from(rt, full_rows);
+  cl::Buffer bgl(rt, size_t(n_band) * stride * 4), bgf(rt, size_t(n_band) * 2 * 4);
+  auto gather = rt.kernel("pipeline/glue.cl", "pipeline_band_gather");
+  gather.set_args(R, M, stride, blo, bbegin, bbo, blive, bgl, 1).launch({global}, {64}).wait();
+  gather.set_args(R, M, 2, blo, bbegin, bbo, bfull, bgf, 0).launch({global}, {64}).wait();
+  std::vector<float> gl_ref, gf_ref;
+  for (int r = 0; r < R; ++r)
+    for (int i = 0; i < count[size_t(r)]; ++i) {
+      const size_t lrow = size_t(live_off[size_t(r)] + begin[size_t(r)] + i);
+      const size_t frow = size_t(r) * M + size_t(begin[size_t(r)] + i);
+      for (int k = 0; k < stride; ++k) gl_ref.push_back(live_rows[lrow * stride + k]);
+      for (int k = 0; k < 2; ++k) gf_ref.push_back(full_rows[frow * 2 + k]);
+    }
+  CHECK(bgl.read_vec<float>(gl_ref.size()) == gl_ref);
+  CHECK(bgf.read_vec<float>(gf_ref.size()) == gf_ref);
+  // Scatter of band rows into the live layout (zeros elsewhere) and the head expansion.
+  auto bscat = cl::Buffer::from(rt, std::vector<float>(size_t(n_live) * stride, 5.0f));
+  rt.kernel("pipeline/glue.cl", "pipeline_band_scatter_live")
+      .set_args(R, M, stride, blo, bbegin, bbo, bgl, bscat)
+      .launch({global}, {64})
+      .wait();
+  std::vector<float> scat_ref(size_t(n_live) * stride, 0.0f);
+  for (int r = 0; r < R; ++r)
+    for (int i = 0; i < count[size_t(r)]; ++i) {
+      const size_t lrow = size_t(live_off[size_t(r)] + begin[size_t(r)] + i);
+      for (int k = 0; k < stride; ++k) scat_ref[lrow * stride + k] = live_rows[lrow * stride + k];
+    }
+  CHECK(bscat.read_vec<float>(scat_ref.size()) == scat_ref);
+  std::vector<float> head_b(size_t(n_band) * 2);
+  for (auto& v : head_b) v = rng.uniform(-3, 3);
+  auto bhb = cl::Buffer::from(rt, head_b);
+  auto bhead = cl::Buffer::from(rt, std::vector<float>(size_t(R) * M * 2, 9.0f));
+  rt.kernel("pipeline/glue.cl", "pipeline_band_expand_head")
+      .set_args(R, M, -30.0f, bbegin, bbo, bhb, bhead)
+      .launch({global}, {64})
+      .wait();
+  std::vector<float> head_ref(size_t(R) * M * 2, -30.0f);
+  for (int r = 0; r < R; ++r)
+    for (int i = 0; i < count[size_t(r)]; ++i) {
+      const size_t q = size_t(r) * M + size_t(begin[size_t(r)] + i), row = size_t(band_off[size_t(r)] + i);
+      head_ref[2 * q] = head_b[2 * row];
+      head_ref[2 * q + 1] = head_b[2 * row + 1];
+    }
+  CHECK(bhead.read_vec<float>(head_ref.size()) == head_ref);
+}

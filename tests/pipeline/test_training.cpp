@@ -3,6 +3,7 @@
 // kept, ray batches keyed by (seed, step), and a loss that decreases.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -218,4 +219,115 @@ TEST_CASE("early ray termination: exact while no ray terminates, within its thre
   INFO("worst |depth diff| " << worst_depth << " (far " << far << "), worst |prob diff| " << worst_prob);
   CHECK(worst_depth <= 4 * eps * far);
   CHECK(worst_prob <= 4 * eps);
+
+  // Coarse waves (render.coarse_waves): the coarse pass stops rays too. The live prefix must
+  // match the one-wave pass (the termination index is found over the same weights); the
+  // output may move only through the importance pdf, which loses the weight behind
+  // termination (< eps): bounded like the termination itself. Fewer coarse samples evaluated.
+  TrainConfig cw = ce;
+  cw.render.coarse_waves = 4;
+  LidarNerfModel waves(test::runtime(), cw, float(scene.norm.scale), 512);
+  waves.set_state(st);
+  const auto wave_out = waves.render_rays(o, dir, 512);
+  const auto wave_live = waves.live_counts();
+  const int S = c.render.n_samples;
+  INFO("coarse samples evaluated: one wave " << cut.coarse_evaluated() << ", four waves "
+                                             << waves.coarse_evaluated() << " of " << 512 * S);
+  CHECK(cut.coarse_evaluated() == 512L * S);
+  CHECK(waves.coarse_evaluated() < 512L * S * 9 / 10);
+  long same_live = 0;
+  for (size_t k = 0; k < live.size(); ++k) same_live += live[k] == wave_live[k];
+  INFO("rays whose live count matches: " << same_live << " of 512");
+  CHECK(same_live >= 500);
+  double wave_depth = 0, wave_prob = 0;
+  for (int k = 0; k < 512; ++k) {
+    wave_depth = std::max(wave_depth, double(std::fabs(full[3 * size_t(k)] - wave_out[3 * size_t(k)])));
+    wave_prob = std::max(wave_prob, double(std::fabs(full[3 * size_t(k) + 1] - wave_out[3 * size_t(k) + 1])));
+  }
+  INFO("waves: worst |depth diff| " << wave_depth << ", worst |prob diff| " << wave_prob);
+  CHECK(wave_depth <= 4 * eps * far);
+  CHECK(wave_prob <= 4 * eps);
+
+  // Head band (render.head_weight_threshold): depth is the density's alone (bit-identical);
+  // return probability and intensity lose at most the band-outside samples' weight each.
+  const float thr = 1e-4f;
+  TrainConfig cb = ce;
+  cb.render.head_weight_threshold = thr;
+  LidarNerfModel band(test::runtime(), cb, float(scene.norm.scale), 512);
+  band.set_state(st);
+  const auto band_out = band.render_rays(o, dir, 512);
+  INFO("head rows " << band.head_rows() << " of " << n_live << " live samples");
+  CHECK(band.head_rows() > 0);
+  CHECK(band.head_rows() < n_live * 3 / 4);
+  double band_prob = 0, band_int = 0;
+  bool same_depth = true;
+  for (int k = 0; k < 512; ++k) {
+    same_depth = same_depth && band_out[3 * size_t(k)] == part[3 * size_t(k)];
+    band_prob = std::max(band_prob, double(std::fabs(part[3 * size_t(k) + 1] - band_out[3 * size_t(k) + 1])));
+    band_int = std::max(band_int, double(std::fabs(part[3 * size_t(k) + 2] - band_out[3 * size_t(k) + 2])));
+  }
+  CHECK(same_depth);
+  INFO("band: worst |prob diff| " << band_prob << ", worst |intensity diff| " << band_int);
+  CHECK(band_prob <= M * thr);
+  CHECK(band_int <= M * thr);
+
+  // Its backward. The head's parameters do not move the band: central differences of the
+  // step's loss. The density MLP's and the grid's may (and they move the importance samples,
+  // which the backward holds fixed as the peers do, so differences do not apply to them at
+  // all): against the backward without the band, which they must match up to the dropped
+  // head outputs' share.
+  const RayBatch b = draw_ray_batch(scene, cb, 7, 160);
+  auto gradient_of = [&](LidarNerfModel& m) {
+    m.set_state(st);
+    m.forward_backward(b, 7, 160);
+    m.read_loss();
+    return m.read_gradient();
+  };
+  const auto grad_cut = gradient_of(cut);
+  const auto grad = gradient_of(band);
+  auto loss_at = [&](size_t k, float v) {
+    ModelState sp = st;
+    sp.params[k] += v;
+    band.set_state(sp);
+    band.forward_backward(b, 7, 160);
+    return double(band.read_loss().total());
+  };
+  const auto& hs = band.layout().slice("head_mlp");
+  std::vector<size_t> idx(hs.count);
+  for (size_t k = 0; k < hs.count; ++k) idx[k] = hs.offset + k;
+  std::partial_sort(idx.begin(), idx.begin() + 4, idx.end(), [&](size_t a, size_t c2) {
+    return std::fabs(grad[a]) > std::fabs(grad[c2]);
+  });
+  for (int j = 0; j < 4; ++j) {  // the 4 head parameters with the largest gradient
+    const size_t k = idx[size_t(j)];
+    const float h = 1e-3f;
+    const double fd = (loss_at(k, h) - loss_at(k, -h)) / (2.0 * h);
+    INFO("head parameter " << k << ": analytic " << grad[k] << ", numeric " << fd);
+    CHECK(std::fabs(fd - grad[k]) <= 0.02 * std::fabs(grad[k]) + 1e-4);
+  }
+  for (const char* slice : {"density_mlp", "hash_grid"}) {
+    const auto& sl = band.layout().slice(slice);
+    double diff = 0, norm = 0;
+    for (size_t k = sl.offset; k < sl.offset + sl.count; ++k) {
+      diff += (double(grad[k]) - grad_cut[k]) * (double(grad[k]) - grad_cut[k]);
+      norm += double(grad_cut[k]) * grad_cut[k];
+    }
+    INFO(slice << ": |g_band − g_all| / |g_all| = " << std::sqrt(diff / norm));
+    CHECK(norm > 0);
+    CHECK(std::sqrt(diff / norm) < 1e-3);
+  }
+}
+
+TEST_CASE("coarse waves: exact while no ray terminates", "[pipeline][train][device]") {
+  // At initialisation nothing terminates: every wave runs on every ray, and the split coarse
+  // pass (gather, encode, density, scatter per wave) must give the one-pass parameters bit for bit.
+  const Dataset& d = test::tiny_dataset();
+  const Scene scene = make_scene(d);
+  const TrainConfig one = test::tiny_config(Json{{"render", {{"stop_transmittance", 1e-4}}}});
+  const TrainConfig four = test::tiny_config(
+      Json{{"render", {{"stop_transmittance", 1e-4}, {"coarse_waves", 4}}}});
+  const auto p_one = train_params(scene, one, 7, test::temp_dir("waves_one"));
+  const auto p_four = train_params(scene, four, 7, test::temp_dir("waves_four"));
+  REQUIRE(p_one.size() == p_four.size());
+  CHECK(p_one == p_four);
 }
