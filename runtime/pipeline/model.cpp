@@ -91,12 +91,9 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
   compact_rows_ = rt.kernel("pipeline/glue.cl", "pipeline_compact_rows");
   expand_ = rt.kernel("pipeline/glue.cl", "pipeline_expand_outputs");
   row_ray_k_ = rt.kernel("pipeline/glue.cl", "pipeline_row_ray");
-  // Coarse waves only with early termination and importance sampling (a sampling override at
-  // render time may drop the importance samples: one wave then).
+  // Coarse waves and the head band only with early termination.
   const auto& rc = c.render;
-  waves_ = rc.stop_transmittance > 0.0f && rc.n_importance > 0
-               ? std::max(1, std::min(rc.coarse_waves, rc.n_samples))
-               : 1;
+  waves_ = rc.stop_transmittance > 0.0f ? std::max(1, std::min(rc.coarse_waves, rc.n_samples)) : 1;
 
   const size_t R = size_t(max_rays), S = size_t(c.render.n_samples),
                M = S + size_t(c.render.n_importance), N = R * M;
@@ -117,12 +114,12 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
   g_h0_ = floats(rt, N), g_head_ = floats(rt, N * 2);
   g_dens_ = floats(rt, N * kDensStride), g_enc_ = floats(rt, N * lf);
   g_dir_enc_ = floats(rt, R * enc_dim);
-  if (c.render.stop_transmittance > 0.0f && c.render.n_importance > 0) {
+  if (c.render.stop_transmittance > 0.0f) {
     count_ = floats(rt, R), offset_ = floats(rt, R + 1), row_ray_ = floats(rt, N);
     x_l_ = floats(rt, N * 3), enc_l_ = floats(rt, N * lf), head_l_ = floats(rt, N * 2);
     g_h0_l_ = floats(rt, N), g_head_l_ = floats(rt, N * 2);
   }
-  band_thr_ = rc.stop_transmittance > 0.0f && rc.n_importance > 0 ? rc.head_weight_threshold : 0.0f;
+  band_thr_ = rc.stop_transmittance > 0.0f ? rc.head_weight_threshold : 0.0f;
   if (band_thr_ > 0.0f) {
     band_begin_ = floats(rt, R), band_count_ = floats(rt, R), band_offset_ = floats(rt, R + 1);
     band_row_ray_ = floats(rt, N), dens_b_ = floats(rt, N * kDensStride);
@@ -162,7 +159,8 @@ int LidarNerfModel::sample(int n_rays, bool jitter, uint64_t seed, uint32_t step
   n_live_ = long(n_rays) * (S + I);
   n_coarse_ = 0;
   n_band_ = 0;
-  if (I == 0) {
+  const bool terminate = cfg_.render.stop_transmittance > 0.0f;
+  if (I == 0 && !terminate) {
     sampler_.uniform(o_, d_, n_rays, jitter, seed, step, t_, x_);
     clamp_.set_args(n_c * 3, kSceneBound, x_);
     clamp_.launch({cl::round_up(size_t(n_c) * 3, 64)}, {64});
@@ -181,6 +179,18 @@ int LidarNerfModel::sample(int n_rays, bool jitter, uint64_t seed, uint32_t step
     col_get_.launch({cl::round_up(size_t(n_c), 64)}, {64});
     renderer_.weights(t_c_, h0_, n_rays, S, w_c_);
     n_coarse_ = n_c;
+  }
+  if (I == 0) {
+    // Early termination of uniform-only sampling (GeoNLF's, SG-NLF's): the pass above found
+    // each ray's termination point; the sample set is the same uniform one (drawn again: the
+    // same seed and step give the same samples), and its live prefix reuses the pass's
+    // encodings (enc_c_: the layout of S samples per ray is the merged layout here).
+    sampler_.uniform(o_, d_, n_rays, jitter, seed, step, t_, x_);
+    clamp_.set_args(n_c * 3, kSceneBound, x_);
+    clamp_.launch({cl::round_up(size_t(n_c) * 3, 64)}, {64});
+    encoded_ = reuse_coarse_;
+    compact(n_rays, S);
+    return S;
   }
   sampler_.importance(o_, d_, n_rays, S, t_c_, w_c_, jitter, seed, step, t_, x_, src_);
   const int M = S + I, n = n_rays * M;
@@ -257,7 +267,9 @@ void LidarNerfModel::compact(int n_rays, int M) {
   const int n = int(n_live_);
   if (encoded_) {
     const int lf = encoder_->width();
-    compact_rows_.set_args(n_rays, M, lf, offset_, enc_, enc_l_);
+    // Uniform-only sampling keeps its encodings in the coarse buffer (same layout, M = S).
+    const cl::Buffer& enc = cfg_.render.n_importance == 0 ? enc_c_ : enc_;
+    compact_rows_.set_args(n_rays, M, lf, offset_, enc, enc_l_);
     compact_rows_.launch({global}, {64});
   } else {
     encoder_->forward(params_, off_grid_, x_l_, n, enc_l_);

@@ -32,15 +32,13 @@ void RenderConfig::validate(const std::string& where) const {
   check_range(where, "stop_transmittance", stop_transmittance, 0.0f, 0.5f);
   check_range(where, "coarse_waves", coarse_waves, 1, n_samples);
   check_range(where, "head_weight_threshold", head_weight_threshold, 0.0f, 0.1f);
-  if (head_weight_threshold > 0.0f && !(stop_transmittance > 0.0f && n_importance > 0))
+  if (head_weight_threshold > 0.0f && !(stop_transmittance > 0.0f))
     throw ConfigError(where + ": 'head_weight_threshold' = " +
                       std::to_string(head_weight_threshold) +
-                      " needs early termination ('stop_transmittance' > 0) and importance "
-                      "sampling ('n_importance' > 0)");
-  if (coarse_waves > 1 && !(stop_transmittance > 0.0f && n_importance > 0))
+                      " needs early termination ('stop_transmittance' > 0)");
+  if (coarse_waves > 1 && !(stop_transmittance > 0.0f))
     throw ConfigError(where + ": 'coarse_waves' = " + std::to_string(coarse_waves) +
-                      " needs early termination ('stop_transmittance' > 0) and importance "
-                      "sampling ('n_importance' > 0)");
+                      " needs early termination ('stop_transmittance' > 0)");
   check_range(where, "weights.depth", weights.depth, 0.0f, 1e9f);
   check_range(where, "weights.ret", weights.ret, 0.0f, 1e9f);
   check_range(where, "weights.intensity", weights.intensity, 0.0f, 1e9f);

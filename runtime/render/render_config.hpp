@@ -32,10 +32,12 @@ struct RenderConfig {
   // weight reaches 1/2 (a diagnostic: it cannot blend a foreground edge with the background).
   // Training always uses the expected depth.
   std::string eval_depth = "expected";
-  // Early ray termination (instant-ngp / torch-ngp's transmittance threshold), with importance
-  // sampling only: merged samples behind the point where the coarse pass's transmittance drops
-  // below this (plus one coarse bin) are not evaluated; their weight is below it. 0: off, every
-  // sample evaluated (exact). Applies to training and rendering.
+  // Early ray termination (instant-ngp / torch-ngp's transmittance threshold): samples behind
+  // the point where a density-only pass's transmittance drops below this (plus one coarse bin)
+  // are not evaluated; their weight is below it. With importance sampling that pass is the
+  // coarse pass; with uniform samples only (GeoNLF, SG-NLF) it is a density-only pass over the
+  // same samples, whose encodings the training pass reuses. 0: off, every sample evaluated
+  // (exact). Applies to training and rendering.
   float stop_transmittance = 0.0f;
   // Early termination of the coarse pass too (issue 19): the uniform samples are evaluated in
   // this many waves front to back, and a ray whose coarse transmittance fell below
@@ -43,14 +45,13 @@ struct RenderConfig {
   // samples it skips lie behind the termination point: the merged samples' live prefix, its
   // encodings and the renderer's output are those of the one-wave pass, the importance pdf
   // loses at most the weight behind termination (< stop_transmittance). 1: every coarse sample
-  // evaluated in one pass (the published behaviour). Needs stop_transmittance and importance
-  // sampling.
+  // evaluated in one pass (the published behaviour). Needs stop_transmittance.
   int coarse_waves = 1;
   // The LiDAR head only where a sample's weight exceeds this (LiDAR-NeRF's released code uses
   // 1e-4): per ray, the band from the first to the last live sample above it; the head
   // outputs of the other samples are taken as zero (their share of the return probability and
   // intensity is below this weight each; depth is untouched). 0: the head runs on every live
-  // sample. Needs stop_transmittance and importance sampling (it works on the live samples).
+  // sample. Needs stop_transmittance (it works on the live samples).
   float head_weight_threshold = 0.0f;
   RangeLossWeights weights;
   // Gradient loss on patch batches (LiDAR-NeRF: 2 × 8 patches, L1, GT steps ≥ 1 cm ignored).

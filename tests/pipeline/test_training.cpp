@@ -37,6 +37,27 @@ std::vector<float> train_params(const Scene& scene, const TrainConfig& c, uint64
   return model.state().params;
 }
 
+// A field that terminates rays: `c` trained 150 tiny steps (translucent), then every density
+// raised (the σ logit's output bias + 4, σ × 55) so that rays become opaque. Left in `model`.
+ModelState opaque_state(LidarNerfModel& model, const Scene& scene, const TrainConfig& c,
+                        const std::string& dir) {
+  TrainOptions opt;
+  opt.run_dir = test::temp_dir(dir);
+  opt.seed = 3;
+  opt.show_progress = false;
+  train(model, scene, c, opt);
+  ModelState st = model.state();
+  const auto& f = c.field;
+  const field::Mlp dens(test::runtime(),
+                        field::make_mlp_spec(f.levels * f.features_per_level, f.density_hidden, 1,
+                                             1 + f.geo_features, field::Activation::Relu));
+  const size_t sigma_bias = model.layout().slice("density_mlp").offset + dens.layer_offset(1) +
+                            size_t(f.density_hidden) * size_t(field::Mlp::pad16(1 + f.geo_features));
+  st.params[sigma_bias] += 4.0f;
+  model.set_state(st);
+  return st;
+}
+
 }  // namespace
 
 TEST_CASE("ray batches are keyed by (seed, step) and visit training frames only",
@@ -175,22 +196,7 @@ TEST_CASE("early ray termination: exact while no ray terminates, within its thre
   const TrainConfig c = test::tiny_config(
       Json{{"schedule", {{"iterations", 150}, {"checkpoint_every", 0}}}});
   LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
-  TrainOptions opt;
-  opt.run_dir = test::temp_dir("ert_trained");
-  opt.seed = 3;
-  opt.show_progress = false;
-  train(model, scene, c, opt);
-  // 150 tiny steps leave the field translucent: raise every density (the σ logit's output
-  // bias + 4, σ × 55) so that rays become opaque and terminate.
-  ModelState st = model.state();
-  const auto& f = c.field;
-  const field::Mlp dens(test::runtime(),
-                        field::make_mlp_spec(f.levels * f.features_per_level, f.density_hidden, 1,
-                                             1 + f.geo_features, field::Activation::Relu));
-  const size_t sigma_bias = model.layout().slice("density_mlp").offset + dens.layer_offset(1) +
-                            size_t(f.density_hidden) * size_t(field::Mlp::pad16(1 + f.geo_features));
-  st.params[sigma_bias] += 4.0f;
-  model.set_state(st);
+  const ModelState st = opaque_state(model, scene, c, "ert_trained");
   const float eps = 1e-3f;
   TrainConfig ce = c;
   ce.render.stop_transmittance = eps;
@@ -330,4 +336,56 @@ TEST_CASE("coarse waves: exact while no ray terminates", "[pipeline][train][devi
   const auto p_four = train_params(scene, four, 7, test::temp_dir("waves_four"));
   REQUIRE(p_one.size() == p_four.size());
   CHECK(p_one == p_four);
+}
+
+TEST_CASE("early termination of uniform-only sampling: exact at initialisation, bounded after",
+          "[pipeline][train][device]") {
+  // GeoNLF's and SG-NLF's sampling (uniform samples only) with render.stop_transmittance: a
+  // density-only pass finds the termination point, the training pass runs on the live prefix.
+  const Dataset& d = test::tiny_dataset();
+  const Scene scene = make_scene(d);
+  const Json uniform{{"n_importance", 0}, {"n_samples", 48}};
+  const TrainConfig exact = test::tiny_config(Json{{"render", uniform}});
+  Json early_j = uniform, waves_j = uniform;
+  early_j["stop_transmittance"] = 1e-4;
+  waves_j["stop_transmittance"] = 1e-4;
+  waves_j["coarse_waves"] = 4;
+  const TrainConfig early = test::tiny_config(Json{{"render", early_j}});
+  const TrainConfig waves = test::tiny_config(Json{{"render", waves_j}});
+  // Nothing terminates at initialisation: the three must train the same parameters bit for bit.
+  const auto p_exact = train_params(scene, exact, 7, test::temp_dir("uert_exact"));
+  CHECK(p_exact == train_params(scene, early, 7, test::temp_dir("uert_early")));
+  CHECK(p_exact == train_params(scene, waves, 7, test::temp_dir("uert_waves")));
+
+  // On an opaque field: fewer samples evaluated, the output within the threshold's bound.
+  const TrainConfig c = test::tiny_config(
+      Json{{"render", uniform}, {"schedule", {{"iterations", 150}, {"checkpoint_every", 0}}}});
+  LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
+  const ModelState st = opaque_state(model, scene, c, "uert_trained");
+  const float eps = 1e-3f;
+  std::vector<float> o, dir;
+  image_rays(scene, normalize_pose(d.frames[13].T_world_lidar, scene.norm), 600, 1112, o, dir);
+  const auto full = model.render_rays(o, dir, 512);
+  const float far = c.render.far_m * float(scene.norm.scale);
+  for (int n_waves : {1, 4}) {
+    TrainConfig ce = c;
+    ce.render.stop_transmittance = eps;
+    ce.render.coarse_waves = n_waves;
+    LidarNerfModel cut(test::runtime(), ce, float(scene.norm.scale), 512);
+    cut.set_state(st);
+    const auto part = cut.render_rays(o, dir, 512);
+    const long S = c.render.n_samples;
+    INFO(n_waves << " wave(s): live samples " << cut.live_samples() << ", density-pass samples "
+                 << cut.coarse_evaluated() << " of " << 512 * S);
+    CHECK(cut.live_samples() < 512 * S * 6 / 10);
+    if (n_waves > 1) CHECK(cut.coarse_evaluated() < 512 * S * 7 / 10);
+    double worst_depth = 0, worst_prob = 0;
+    for (int k = 0; k < 512; ++k) {
+      worst_depth = std::max(worst_depth, double(std::fabs(full[3 * size_t(k)] - part[3 * size_t(k)])));
+      worst_prob = std::max(worst_prob, double(std::fabs(full[3 * size_t(k) + 1] - part[3 * size_t(k) + 1])));
+    }
+    INFO("worst |depth diff| " << worst_depth << " (far " << far << "), worst |prob diff| " << worst_prob);
+    CHECK(worst_depth <= 4 * eps * far);
+    CHECK(worst_prob <= 4 * eps);
+  }
 }
