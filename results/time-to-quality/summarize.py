@@ -42,10 +42,15 @@ def main():
     if times["published sampler"] and times["fast sampler"]:
         print(f"\ntime-to-quality ratio (fast / published): "
               f"{times['fast sampler'] / times['published sampler']:.3f}")
-    print("\nper evaluation (step: F-score / depth RMSE / train s)")
+    pose = "pose" in base[-1]["metrics"]
+    if pose:  # the pose-free methods: the trajectory too
+        print("\nATE at the last evaluation (m): published sampler "
+              f"{base[-1]['metrics']['pose']['ate_m']:.4f}, fast sampler {fast[-1]['metrics']['pose']['ate_m']:.4f}")
+    print("\nper evaluation (step: F-score / depth RMSE" + (" / ATE" if pose else "") + " / train s)")
     for name, ev in (("published", base), ("fast", fast)):
         print(name + ": " + ", ".join(
-            f"{e['step']}: {e['metrics']['fscore']:.4f}/{e['metrics']['depth_rmse']:.3f}/{e['train_seconds']:.0f}"
+            f"{e['step']}: {e['metrics']['fscore']:.4f}/{e['metrics']['depth_rmse']:.3f}"
+            + (f"/{e['metrics']['pose']['ate_m']:.3f}" if pose else "") + f"/{e['train_seconds']:.0f}"
             for e in ev))
 
 
