@@ -5,7 +5,7 @@
 // The `trained` pair measures early ray termination where it matters, on a field trained for
 // 1000 steps first (untrained fields are translucent and terminate nothing): the same state is
 // stepped with and without `render.stop_transmittance`; live/sample reports the fraction of
-// merged samples the field evaluated.
+// merged samples the field evaluated (coarse/uniform, head/live, evaluated/s: see below).
 #include <benchmark/benchmark.h>
 
 #include "support/bench_support.hpp"
@@ -74,13 +74,14 @@ void BM_TrainStepTrained(benchmark::State& state, float stop_transmittance, int 
   LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), c.schedule.rays_per_batch);
   model.set_state(trained_state());
   long step = kWarmSteps;
-  double live = 0.0, coarse = 0.0, head = 0.0;
+  double live = 0.0, coarse = 0.0, head = 0.0, evals = 0.0;
   const double samples = double(c.schedule.rays_per_batch) * (c.render.n_samples + c.render.n_importance);
   for (auto _ : state) {
     const RayBatch b = draw_ray_batch(scene, c, 1, step);
     model.train_step(b, 1, step++, 1e-3f);
     benchmark::DoNotOptimize(model.read_loss());
     live += double(model.live_samples()) / samples;
+    evals += double(model.live_samples() + model.coarse_evaluated());
     coarse += double(model.coarse_evaluated()) / double(c.schedule.rays_per_batch * c.render.n_samples);
     head += head_threshold > 0.0f ? double(model.head_rows()) / double(std::max(model.live_samples(), 1L)) : 1.0;
   }
@@ -89,6 +90,9 @@ void BM_TrainStepTrained(benchmark::State& state, float stop_transmittance, int 
   state.counters["live/sample"] = live / double(std::max<int64_t>(state.iterations(), 1));
   state.counters["coarse/uniform"] = coarse / double(std::max<int64_t>(state.iterations(), 1));
   state.counters["head/live"] = head / double(std::max<int64_t>(state.iterations(), 1));
+  // Field evaluations actually made (density-pass samples + live samples of the training
+  // pass), against samples/s, the uniform-equivalent rate (rays × (uniform + importance)).
+  state.counters["evaluated/s"] = benchmark::Counter(evals, benchmark::Counter::kIsRate);
 }
 
 }  // namespace
