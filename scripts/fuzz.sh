@@ -14,9 +14,7 @@ B=${BUILD:-build-fuzz}
 JOBS=${JOBS:-$(nproc)}
 SGNLF_SETUP_CLANG=1 bash scripts/setup.sh
 export CC=clang CXX=clang++
-cmake -S . -B "$B" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSGNLF_SANITIZE=address,undefined \
-      -DSGNLF_BUILD_FUZZ=ON -DSGNLF_BUILD_BENCHMARKS=OFF > "$B.configure.log" 2>&1 \
-  || { cat "$B.configure.log"; exit 1; }
+bash scripts/configure_sanitize.sh "$B" ON
 if [ $# -gt 0 ]; then
   targets=("$@")
 else
@@ -33,7 +31,7 @@ mkdir -p "$B/logs" "$B/crashes"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 failed=()
-printf '%-24s %8s %10s %8s %7s %s\n' target seconds execs cov corpus result
+printf '%-24s %8s %10s %8s %8s %7s %s\n' target seconds execs cov features corpus result
 for t in "${targets[@]}"; do
   mkdir -p "$B/corpus/$t"
   log="$B/logs/$t.log"
@@ -44,10 +42,11 @@ for t in "${targets[@]}"; do
   set -e
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | awk '{print $2}')
+  ft=$(grep -o 'ft: [0-9]*' "$log" | tail -1 | awk '{print $2}')
   units=$(grep -o 'corp: [0-9]*' "$log" | tail -1 | awk '{print $2}')
   result=ok
   if [ $rc -ne 0 ]; then result="CRASH (exit $rc, see $log)"; failed+=("$t"); fi
-  printf '%-24s %8s %10s %8s %7s %s\n' "$t" "$SECS" "${execs:-?}" "${cov:-?}" "${units:-?}" "$result"
+  printf '%-24s %8s %10s %8s %8s %7s %s\n' "$t" "$SECS" "${execs:-?}" "${cov:-?}" "${ft:-?}" "${units:-?}" "$result"
 done
 if [ ${#failed[@]} -gt 0 ]; then
   echo "fuzz: ${#failed[@]} target(s) crashed: ${failed[*]}"
