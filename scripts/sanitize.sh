@@ -4,8 +4,9 @@
 # them; any finding fails its test (UBSan does not recover, ASan aborts, LeakSanitizer reports
 # leaks at exit). Test timeouts are 4x the ordinary ones in this build.
 #   SCOPE=ci              the host tests without the label asan_slow (the loaders, parsers,
-#                         geometry, metrics and the fuzz replays), building only their targets:
-#                         what CI runs (scripts/test.sh)
+#                         geometry, metrics and the fuzz replays) and the device test labelled
+#                         asan_ci (tests/cl, on PoCL), building only their targets: what CI runs
+#                         (scripts/test.sh)
 #   SCOPE=host (default)  every host test (ctest label "host": no OpenCL device involved),
 #                         building only their targets
 #   SCOPE=all             every test, device tests on PoCL included
@@ -23,7 +24,7 @@ export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:detect_stack_use_after_return
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/cmake/sanitizer/lsan.supp:print_suppressions=0}
 case "$SCOPE" in
-  ci) select=(-L '^host$' -LE '^asan_slow$') ;;
+  ci) select=(-L '^(host|asan_ci)$' -LE '^asan_slow$') ;;
   host) select=(-L '^host$') ;;
   all) select=() ;;
   *) echo "sanitize: SCOPE must be ci, host or all (got '$SCOPE')"; exit 2 ;;
