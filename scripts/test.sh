@@ -3,8 +3,9 @@
 # suite, the real-data tests included (they fail when ../shared/data/real, or
 # $SGNLF_SHARED_DIR/data/real, is missing: SGNLF_REQUIRE_REAL_DATA=0 skips them with a warning);
 # then the hardening jobs (issue 18), sharing one clang build (build-ci-sanitize/): the host
-# tests built with AddressSanitizer + UndefinedBehaviorSanitizer (scripts/sanitize.sh), and
-# every fuzz target for SGNLF_FUZZ_SECONDS (default 20) from its seed corpus (scripts/fuzz.sh).
+# tests (without the label asan_slow) and the OpenCL test cl built with AddressSanitizer +
+# UndefinedBehaviorSanitizer (SCOPE=ci scripts/sanitize.sh), and every fuzz target for
+# SGNLF_FUZZ_SECONDS (default 20) from its seed corpus (scripts/fuzz.sh).
 # SGNLF_HARDENING=0 skips both jobs (the fuzz corpora and fixed crash inputs are still replayed
 # by the ordinary suite, CTest replay_fuzz_*). Times: results/hardening/README.md.
 set -euo pipefail
