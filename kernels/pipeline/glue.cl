@@ -72,6 +72,18 @@ __kernel void pipeline_merge_encodings(const int n_rays, const int S, const int 
   for (int k = 0; k < width; ++k) dst[k] = row[k];
 }
 
+// The termination index of one ray's coarse weights wr (S of them): j + 2 for the first j
+// after which 1 − Σ_{i≤j} wr[i] < eps, or −1 when there is none with j + 2 < S. Shared by
+// pipeline_live_count and pipeline_wave_done, which must agree on it exactly.
+inline int pipeline_stop_index(__global const float* wr, const int S, const float eps) {
+  float acc = 0.0f;
+  for (int j = 0; j + 2 < S; ++j) {
+    acc += wr[j];
+    if (1.0f - acc < eps) return j + 2;
+  }
+  return -1;
+}
+
 // Early ray termination (render.stop_transmittance, instant-ngp / torch-ngp's T threshold):
 // merged samples behind the point where the coarse pass's transmittance fell below eps carry
 // weight below eps and are not evaluated. Per ray, with coarse weights w_c (S per ray, sorted
@@ -83,16 +95,7 @@ __kernel void pipeline_live_count(const int n_rays, const int S, const int M, co
                                   __global const float* t, __global int* count) {
   const int r = get_global_id(0);
   if (r >= n_rays) return;
-  __global const float* wr = w_c + (size_t)r * S;
-  float acc = 0.0f;
-  int stop = -1;
-  for (int j = 0; j + 2 < S; ++j) {
-    acc += wr[j];
-    if (1.0f - acc < eps) {
-      stop = j + 2;
-      break;
-    }
-  }
+  const int stop = pipeline_stop_index(w_c + (size_t)r * S, S, eps);
   int c = M;
   if (stop >= 0) {
     const float t_stop = t_c[(size_t)r * S + stop];
@@ -194,24 +197,15 @@ __kernel void pipeline_wave_scatter(const int n_alive, const int S, const int s0
   h0_c[dst] = dens_w[(size_t)q * dens_stride];
 }
 
-// done[r] = 1 when ray r needs no coarse sample at or beyond `end`: the termination index of
-// pipeline_live_count (j + 2, same accumulation in the same order) lies below `end`. Samples
+// done[r] = 1 when ray r needs no coarse sample at or beyond `end`: its termination index
+// (pipeline_stop_index, as pipeline_live_count finds it) lies below `end`. Samples
 // not evaluated yet sit at a dead σ (zero weight) and move no sum, so the first j found over
 // the evaluated prefix is the one the complete pass finds.
 __kernel void pipeline_wave_done(const int n_rays, const int S, const int end, const float eps,
                                  __global const float* w_c, __global int* done) {
   const int r = get_global_id(0);
   if (r >= n_rays) return;
-  __global const float* wr = w_c + (size_t)r * S;
-  float acc = 0.0f;
-  int stop = -1;
-  for (int j = 0; j + 2 < S; ++j) {
-    acc += wr[j];
-    if (1.0f - acc < eps) {
-      stop = j + 2;
-      break;
-    }
-  }
+  const int stop = pipeline_stop_index(w_c + (size_t)r * S, S, eps);
   done[r] = stop >= 0 && stop < end ? 1 : 0;
 }
 

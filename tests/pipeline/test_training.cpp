@@ -37,6 +37,15 @@ std::vector<float> train_params(const Scene& scene, const TrainConfig& c, uint64
   return model.state().params;
 }
 
+// The largest |a − b| over the rays of one output channel (renders are n × 3: depth, return
+// probability, intensity).
+double worst_channel_diff(const std::vector<float>& a, const std::vector<float>& b, int channel) {
+  double worst = 0;
+  for (size_t k = 0; 3 * k + 2 < a.size(); ++k)
+    worst = std::max(worst, double(std::fabs(a[3 * k + size_t(channel)] - b[3 * k + size_t(channel)])));
+  return worst;
+}
+
 // A field that terminates rays: `c` trained 150 tiny steps (translucent), then every density
 // raised (the σ logit's output bias + 4, σ × 55) so that rays become opaque. Left in `model`.
 ModelState opaque_state(LidarNerfModel& model, const Scene& scene, const TrainConfig& c,
@@ -217,11 +226,7 @@ TEST_CASE("early ray termination: exact while no ray terminates, within its thre
   INFO("rays cut " << cut_rays << " of 512, live samples " << n_live << " of " << 512 * M);
   CHECK(cut_rays > 50);
   const float far = c.render.far_m * float(scene.norm.scale);
-  double worst_depth = 0, worst_prob = 0;
-  for (int k = 0; k < 512; ++k) {
-    worst_depth = std::max(worst_depth, double(std::fabs(full[3 * size_t(k)] - part[3 * size_t(k)])));
-    worst_prob = std::max(worst_prob, double(std::fabs(full[3 * size_t(k) + 1] - part[3 * size_t(k) + 1])));
-  }
+  const double worst_depth = worst_channel_diff(full, part, 0), worst_prob = worst_channel_diff(full, part, 1);
   INFO("worst |depth diff| " << worst_depth << " (far " << far << "), worst |prob diff| " << worst_prob);
   CHECK(worst_depth <= 4 * eps * far);
   CHECK(worst_prob <= 4 * eps);
@@ -245,11 +250,8 @@ TEST_CASE("early ray termination: exact while no ray terminates, within its thre
   for (size_t k = 0; k < live.size(); ++k) same_live += live[k] == wave_live[k];
   INFO("rays whose live count matches: " << same_live << " of 512");
   CHECK(same_live >= 500);
-  double wave_depth = 0, wave_prob = 0;
-  for (int k = 0; k < 512; ++k) {
-    wave_depth = std::max(wave_depth, double(std::fabs(full[3 * size_t(k)] - wave_out[3 * size_t(k)])));
-    wave_prob = std::max(wave_prob, double(std::fabs(full[3 * size_t(k) + 1] - wave_out[3 * size_t(k) + 1])));
-  }
+  const double wave_depth = worst_channel_diff(full, wave_out, 0),
+               wave_prob = worst_channel_diff(full, wave_out, 1);
   INFO("waves: worst |depth diff| " << wave_depth << ", worst |prob diff| " << wave_prob);
   CHECK(wave_depth <= 4 * eps * far);
   CHECK(wave_prob <= 4 * eps);
@@ -265,14 +267,9 @@ TEST_CASE("early ray termination: exact while no ray terminates, within its thre
   INFO("head rows " << band.head_rows() << " of " << n_live << " live samples");
   CHECK(band.head_rows() > 0);
   CHECK(band.head_rows() < n_live * 3 / 4);
-  double band_prob = 0, band_int = 0;
-  bool same_depth = true;
-  for (int k = 0; k < 512; ++k) {
-    same_depth = same_depth && band_out[3 * size_t(k)] == part[3 * size_t(k)];
-    band_prob = std::max(band_prob, double(std::fabs(part[3 * size_t(k) + 1] - band_out[3 * size_t(k) + 1])));
-    band_int = std::max(band_int, double(std::fabs(part[3 * size_t(k) + 2] - band_out[3 * size_t(k) + 2])));
-  }
-  CHECK(same_depth);
+  CHECK(worst_channel_diff(part, band_out, 0) == 0.0);  // depth bit-identical
+  const double band_prob = worst_channel_diff(part, band_out, 1),
+               band_int = worst_channel_diff(part, band_out, 2);
   INFO("band: worst |prob diff| " << band_prob << ", worst |intensity diff| " << band_int);
   CHECK(band_prob <= M * thr);
   CHECK(band_int <= M * thr);
@@ -379,11 +376,8 @@ TEST_CASE("early termination of uniform-only sampling: exact at initialisation, 
                  << cut.coarse_evaluated() << " of " << 512 * S);
     CHECK(cut.live_samples() < 512 * S * 6 / 10);
     if (n_waves > 1) CHECK(cut.coarse_evaluated() < 512 * S * 7 / 10);
-    double worst_depth = 0, worst_prob = 0;
-    for (int k = 0; k < 512; ++k) {
-      worst_depth = std::max(worst_depth, double(std::fabs(full[3 * size_t(k)] - part[3 * size_t(k)])));
-      worst_prob = std::max(worst_prob, double(std::fabs(full[3 * size_t(k) + 1] - part[3 * size_t(k) + 1])));
-    }
+    const double worst_depth = worst_channel_diff(full, part, 0),
+                 worst_prob = worst_channel_diff(full, part, 1);
     INFO("worst |depth diff| " << worst_depth << " (far " << far << "), worst |prob diff| " << worst_prob);
     CHECK(worst_depth <= 4 * eps * far);
     CHECK(worst_prob <= 4 * eps);
