@@ -67,7 +67,7 @@ void VoxelHashMap::add_points(const Cloud& points_world) {
     const int32_t b = find_or_insert(voxel_key(p, inv_voxel_size_));
     int32_t& n = counts_[size_t(b)];
     if (n < max_points_) {
-      points_[size_t(b) * size_t(max_points_) + size_t(n)] = p;
+      points_[size_t(b) * size_t(max_points_) + size_t(n)] = p.cast<float>();
       ++n;
       ++points_total_;
     }
@@ -81,7 +81,7 @@ void VoxelHashMap::remove_far(const Point3& origin_world) {
   size_t kept = 0;
   points_total_ = 0;
   for (size_t b = 0; b < voxels_; ++b) {
-    if ((points_[b * m] - origin_world).squaredNorm() > max2) continue;
+    if ((points_[b * m].cast<double>() - origin_world).squaredNorm() > max2) continue;
     if (kept != b) {
       std::copy(points_.begin() + long(b * m), points_.begin() + long(b * m + m),
                 points_.begin() + long(kept * m));
@@ -138,17 +138,19 @@ bool VoxelHashMap::nearest(const Point3& q, Point3& nearest_point, double& squar
     hi[a] = (voxel_size_ - t) * (voxel_size_ - t);
   }
   double best = std::numeric_limits<double>::infinity();
-  const Point3* best_p = nullptr;
+  const MapPoint* best_p = nullptr;
   for (const auto& o : kOffsets.d) {
     double bound = 0.0;
     for (int a = 0; a < 3; ++a) bound += o[a] < 0 ? lo[a] : (o[a] > 0 ? hi[a] : 0.0);
     if (bound >= best) continue;
     const int32_t b = find(VoxelKey(c.x() + o[0], c.y() + o[1], c.z() + o[2]));
     if (b < 0) continue;
-    const Point3* p = &points_[size_t(b) * size_t(max_points_)];
-    const Point3* end = p + counts_[size_t(b)];
+    const MapPoint* p = &points_[size_t(b) * size_t(max_points_)];
+    const MapPoint* end = p + counts_[size_t(b)];
     for (; p != end; ++p) {
-      const double d2 = (*p - q).squaredNorm();
+      const double dx = double(p->x()) - q.x(), dy = double(p->y()) - q.y(),
+                   dz = double(p->z()) - q.z();
+      const double d2 = dx * dx + dy * dy + dz * dz;
       if (d2 < best) {
         best = d2;
         best_p = p;
@@ -156,7 +158,7 @@ bool VoxelHashMap::nearest(const Point3& q, Point3& nearest_point, double& squar
     }
   }
   if (!best_p) return false;
-  nearest_point = *best_p;
+  nearest_point = best_p->cast<double>();
   squared_distance = best;
   return true;
 }
@@ -165,8 +167,8 @@ Cloud VoxelHashMap::points() const {
   Cloud out;
   out.reserve(points_total_);
   for (size_t b = 0; b < voxels_; ++b) {
-    const Point3* p = &points_[b * size_t(max_points_)];
-    out.insert(out.end(), p, p + counts_[b]);
+    const MapPoint* p = &points_[b * size_t(max_points_)];
+    for (int k = 0; k < counts_[b]; ++k) out.push_back(p[k].cast<double>());
   }
   return out;
 }
