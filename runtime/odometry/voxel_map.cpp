@@ -36,7 +36,7 @@ int32_t VoxelHashMap::find(const VoxelKey& key) const {
 }
 
 int32_t VoxelHashMap::find_or_insert(const VoxelKey& key) {
-  if (2 * (voxels_ + 1) > slots_.size()) rehash(2 * slots_.size());
+  if (4 * (voxels_ + 1) > slots_.size()) rehash(2 * slots_.size());
   const size_t mask = slots_.size() - 1;
   size_t i = VoxelKeyHash{}(key) & mask;
   for (;; i = (i + 1) & mask) {
@@ -97,7 +97,7 @@ void VoxelHashMap::remove_far(const Point3& origin_world) {
   counts_.resize(kept);
   keys_.resize(kept);
   size_t cap = 1024;
-  while (cap < 2 * kept + 2) cap *= 2;
+  while (cap < 4 * kept + 4) cap *= 2;
   rehash(cap);
 }
 
@@ -131,17 +131,19 @@ bool VoxelHashMap::nearest(const Point3& q, Point3& nearest_point, double& squar
   // cell's lower bound is the sum over its non-zero offsets, and a cell whose bound is not
   // below the best distance so far cannot hold a nearer point (skipped; the result is the
   // same as visiting all 27 cells).
-  double lo[3], hi[3];
+  // face[a][o + 1]: that squared distance for offset o ∈ {−1, 0, 1} along axis a (a table, not
+  // branches: the offsets' signs are unpredictable).
+  double face[3][3];
   for (int a = 0; a < 3; ++a) {
     const double t = q[a] - double(c[a]) * voxel_size_;
-    lo[a] = t * t;
-    hi[a] = (voxel_size_ - t) * (voxel_size_ - t);
+    face[a][0] = t * t;
+    face[a][1] = 0.0;
+    face[a][2] = (voxel_size_ - t) * (voxel_size_ - t);
   }
   double best = std::numeric_limits<double>::infinity();
   const MapPoint* best_p = nullptr;
   for (const auto& o : kOffsets.d) {
-    double bound = 0.0;
-    for (int a = 0; a < 3; ++a) bound += o[a] < 0 ? lo[a] : (o[a] > 0 ? hi[a] : 0.0);
+    const double bound = face[0][o[0] + 1] + face[1][o[1] + 1] + face[2][o[2] + 1];
     if (bound >= best) continue;
     const int32_t b = find(VoxelKey(c.x() + o[0], c.y() + o[1], c.z() + o[2]));
     if (b < 0) continue;

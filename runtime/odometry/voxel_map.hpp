@@ -3,7 +3,8 @@
 // sensor dropped after each update. Nearest-neighbour search looks at the query's voxel and its
 // 26 neighbours, so it is exact whenever the true nearest point lies within one voxel size of
 // the query (tests compare it with a brute-force search); farther points may be missed.
-// Storage: an open-addressing table (linear probing, load ≤ 1/2) from keys to fixed blocks of
+// Storage: an open-addressing table (linear probing, load ≤ 1/4: most of a query's probes are
+// for empty cells, whose probe sequence ends at the first empty slot) from keys to blocks of
 // max_points_per_voxel points, contiguous per voxel, so that one probe and one cache-friendly
 // run serve each cell of a query; removal rebuilds the table (once per frame).
 // Points are stored in float: the search is bound by memory traffic (each query reads ~7 slots
