@@ -7,46 +7,31 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "odometry/normal_equations.hpp"
 
 namespace sgnlf::odometry {
 namespace {
 
-// Normal equations of one chunk of source points (KISS-ICP eq. 7–8).
-struct Normal {
-  Eigen::Matrix<double, 6, 6> JTJ = Eigen::Matrix<double, 6, 6>::Zero();
-  Vec6 JTr = Vec6::Zero();
-  size_t count = 0;
-  double sse = 0.0;
-};
-
 void accumulate(const Cloud& source, size_t begin, size_t end, const VoxelHashMap& map,
-                const Pose& T, double max_d2, double kernel, bool build, Normal& n) {
+                const Pose& T, double max_d2, double kernel, bool build, NormalEquations& n) {
   const double k2 = kernel * kernel;
   for (size_t i = begin; i < end; ++i) {
     const Point3 p = T * source[i];
     Point3 q;
     double d2;
     if (!map.nearest(p, q, d2) || d2 > max_d2) continue;
-    ++n.count;
-    n.sse += d2;
+    n.count_point(d2);
     if (!build) continue;
-    const Point3 r = p - q;
-    // ∂(Exp(δ)p)/∂δ at δ = 0 with δ = (ω, u): [−p^, I].
-    Eigen::Matrix<double, 3, 6> J;
-    J.leftCols<3>() = -hat(p);
-    J.rightCols<3>().setIdentity();
     const double s = kernel + d2;
-    const double w = k2 / (s * s);
-    n.JTJ.noalias() += w * J.transpose() * J;
-    n.JTr.noalias() += w * J.transpose() * r;
+    n.add_point(p, p - q, k2 / (s * s));  // Geman-McClure weight
   }
 }
 
-Normal build_system(const Cloud& source, const VoxelHashMap& map, const Pose& T, double max_d2,
-                    double kernel, bool build, int threads) {
+NormalEquations build_system(const Cloud& source, const VoxelHashMap& map, const Pose& T,
+                             double max_d2, double kernel, bool build, int threads) {
   const size_t n = source.size();
   const int t = std::max(1, std::min<int>(threads, int(n / 256) + 1));
-  std::vector<Normal> parts(static_cast<size_t>(t));
+  std::vector<NormalEquations> parts(static_cast<size_t>(t));
   if (t == 1) {
     accumulate(source, 0, n, map, T, max_d2, kernel, build, parts[0]);
   } else {
@@ -58,13 +43,8 @@ Normal build_system(const Cloud& source, const VoxelHashMap& map, const Pose& T,
       });
     for (auto& th : pool) th.join();
   }
-  Normal sum = parts[0];
-  for (size_t k = 1; k < parts.size(); ++k) {
-    sum.JTJ += parts[k].JTJ;
-    sum.JTr += parts[k].JTr;
-    sum.count += parts[k].count;
-    sum.sse += parts[k].sse;
-  }
+  NormalEquations sum = parts[0];
+  for (size_t k = 1; k < parts.size(); ++k) sum.add(parts[k]);
   return sum;
 }
 
@@ -73,7 +53,7 @@ Normal build_system(const Cloud& source, const VoxelHashMap& map, const Pose& T,
 double overlap_fraction(const Cloud& source, const VoxelHashMap& map, const Pose& T_world_source,
                         double max_distance) {
   if (source.empty()) return 0.0;
-  const Normal n = build_system(source, map, T_world_source, max_distance * max_distance, 1.0,
+  const NormalEquations n = build_system(source, map, T_world_source, max_distance * max_distance, 1.0,
                                 false, 1);
   return double(n.count) / double(source.size());
 }
@@ -100,7 +80,7 @@ RegistrationResult register_scan(const Cloud& source, const VoxelHashMap& map,
   Pose T = T_world_source_guess;
   bool step_converged = false;
   for (int it = 0; it < opt.max_iterations; ++it) {
-    const Normal n = build_system(source, map, T, max_d2, opt.kernel_scale, true, opt.threads);
+    const NormalEquations n = build_system(source, map, T, max_d2, opt.kernel_scale, true, opt.threads);
     res.iterations = it + 1;
     if (n.count < 6) {
       res.T_world_source = T;
@@ -109,7 +89,7 @@ RegistrationResult register_scan(const Cloud& source, const VoxelHashMap& map,
                     std::to_string(opt.max_distance) + " m at iteration " + std::to_string(it + 1);
       return res;
     }
-    const Vec6 dx = -n.JTJ.ldlt().solve(n.JTr);
+    const Vec6 dx = -n.JTJ().ldlt().solve(n.JTr);
     if (!dx.allFinite()) {
       res.T_world_source = T;
       res.failure = "degenerate normal equations";
@@ -122,7 +102,7 @@ RegistrationResult register_scan(const Cloud& source, const VoxelHashMap& map,
     }
   }
   res.T_world_source = T;
-  const Normal fin = build_system(source, map, T, max_d2, opt.kernel_scale, false, opt.threads);
+  const NormalEquations fin = build_system(source, map, T, max_d2, opt.kernel_scale, false, opt.threads);
   res.correspondences = fin.count;
   res.fitness = double(fin.count) / double(source.size());
   res.rmse = fin.count ? std::sqrt(fin.sse / double(fin.count)) : 0.0;
