@@ -55,6 +55,8 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
   sub.add_option("--lr-trans", a->cfg.lr_translation, "Adam learning rate of the translations (m)");
   sub.add_option("--lr-final", a->lr_final, "Learning rates decay exponentially to this factor at the end");
   sub.add_option("--offsets", a->cfg.edge_offsets, "Edges (i, i + k) for these k")->delimiter(',');
+  sub.add_option("--residual", a->cfg.residual, "Direction term: point_to_point (GeoNLF's robust Chamfer) or point_to_plane")
+      ->check(CLI::IsMember({"point_to_point", "point_to_plane"}));
   sub.add_option("--out", a->out, "Folder for trajectories/ and posegraph_log.json");
   sub.add_option("--graph", a->graph, "Pose graph: sequential (GeoNLF) or confidence (SG-NLF, stand-in features)")
       ->check(CLI::IsMember({"sequential", "confidence"}));
@@ -80,10 +82,10 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
     std::vector<std::vector<PointXYZI>> scans;
     for (const auto& f : d.frames) scans.push_back(f.points);
     auto clouds = std::make_shared<const std::vector<posegraph::FrameCloud>>(
-        posegraph::make_frame_clouds(scans, a->cfg.points_per_frame, a->cfg.seed));
+        a->cfg.clouds(scans));
     auto loss = std::make_shared<const posegraph::GraphLoss>(
         clouds, posegraph::sequential_edges(int(d.frames.size()), a->cfg.edge_offsets),
-        a->cfg.min_distance, a->cfg.threads);
+        a->cfg.min_distance, a->cfg.threads, a->cfg.direction());
     const std::vector<Pose> gt = gt_poses(d);
     std::vector<Pose> T = init;
     Json log = Json::array();
@@ -156,6 +158,7 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
       write_json_file((std::filesystem::path(a->out) / "posegraph_log.json").string(),
                       Json{{"dataset", d.name}, {"pose_init", a->init}, {"points", a->cfg.points_per_frame},
                            {"tau_scale", a->cfg.tau_scale}, {"lr_rot", a->cfg.lr_rotation},
+                           {"residual", a->cfg.residual},
                            {"lr_trans", a->cfg.lr_translation}, {"graph", a->graph},
                            {"graph_config", graph_cfg_json}, {"confidence_start", a->confidence_start},
                            {"graphs", graphs}, {"calls", log}});

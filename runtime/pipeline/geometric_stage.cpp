@@ -78,14 +78,15 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
   gc.points_per_frame = size_t(g.points_per_frame);
   gc.seed = 1;
   gc.threads = 2;
+  gc.residual = g.residual;
   gc.validate();
   std::vector<std::vector<PointXYZI>> scans;
   for (const auto& f : d.frames) scans.push_back(f.points);
   auto clouds = std::make_shared<const std::vector<posegraph::FrameCloud>>(
-      posegraph::make_frame_clouds(scans, gc.points_per_frame, gc.seed));
+      gc.clouds(scans));
   auto loss = std::make_shared<const posegraph::GraphLoss>(
       clouds, posegraph::sequential_edges(int(d.frames.size()), gc.edge_offsets), gc.min_distance,
-      gc.threads);
+      gc.threads, gc.direction());
   const SceneNormalization norm = scene.norm;
   const bool confidence = c.confidence_graph();
   if (confidence && !features.eval)
@@ -116,7 +117,7 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
         const auto cg = posegraph::build_confidence_graph(*clouds, T, features, pg.graph);
         graph->edges = cg.edges;
         graph->loss = std::make_shared<const posegraph::GraphLoss>(clouds, cg.edges,
-                                                                   gc.min_distance, gc.threads);
+                                                                   gc.min_distance, gc.threads, gc.direction());
         graph->built_epoch = epoch;
         if (!run_dir.empty()) write_graph_files(run_dir, epoch, cg, T);
         graph_line = Json{{"built", true},
@@ -177,7 +178,7 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
       graph->loss.reset();
       if (!graph->edges.empty())
         graph->loss = std::make_shared<const posegraph::GraphLoss>(clouds, graph->edges,
-                                                                   gc.min_distance, gc.threads);
+                                                                   gc.min_distance, gc.threads, gc.direction());
     };
   }
   return stage;

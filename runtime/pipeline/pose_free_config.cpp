@@ -41,6 +41,9 @@ void PoseFreeConfig::validate(const std::string& w) const {
   check_range(g, "lr_final", geometric.lr_final, 1e-6, 1.0);
   if (geometric.tau_scale != -1.0) check_range(g, "tau_scale", geometric.tau_scale, 0.0, 100.0);
   if (geometric.edge_offsets.empty()) throw ConfigError(g + ": 'edge_offsets' is empty");
+  if (geometric.residual != "point_to_point" && geometric.residual != "point_to_plane")
+    throw ConfigError(g + ": 'residual' = \"" + geometric.residual +
+                      "\" is not one of \"point_to_point\", \"point_to_plane\"");
   for (int k : geometric.edge_offsets) check_range(g, "edge_offsets[]", k, 1, 1000);
 }
 
@@ -74,7 +77,7 @@ PoseFreeConfig PoseFreeConfig::from_json(ConfigReader& r) {
     g.get("edge_offsets", gc.edge_offsets).get("first_steps", gc.first_steps);
     g.get("steps_per_epoch", gc.steps_per_epoch).get("stop_progress", gc.stop_progress);
     g.get("tau_scale", gc.tau_scale).get("lr_rot", gc.lr_rot).get("lr_trans", gc.lr_trans);
-    g.get("lr_final", gc.lr_final);
+    g.get("lr_final", gc.lr_final).get("residual", gc.residual);
     g.finish();
   }
   return c;
@@ -108,6 +111,8 @@ void PoseFreeConfig::to_json(Json& j) const {
                         {"lr_rot", geometric.lr_rot},
                         {"lr_trans", geometric.lr_trans},
                         {"lr_final", geometric.lr_final}};
+  // Written only when not GeoNLF's, so that configs from before the key keep their hash.
+  if (geometric.residual != "point_to_point") j["geometric"]["residual"] = geometric.residual;
 }
 
 }  // namespace sgnlf::pipeline

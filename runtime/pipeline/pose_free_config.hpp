@@ -51,6 +51,9 @@ struct GeometricScheduleConfig {
   double tau_scale = -1.0;
   double lr_rot = 1e-2, lr_trans = 1e-1;  // radians / metres per step (Adam)
   double lr_final = 0.05;
+  // Direction term of the graph loss: "point_to_point" (GeoNLF's robust Chamfer) or
+  // "point_to_plane" (posegraph/point_to_plane.hpp).
+  std::string residual = "point_to_point";
   int steps_at(long epoch, double progress) const;
 };
 

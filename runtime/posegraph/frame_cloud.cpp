@@ -53,12 +53,19 @@ std::vector<geometry::Point3f> subsample_points(const std::vector<PointXYZI>& sc
 }
 
 std::vector<FrameCloud> make_frame_clouds(const std::vector<std::vector<PointXYZI>>& scans,
-                                          size_t max_points, uint64_t seed) {
+                                          size_t max_points, uint64_t seed,
+                                          const NormalOptions* normals) {
   std::vector<FrameCloud> clouds;
   clouds.reserve(scans.size());
   for (size_t k = 0; k < scans.size(); ++k) {
     require(!scans[k].empty(), "make_frame_clouds: scan " + std::to_string(k) + " is empty");
     clouds.emplace_back(subsample_points(scans[k], max_points, seed, uint32_t(k)));
+    if (normals) {
+      std::vector<geometry::Point3f> all;
+      all.reserve(scans[k].size());
+      for (const auto& p : scans[k]) all.emplace_back(p.x, p.y, p.z);
+      clouds.back().normals = estimate_normals(clouds.back().points, all, *normals);
+    }
   }
   return clouds;
 }

@@ -9,12 +9,16 @@
 
 #include "geometry/kdtree.hpp"
 #include "geometry/range_image.hpp"
+#include "posegraph/frame_normals.hpp"
 
 namespace sgnlf::posegraph {
 
 struct FrameCloud {
   std::vector<geometry::Point3f> points;  // LiDAR frame, metres
   geometry::KdTree tree;                  // over `points`, same frame
+  // Unit normal (or zero, frame_normals.hpp) of each point, same frame; empty unless a
+  // point-to-plane term needs them (make_frame_clouds with NormalOptions).
+  std::vector<geometry::Point3f> normals;
 
   // Throws sgnlf::Error when `points` is empty or holds a non-finite point.
   explicit FrameCloud(std::vector<geometry::Point3f> points_lidar);
@@ -33,8 +37,10 @@ std::vector<geometry::Point3f> subsample_points(const std::vector<Eigen::Vector3
 std::vector<geometry::Point3f> subsample_points(const std::vector<PointXYZI>& scan,
                                                 size_t max_points, uint64_t seed, uint32_t stream);
 
-// One FrameCloud per scan: subsample_points(scans[k], max_points, seed, stream = k).
+// One FrameCloud per scan: subsample_points(scans[k], max_points, seed, stream = k); with
+// `normals`, each point's normal estimated in its whole scan.
 std::vector<FrameCloud> make_frame_clouds(const std::vector<std::vector<PointXYZI>>& scans,
-                                          size_t max_points, uint64_t seed);
+                                          size_t max_points, uint64_t seed,
+                                          const NormalOptions* normals = nullptr);
 
 }  // namespace sgnlf::posegraph

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "posegraph/point_to_plane.hpp"
 
 namespace sgnlf::posegraph {
 namespace {
@@ -41,6 +42,20 @@ void GeometricConfig::validate() const {
   check_field(std::isfinite(min_distance) && min_distance > 0, "min_distance",
               str(min_distance), "must be > 0");
   check_field(threads >= 1, "threads", std::to_string(threads), "must be >= 1");
+  check_field(residual == "point_to_point" || residual == "point_to_plane", "residual",
+              "\"" + residual + "\"", "must be \"point_to_point\" or \"point_to_plane\"");
+  normals.validate();
+}
+
+DirectionFn GeometricConfig::direction() const {
+  return residual == "point_to_plane" ? DirectionFn(point_to_plane_direction)
+                                      : DirectionFn(robust_chamfer_direction);
+}
+
+std::vector<FrameCloud> GeometricConfig::clouds(
+    const std::vector<std::vector<PointXYZI>>& scans) const {
+  return make_frame_clouds(scans, points_per_frame, seed,
+                           residual == "point_to_plane" ? &normals : nullptr);
 }
 
 AdamSettings GeometricConfig::adam() const {
@@ -57,15 +72,14 @@ GeometricOptimizer::GeometricOptimizer(std::vector<FrameCloud> clouds,
   if (edges.empty()) edges = sequential_edges(int(frames_), cfg_.edge_offsets);
   auto shared = std::make_shared<const std::vector<FrameCloud>>(std::move(clouds));
   loss_ = GraphLoss::as_pose_loss(std::make_shared<const GraphLoss>(
-      std::move(shared), std::move(edges), cfg_.min_distance, cfg_.threads));
+      std::move(shared), std::move(edges), cfg_.min_distance, cfg_.threads, cfg_.direction()));
 }
 
 GeometricOptimizer GeometricOptimizer::from_scans(const std::vector<std::vector<PointXYZI>>& scans,
                                                   const GeometricConfig& cfg,
                                                   std::vector<Edge> edges) {
   cfg.validate();
-  return GeometricOptimizer(make_frame_clouds(scans, cfg.points_per_frame, cfg.seed), cfg,
-                            std::move(edges));
+  return GeometricOptimizer(cfg.clouds(scans), cfg, std::move(edges));
 }
 
 GeometricOptimizer::GeometricOptimizer(PoseLoss loss, size_t frames, const GeometricConfig& cfg)

@@ -6,6 +6,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "posegraph/graph_loss.hpp"
@@ -23,9 +24,17 @@ struct GeometricConfig {
   size_t points_per_frame = 12000;  // from_scans: points kept per frame (0 = all)
   uint64_t seed = 1;              // from_scans: subsample seed
   int threads = 1;                // direction terms in parallel; results identical for any value
+  // Direction term: "point_to_point" (GeoNLF's robust Chamfer) or "point_to_plane"
+  // (point_to_plane.hpp; its clouds need normals, estimated with `normals`).
+  std::string residual = "point_to_point";
+  NormalOptions normals;
 
   // Throws sgnlf::ConfigError naming the field and its value.
   void validate() const;
+  // The direction term `residual` names, for a GraphLoss.
+  DirectionFn direction() const;
+  // make_frame_clouds(scans, points_per_frame, seed), with normals when the residual needs them.
+  std::vector<FrameCloud> clouds(const std::vector<std::vector<PointXYZI>>& scans) const;
   AdamSettings adam() const;
 };
 

@@ -29,7 +29,7 @@ StagedGraphResult run_staged_graph(
   // The loss the calls see: a GraphLoss swapped between calls.
   auto current = std::make_shared<std::shared_ptr<const GraphLoss>>(
       std::make_shared<const GraphLoss>(clouds, sequential_edges(int(n), gc.sequential_offsets),
-                                        base.min_distance, base.threads));
+                                        base.min_distance, base.threads, base.direction()));
   const PoseLoss loss = [current](const std::vector<Pose>& poses, double tau,
                                   std::vector<PoseGrad>& grad) {
     return (**current)(poses, tau, grad);
@@ -38,7 +38,7 @@ StagedGraphResult run_staged_graph(
   auto rebuild = [&](int after_call) {
     GraphEvaluation e{after_call, build_confidence_graph(*clouds, T, features, gc)};
     *current = std::make_shared<const GraphLoss>(clouds, e.graph.edges, base.min_distance,
-                                                 base.threads);
+                                                 base.threads, base.direction());
     if (on_graph) on_graph(e);
     out.graphs.push_back(std::move(e));
   };
