@@ -24,6 +24,7 @@ void PoseFreeConfig::validate(const std::string& w) const {
   check_range(o, "lr_trans", pose_optim.lr_trans, 0.0, 1.0);
   check_range(o, "final_factor", pose_optim.final_factor, 1e-6, 1.0);
   check_range(o, "identity_lr_factor", pose_optim.identity_lr_factor, 1e-3, 1e3);
+  check_range(o, "start_step", pose_optim.start_step, 0L, 1L << 40);
   check_range(o, "beta1", pose_optim.beta1, 0.0, 0.999999);
   check_range(o, "beta2", pose_optim.beta2, 0.0, 0.999999999);
   check_range(o, "eps", pose_optim.eps, 1e-30, 1.0);
@@ -61,6 +62,7 @@ PoseFreeConfig PoseFreeConfig::from_json(ConfigReader& r) {
     o.get("optimize", po.optimize).get("lr_rot", po.lr_rot).get("lr_trans", po.lr_trans);
     o.get("final_factor", po.final_factor).get("identity_lr_factor", po.identity_lr_factor);
     o.get("beta1", po.beta1).get("beta2", po.beta2).get("eps", po.eps);
+    o.get("start_step", po.start_step);
     o.finish();
   }
   {
@@ -96,6 +98,8 @@ void PoseFreeConfig::to_json(Json& j) const {
                          {"beta1", pose_optim.beta1},
                          {"beta2", pose_optim.beta2},
                          {"eps", pose_optim.eps}};
+  // Written only when set, so that configs from before the key keep their hash.
+  if (pose_optim.start_step != 0) j["pose_optim"]["start_step"] = pose_optim.start_step;
   j["reweight"] = Json{{"enabled", reweight.enabled},
                        {"fraction", reweight.fraction},
                        {"factor", reweight.factor},

@@ -88,7 +88,8 @@ void PoseFreeStep::step(LidarNerfModel& model, uint64_t seed, long step, float l
     if (w != level_w_) model.set_level_weights(level_w_ = std::move(w));
   }
   const RayBatch b = draw_ray_batch(scene_, cfg_, seed, step, [&](int f) { return poses_.pose(size_t(f)); });
-  const bool optimize = pc.pose_optim.optimize;
+  const bool optimize = pc.pose_optim.optimize && step >= pc.pose_optim.start_step;
+  if (!optimize) poses_.drop_pending(size_t(b.frame));  // no pose step: a pending term is void
   model.forward_backward(b, seed, step, optimize);
   const bool pose_only =
       std::find(scene_.pose_only.begin(), scene_.pose_only.end(), b.frame) != scene_.pose_only.end();

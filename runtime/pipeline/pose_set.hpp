@@ -34,6 +34,7 @@ class PoseSet {
   // relative to the range loss (a separate Adam step would normalise it away).
   void add_pending(size_t i, const Vec6& g);
   bool has_pending(size_t i) const { return pending_on_.at(i) != 0; }
+  void drop_pending(size_t i) { pending_.at(i).setZero(), pending_on_.at(i) = 0; }
   const Vec6& pending(size_t i) const { return pending_.at(i); }
   // Checkpoint form: 7 doubles per frame (flag, then the gradient), and its restoration.
   std::vector<double> pending_flat() const;

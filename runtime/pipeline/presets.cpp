@@ -17,7 +17,10 @@ std::vector<std::string> preset_names() {
   return names;
 }
 
-Json preset_json(const std::string& method, const std::string& preset) {
+namespace {
+constexpr const char* kOdometrySection = "from_odometry";
+
+Json embedded_preset(const std::string& method, const std::string& preset) {
   const std::string key = method + "-" + preset;
   for (const auto& [name, text] : embedded_presets()) {
     if (name != key) continue;
@@ -31,15 +34,42 @@ Json preset_json(const std::string& method, const std::string& preset) {
   for (const auto& n : preset_names()) known += (known.empty() ? "" : ", ") + n;
   throw ConfigError("no preset '" + preset + "' for method '" + method + "' (known: " + known + ")");
 }
+}  // namespace
+
+Json preset_json(const std::string& method, const std::string& preset) {
+  Json j = embedded_preset(method, preset);
+  j.erase(kOdometrySection);
+  return j;
+}
+
+Json odometry_start_json(const std::string& method, const std::string& preset) {
+  const Json j = embedded_preset(method, preset);
+  if (!j.contains(kOdometrySection)) return Json::object();
+  const Json& s = j.at(kOdometrySection);
+  if (!s.is_object())
+    throw ConfigError("embedded preset " + method + "-" + preset + ": '" + kOdometrySection +
+                      "' is not an object");
+  return s;
+}
 
 TrainConfig resolve_config(const std::string& method, const std::string& preset,
                            const Json& overrides) {
   const MethodSpec& spec = method_spec(method);
   Json base = preset_json(spec.preset_family, preset);
   if (!spec.consistency) base.erase("consistency");  // see MethodSpec::consistency
-  const Json merged =
-      merge_config_json(merge_config_json(std::move(base), spec.overrides), overrides);
-  return train_config_from_json(merged, "preset " + method + "-" + preset + " + overrides");
+  base = merge_config_json(std::move(base), spec.overrides);
+  Json merged = merge_config_json(base, overrides);
+  std::string where = "preset " + method + "-" + preset;
+  const bool from_odometry = merged.contains("poses") && merged["poses"].is_object() &&
+                             merged["poses"].value("init", std::string()) == "odometry";
+  if (from_odometry) {
+    const Json start = odometry_start_json(spec.preset_family, preset);
+    if (!start.empty()) {
+      merged = merge_config_json(merge_config_json(std::move(base), start), overrides);
+      where += " + " + std::string(kOdometrySection);
+    }
+  }
+  return train_config_from_json(merged, where + " + overrides");
 }
 
 }  // namespace sgnlf::pipeline

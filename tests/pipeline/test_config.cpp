@@ -96,6 +96,46 @@ TEST_CASE("overrides merge into the preset and round-trip through JSON", "[pipel
                   ConfigError);
 }
 
+namespace {
+// Every leaf of `part` has the same value in `whole` (nested objects compared key by key).
+bool contains_leaves(const Json& whole, const Json& part) {
+  for (auto it = part.begin(); it != part.end(); ++it) {
+    if (!whole.contains(it.key())) return false;
+    if (it.value().is_object()) {
+      if (!contains_leaves(whole.at(it.key()), it.value())) return false;
+    } else if (whole.at(it.key()) != it.value()) {
+      return false;
+    }
+  }
+  return true;
+}
+}  // namespace
+
+TEST_CASE("a start from the odometry applies the preset's from_odometry section",
+          "[pipeline][config]") {
+  const Json odometry{{"poses", {{"init", "odometry"}}}};
+  for (const char* method : {"geonlf", "sg-nlf"}) {
+    for (const char* p : {"paper", "quick", "smoke"}) {
+      CAPTURE(method, p);
+      const Json start = odometry_start_json(method, p);
+      REQUIRE_FALSE(start.empty());  // every pose-free preset says how it starts from odometry
+      CHECK_FALSE(preset_json(method, p).contains("from_odometry"));
+      const Json noisy = train_config_to_json(resolve_config(method, p));
+      const Json from_odo = train_config_to_json(resolve_config(method, p, odometry));
+      CHECK(from_odo["poses"]["init"] == "odometry");
+      CHECK(contains_leaves(from_odo, start));  // applied, and valid keys
+      CHECK_FALSE(contains_leaves(noisy, start));  // only when starting from the odometry
+      // The user's keys still win over the section.
+      const Json mine{{"poses", {{"init", "odometry"}}}, {"geometric", {{"first_steps", 7}}}};
+      CHECK(resolve_config(method, p, mine).pose_free.geometric.first_steps == 7);
+    }
+  }
+  // Ablations built on a family's preset inherit its section.
+  CHECK(resolve_config("sg-nlf-no-graph", "quick", odometry).pose_free.geometric.first_steps ==
+        resolve_config("sg-nlf", "quick", odometry).pose_free.geometric.first_steps);
+  CHECK(odometry_start_json("lidar-nerf", "quick").empty());
+}
+
 TEST_CASE("learning rate decays exponentially to final_factor", "[pipeline][config]") {
   OptimConfig o;
   o.lr = 0.01;

@@ -137,6 +137,32 @@ TEST_CASE("pose-free run folder: trajectories, pose metrics, frozen control, exa
   CHECK(f.at("pose_metrics").at("ate_m").get<double>() == Approx(ate0).epsilon(1e-9));
 }
 
+TEST_CASE("photometric pose updates begin at pose_optim.start_step",
+          "[pipeline][posefree][session][device]") {
+  const std::string data = test::temp_dir("posefree_start_data") + "/seq";
+  test::write_tiny_dataset(data);
+  // The geometric stage off, so that only the photometric updates move the poses.
+  auto ate_with = [&](long start_step, const std::string& name) {
+    const Json extra{{"geometric", {{"enabled", false}}},
+                     {"pose_optim", {{"start_step", start_step}}}};
+    const Json s = train_run(test::runtime(),
+                             test::tiny_request("geonlf", data, tiny_pose_free("geonlf", extra),
+                                                test::temp_dir(name), 3, -1, false));
+    return std::make_pair(s.at("initial_pose_metrics").at("ate_m").get<double>(),
+                          s.at("pose_metrics").at("ate_m").get<double>());
+  };
+  const auto [ate0, never] = ate_with(28, "posefree_start_never");  // = iterations: no update
+  CHECK(never == Approx(ate0).epsilon(1e-9));  // the poses' round trip through the scene's frame
+  const auto [ate0_half, half] = ate_with(14, "posefree_start_half");
+  const auto [ate0_all, all] = ate_with(0, "posefree_start_all");
+  CHECK(ate0_half == ate0);
+  CHECK(ate0_all == ate0);
+  CHECK(std::abs(half - ate0) > 1e-6);  // moved after step 14 …
+  CHECK(std::abs(half - all) > 1e-6);   // … and not as the run updating from step 0
+  CHECK_THROWS_WITH(tiny_pose_free("geonlf", Json{{"pose_optim", {{"start_step", -1}}}}),
+                    Catch::Contains("start_step"));
+}
+
 TEST_CASE("pose-free options: unknown init, ground-truth methods, too few frames",
           "[pipeline][posefree]") {
   CHECK_THROWS_WITH(resolve_config("geonlf", "smoke", Json{{"poses", {{"init", "random"}}}}),
