@@ -60,8 +60,12 @@ TrainConfig resolve_config(const std::string& method, const std::string& preset,
   base = merge_config_json(std::move(base), spec.overrides);
   Json merged = merge_config_json(base, overrides);
   std::string where = "preset " + method + "-" + preset;
-  const bool from_odometry = merged.contains("poses") && merged["poses"].is_object() &&
-                             merged["poses"].value("init", std::string()) == "odometry";
+  // A malformed poses.init is left to the strict reader below, which names it.
+  const Json* init = merged.contains("poses") && merged["poses"].is_object() &&
+                             merged["poses"].contains("init")
+                         ? &merged["poses"]["init"]
+                         : nullptr;
+  const bool from_odometry = init && init->is_string() && init->get<std::string>() == "odometry";
   if (from_odometry) {
     const Json start = odometry_start_json(spec.preset_family, preset);
     if (!start.empty()) {

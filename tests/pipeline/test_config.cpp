@@ -134,6 +134,9 @@ TEST_CASE("a start from the odometry applies the preset's from_odometry section"
   CHECK(resolve_config("sg-nlf-no-graph", "quick", odometry).pose_free.geometric.first_steps ==
         resolve_config("sg-nlf", "quick", odometry).pose_free.geometric.first_steps);
   CHECK(odometry_start_json("lidar-nerf", "quick").empty());
+  // A malformed init is still named by the strict reader.
+  CHECK(error_of([] { resolve_config("geonlf", "quick", Json{{"poses", {{"init", 5}}}}); })
+            .find("init") != std::string::npos);
 }
 
 TEST_CASE("learning rate decays exponentially to final_factor", "[pipeline][config]") {
