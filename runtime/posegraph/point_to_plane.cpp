@@ -19,10 +19,9 @@ DirectionTerm weighted_plane_direction(const FrameCloud& src, const FrameCloud& 
               std::to_string(weights.size()) + " weights for " + std::to_string(src.size()) +
               " points");
   const Pose T_ds = T_world_dst.inverse() * T_world_src;
-  const Mat3 R_sd = T_ds.linear().transpose();
   DirectionTerm t;
   t.points = src.size();
-  Vec3 sum_g = Vec3::Zero(), rot_src = Vec3::Zero(), rot_dst = Vec3::Zero();
+  DirectionGradient grad(T_ds);
   for (size_t k = 0; k < src.size(); ++k) {
     const Vec3 n = dst.normals[matches[k].dst_index].cast<double>();
     if (n.squaredNorm() == 0.0) continue;  // no plane there
@@ -30,14 +29,9 @@ DirectionTerm weighted_plane_direction(const FrameCloud& src, const FrameCloud& 
     const Vec3 q = T_ds * p;
     const double r = n.dot(q - dst.points[matches[k].dst_index].cast<double>());
     t.loss += weights[k] * r * r;
-    const Vec3 g = 2.0 * weights[k] * r * n;
-    sum_g += g;
-    rot_src += p.cross(R_sd * g);
-    rot_dst -= q.cross(g);
+    grad.add(p, q, 2.0 * weights[k] * r * n);
   }
-  const Vec3 g_world = T_world_dst.linear() * sum_g;
-  t.grad_src << rot_src, g_world;
-  t.grad_dst << rot_dst, -g_world;
+  grad.write(T_world_dst, t);
   return t;
 }
 

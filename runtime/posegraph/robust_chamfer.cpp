@@ -49,23 +49,17 @@ DirectionTerm weighted_direction(const FrameCloud& src, const FrameCloud& dst,
   // g = dL/dx = 2w·R_dst·e:  dL/dt_src = Σ g,  dL/dθ_src = Σ p × R_srcᵀ g = Σ p × R_dsᵀ(2w e),
   // dL/dt_dst = −Σ g,  dL/dθ_dst = −Σ n × R_dstᵀ g = −Σ n × (2w e).
   const Pose T_ds = T_world_dst.inverse() * T_world_src;
-  const Mat3 R_sd = T_ds.linear().transpose();
   DirectionTerm t;
   t.points = src.size();
-  Vec3 sum_e = Vec3::Zero(), rot_src = Vec3::Zero(), rot_dst = Vec3::Zero();
+  DirectionGradient grad(T_ds);
   for (size_t k = 0; k < src.size(); ++k) {
     const Vec3 p = src.points[k].cast<double>();
     const Vec3 n = dst.points[matches[k].dst_index].cast<double>();
     const Vec3 e = T_ds * p - n;
     t.loss += weights[k] * e.squaredNorm();
-    const Vec3 ge = 2.0 * weights[k] * e;
-    sum_e += ge;
-    rot_src += p.cross(R_sd * ge);
-    rot_dst -= n.cross(ge);
+    grad.add(p, n, 2.0 * weights[k] * e);
   }
-  const Vec3 g_world = T_world_dst.linear() * sum_e;
-  t.grad_src << rot_src, g_world;
-  t.grad_dst << rot_dst, -g_world;
+  grad.write(T_world_dst, t);
   return t;
 }
 

@@ -37,6 +37,29 @@ struct DirectionTerm {
   size_t points = 0;
 };
 
+// Sums one direction term's pose gradients from per-point g = dL/dq (q the src point in dst's
+// frame): dL/dθ_src = Σ p × R_dsᵀg, dL/dt_src = R_dst Σ g, dL/dθ_dst = −Σ l × g,
+// dL/dt_dst = −R_dst Σ g, with l the dst-frame point whose cross product the term needs (its
+// match for point-to-point, where q × g = n × g; q for point-to-plane). Shared by both terms.
+class DirectionGradient {
+ public:
+  explicit DirectionGradient(const Pose& T_dst_src) : R_sd_(T_dst_src.linear().transpose()) {}
+  void add(const Vec3& p_src, const Vec3& lever_dst, const Vec3& g) {
+    sum_g_ += g;
+    rot_src_ += p_src.cross(R_sd_ * g);
+    rot_dst_ -= lever_dst.cross(g);
+  }
+  void write(const Pose& T_world_dst, DirectionTerm& t) const {
+    const Vec3 g_world = T_world_dst.linear() * sum_g_;
+    t.grad_src << rot_src_, g_world;
+    t.grad_dst << rot_dst_, -g_world;
+  }
+
+ private:
+  Mat3 R_sd_;
+  Vec3 sum_g_ = Vec3::Zero(), rot_src_ = Vec3::Zero(), rot_dst_ = Vec3::Zero();
+};
+
 // Nearest neighbour in dst of every src point under T_dst_src (query rounded to float, the
 // tree's precision; ties go to the lowest dst index).
 std::vector<Match> match_direction(const FrameCloud& src, const FrameCloud& dst,

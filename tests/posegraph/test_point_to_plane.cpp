@@ -12,21 +12,14 @@
 #include "posegraph/geometric_optimizer.hpp"
 #include "posegraph/point_to_plane.hpp"
 #include "posegraph/pose_adam.hpp"
+#include "gradient_fixture.hpp"
 #include "smooth_scene.hpp"
 
 using namespace sgnlf;
 using namespace sgnlf::posegraph;
+using namespace sgnlf::test;
 
 namespace {
-
-const Pose kBase0 = exp_se3((Vec6() << 0.05, -0.02, 0.3, 1.0, -0.5, 0.2).finished());
-const Pose kBase1 = exp_se3((Vec6() << -0.03, 0.04, 0.5, 3.0, 0.8, -0.1).finished());
-const Vec6 kXi0 = (Vec6() << 0.02, -0.03, 0.25, 0.3, -0.2, 0.1).finished();
-const Vec6 kXi1 = (Vec6() << -0.04, 0.01, -0.3, -0.2, 0.4, 0.05).finished();
-
-double sym_rel_error(const Eigen::VectorXd& a, const Eigen::VectorXd& n) {
-  return (a - n).norm() / std::max({a.norm(), n.norm(), 1e-300});
-}
 
 // Rings of a sensor 1.8 m above flat ground: the pattern a spinning LiDAR leaves there. Points
 // in the sensor's frame (origin at the sensor).
@@ -87,14 +80,9 @@ TEST_CASE("point-to-plane term: gradient of both frames matches central differen
         .loss;
   };
   const auto t = weighted_plane_direction(src, dst, T0, T1, m, w);
-  Eigen::VectorXd analytic(12), numeric(12);
-  analytic << decoupled_gradient(kBase0, kXi0, t.grad_src), decoupled_gradient(kBase1, kXi1, t.grad_dst);
-  for (int k = 0; k < 12; ++k) {
-    Vec6 p0 = kXi0, p1 = kXi1, m0 = kXi0, m1 = kXi1;
-    (k < 6 ? p0 : p1)[k % 6] += 1e-6;
-    (k < 6 ? m0 : m1)[k % 6] -= 1e-6;
-    numeric[k] = (f(p0, p1) - f(m0, m1)) / 2e-6;
-  }
+  const Eigen::VectorXd analytic = stack(decoupled_gradient(kBase0, kXi0, t.grad_src),
+                                         decoupled_gradient(kBase1, kXi1, t.grad_dst));
+  const Eigen::VectorXd numeric = central_differences(f, 1e-6);
   INFO("analytic " << analytic.transpose() << "\nnumeric  " << numeric.transpose());
   CHECK(sym_rel_error(analytic, numeric) < 1e-5);
   CHECK(numeric.norm() > 0.01);
