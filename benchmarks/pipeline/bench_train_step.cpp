@@ -5,8 +5,11 @@
 // The `trained` pair measures early ray termination where it matters, on a field trained for
 // 1000 steps first (untrained fields are translucent and terminate nothing): the same state is
 // stepped with and without `render.stop_transmittance`; live/sample reports the fraction of
-// merged samples the field evaluated (coarse/uniform, head/live, evaluated/s: see below).
+// merged samples the field evaluated (coarse/uniform, head/live, evaluated/s, free/live: see
+// below).
 #include <benchmark/benchmark.h>
+
+#include <algorithm>
 
 #include "support/bench_support.hpp"
 #include "bench_dataset.hpp"
@@ -47,6 +50,23 @@ void BM_TrainStep(benchmark::State& state, const char* preset, bool reuse_coarse
                                                 benchmark::Counter::kIsRate);
 }
 
+// Uniform samples of a batch that lie in known free space: on each ray with a return, the
+// stratified bins that end more than one cell of a 128³ grid over the normalised box [-1, 1]³
+// in front of the measured range. What an occupancy structure could skip at best (issue 19;
+// rays without a return are not counted, the importance samples sit at the surface): as a
+// share of the live samples (free/live), it bounds the saving of the training pass.
+long free_space_samples(const RayBatch& b, const TrainConfig& c, float scene_scale) {
+  const double near = c.render.near_m * scene_scale, far = c.render.far_m * scene_scale;
+  const double bin = (far - near) / c.render.n_samples, cell = 2.0 / 128.0;
+  long n = 0;
+  for (int r = 0; r < b.n_rays; ++r) {
+    if (b.label[size_t(r)] < 0.5f) continue;
+    const double front = double(b.range[size_t(r)]) - cell - near;  // bins ending before this
+    if (front > 0.0) n += std::min<long>(long(front / bin), c.render.n_samples);
+  }
+  return n;
+}
+
 // One quick-preset model trained for kWarmSteps (with termination; shared by the pair below).
 constexpr long kWarmSteps = 1000;
 const ModelState& trained_state() {
@@ -74,7 +94,7 @@ void BM_TrainStepTrained(benchmark::State& state, float stop_transmittance, int 
   LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), c.schedule.rays_per_batch);
   model.set_state(trained_state());
   long step = kWarmSteps;
-  double live = 0.0, coarse = 0.0, head = 0.0, evals = 0.0;
+  double live = 0.0, coarse = 0.0, head = 0.0, evals = 0.0, free = 0.0, dropped = 0.0;
   const double samples = double(c.schedule.rays_per_batch) * (c.render.n_samples + c.render.n_importance);
   for (auto _ : state) {
     const RayBatch b = draw_ray_batch(scene, c, 1, step);
@@ -84,12 +104,25 @@ void BM_TrainStepTrained(benchmark::State& state, float stop_transmittance, int 
     evals += double(model.live_samples() + model.coarse_evaluated());
     coarse += double(model.coarse_evaluated()) / double(c.schedule.rays_per_batch * c.render.n_samples);
     head += head_threshold > 0.0f ? double(model.head_rows()) / double(std::max(model.live_samples(), 1L)) : 1.0;
+    const double live_n = double(std::max(model.live_samples(), 1L));
+    free += double(free_space_samples(b, c, float(scene.norm.scale))) / live_n;
+    const int merged = c.render.n_samples + c.render.n_importance;
+    const std::vector<int> per_ray = stop_transmittance > 0.0f
+                                         ? model.live_counts()
+                                         : std::vector<int>(size_t(b.n_rays), merged);
+    long no_return = 0;
+    for (int r = 0; r < b.n_rays; ++r)
+      if (b.label[size_t(r)] < 0.5f) no_return += per_ray[size_t(r)];
+    dropped += double(no_return) / live_n;
   }
   state.counters["samples/s"] =
       benchmark::Counter(samples * double(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["live/sample"] = live / double(std::max<int64_t>(state.iterations(), 1));
   state.counters["coarse/uniform"] = coarse / double(std::max<int64_t>(state.iterations(), 1));
   state.counters["head/live"] = head / double(std::max<int64_t>(state.iterations(), 1));
+  state.counters["free/live"] = free / double(std::max<int64_t>(state.iterations(), 1));
+  // The live samples of rays without a measured return (sky, and the sensor's drops).
+  state.counters["noreturn/live"] = dropped / double(std::max<int64_t>(state.iterations(), 1));
   // Field evaluations actually made (density-pass samples + live samples of the training
   // pass), against samples/s, the uniform-equivalent rate (rays × (uniform + importance)).
   state.counters["evaluated/s"] = benchmark::Counter(evals, benchmark::Counter::kIsRate);
