@@ -1,5 +1,10 @@
 // Procedural street generation (see sim_street.hpp). All draws come from Rng(seed, stream) in a
-// fixed order, so a seed gives one world bit for bit.
+// fixed order, so a seed gives one world bit for bit, whatever the compiler: never draw twice
+// within one function call's arguments (f(rng.uniform(), rng.uniform()), V3(rng..., rng...)),
+// whose evaluation order is unspecified and differs between GCC and Clang (a Clang build made
+// another street from the same seed; tests/datasets/test_simulate_compiler.cpp). Draws that
+// were once in an argument list are made last argument first, the order GCC used, so the data
+// of every committed result is unchanged.
 #include "datasets/sim_street.hpp"
 
 #include <algorithm>
@@ -140,7 +145,8 @@ void add_side(Placer& P, int side, double L, double wr, double sw) {
     const V2 c = P.w.path.point(s) + P.w.path.left(s) * (sgn * (wr + 0.45));
     const bool sign = rng.uniform() < 0.35f;
     const float h = sign ? rng.uniform(2.4f, 3.0f) : rng.uniform(6.f, 8.5f);
-    if (!P.add_clear(Primitive::make_cylinder(float(c.x()), float(c.y()), 0.f, h, rng.uniform(0.06f, 0.13f), Material::metal, rng.uniform(0.35f, 0.55f)), wr + 0.2)) continue;
+    const float pole_refl = rng.uniform(0.35f, 0.55f), pole_r = rng.uniform(0.06f, 0.13f);
+    if (!P.add_clear(Primitive::make_cylinder(float(c.x()), float(c.y()), 0.f, h, pole_r, Material::metal, pole_refl), wr + 0.2)) continue;
     if (sign) P.w.scene.add(P.box_at(s, sgn * (wr + 0.45), 0, V3(0.03f, 0.35f, 0.35f), h - 0.2f, Material::paint, 0.95f));
     else P.w.scene.add(P.box_at(s, sgn * (wr - 0.3), 0, V3(0.15f, 0.75f, 0.06f), h, Material::metal, 0.5f));
   }
@@ -149,16 +155,24 @@ void add_side(Placer& P, int side, double L, double wr, double sw) {
     for (double s = rng.uniform(0.f, 10.f); s < L; s += rng.uniform(8.f, 15.f)) {
       const V2 c = P.w.path.point(s) + P.w.path.left(s) * (sgn * (wr + sw - 0.9));
       const float th = rng.uniform(2.0f, 3.2f), rx = rng.uniform(1.4f, 2.6f), rz = rng.uniform(1.5f, 3.0f);
-      if (!P.add_clear(Primitive::make_cylinder(float(c.x()), float(c.y()), 0.f, th + 0.5f, rng.uniform(0.12f, 0.25f), Material::bark, rng.uniform(0.18f, 0.3f)), wr + 0.2)) continue;
-      P.w.scene.add(Primitive::make_ellipsoid(V3(float(c.x()), float(c.y()), th + 0.8f * rz), V3(rx, rx * rng.uniform(0.85f, 1.15f), rz), Material::foliage, rng.uniform(0.2f, 0.36f)));
+      const float bark_refl = rng.uniform(0.18f, 0.3f), trunk_r = rng.uniform(0.12f, 0.25f);
+      if (!P.add_clear(Primitive::make_cylinder(float(c.x()), float(c.y()), 0.f, th + 0.5f, trunk_r, Material::bark, bark_refl), wr + 0.2)) continue;
+      const float leaf_refl = rng.uniform(0.2f, 0.36f), ry = rx * rng.uniform(0.85f, 1.15f);
+      P.w.scene.add(Primitive::make_ellipsoid(V3(float(c.x()), float(c.y()), th + 0.8f * rz), V3(rx, ry, rz), Material::foliage, leaf_refl));
     }
   // Clutter on the sidewalk: bins, bollards, boxes.
   for (double s = rng.uniform(0.f, 8.f); s < L; s += rng.uniform(4.f, 16.f)) {
     const double lat = sgn * (wr + rng.uniform(0.5f, float(sw) - 0.4f));
     const V2 c = P.w.path.point(s) + P.w.path.left(s) * lat;
     const float u = rng.uniform();
-    if (u < 0.4f) P.add_clear(Primitive::make_cylinder(float(c.x()), float(c.y()), 0.f, rng.uniform(0.8f, 1.1f), rng.uniform(0.08f, 0.35f), Material::plastic, rng.uniform(0.1f, 0.6f)), wr + 0.1);
-    else P.add_clear(P.box_at(s, lat, 0, V3(rng.uniform(0.2f, 0.7f), rng.uniform(0.2f, 0.6f), rng.uniform(0.3f, 0.8f)), 0.f, Material::plastic, rng.uniform(0.1f, 0.6f)), wr + 0.1);
+    const float refl = rng.uniform(0.1f, 0.6f);
+    if (u < 0.4f) {
+      const float r = rng.uniform(0.08f, 0.35f), z1 = rng.uniform(0.8f, 1.1f);
+      P.add_clear(Primitive::make_cylinder(float(c.x()), float(c.y()), 0.f, z1, r, Material::plastic, refl), wr + 0.1);
+    } else {
+      const float hz = rng.uniform(0.3f, 0.8f), hy = rng.uniform(0.2f, 0.6f), hx = rng.uniform(0.2f, 0.7f);
+      P.add_clear(P.box_at(s, lat, 0, V3(hx, hy, hz), 0.f, Material::plastic, refl), wr + 0.1);
+    }
   }
   // Buildings: frontage runs with gaps (walls in some), varied setback, depth, height, material.
   double setback = rng.uniform(0.3f, 5.f);
@@ -188,8 +202,10 @@ void add_side(Placer& P, int side, double L, double wr, double sw) {
     }
     const float ug = rng.uniform();  // attached, a gap, or a cross street
     double gap = ug < 0.5f ? rng.uniform(0.f, 1.f) : ug < 0.82f ? rng.uniform(2.f, 12.f) : rng.uniform(14.f, 28.f);
-    if (gap > 2.f && gap < 13.f && rng.uniform() < 0.6f)  // wall or fence closing the gap
-      P.add_clear(P.box_at(s + front + gap / 2, sgn * (wr + sw + setback + 0.15), 0, V3(float(gap / 2), 0.15f, 0.9f), rng.uniform(0.6f, 1.2f), Material::stone, rng.uniform(0.2f, 0.4f)), wr + sw - 0.2, 3.0);
+    if (gap > 2.f && gap < 13.f && rng.uniform() < 0.6f) {  // wall or fence closing the gap
+      const float wall_refl = rng.uniform(0.2f, 0.4f), wall_z = rng.uniform(0.6f, 1.2f);
+      P.add_clear(P.box_at(s + front + gap / 2, sgn * (wr + sw + setback + 0.15), 0, V3(float(gap / 2), 0.15f, 0.9f), wall_z, Material::stone, wall_refl), wr + sw - 0.2, 3.0);
+    }
     s += front + gap;
   }
 }
@@ -202,7 +218,9 @@ StreetWorld generate_street(const StreetConfig& cfg) {
   w.road_half_width = rng.uniform(5.2f, 7.0f);
   w.sidewalk_width = rng.uniform(2.2f, 4.5f);
   if (cfg.layout == "loop") {
-    w.path = make_loop_path(rng.uniform(24.f, 28.f) + 4 * w.road_half_width, rng.uniform(18.f, 22.f) + 4 * w.road_half_width, 10.0);
+    const double loop_w = rng.uniform(18.f, 22.f) + 4 * w.road_half_width;
+    const double loop_l = rng.uniform(24.f, 28.f) + 4 * w.road_half_width;
+    w.path = make_loop_path(loop_l, loop_w, 10.0);
     w.ego_start_s = 0;
   } else {
     w.path = make_open_path(rng, cfg.drive_length_m + 180.0);

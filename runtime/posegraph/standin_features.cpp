@@ -24,8 +24,10 @@ FeatureProvider standin_fourier_features(const StandinFeatureConfig& c) {
   const double log_lo = std::log(c.min_wavelength_m), log_hi = std::log(c.max_wavelength_m);
   for (int k = 0; k < c.frequencies; ++k) {
     Eigen::Vector3d w;
-    do w = Eigen::Vector3d(rng.normal(), rng.normal(), rng.normal());
-    while (w.norm() < 1e-6);
+    do {
+      const double z = rng.normal(), y = rng.normal(), x = rng.normal();  // z first: see rng.hpp
+      w = Eigen::Vector3d(x, y, z);
+    } while (w.norm() < 1e-6);
     const double lambda = std::exp(log_lo + (log_hi - log_lo) * rng.uniform_double());
     waves->push_back(w.normalized() * (2.0 * M_PI / lambda));
   }

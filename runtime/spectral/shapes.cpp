@@ -90,7 +90,10 @@ class Cylinder final : public Shape {
   double area() const override { return 2 * kPi * R_ * L_; }
   std::vector<SurfacePoint> sample(Rng& rng, size_t n) const override {
     std::vector<SurfacePoint> pts(n);
-    for (auto& p : pts) p = at_chart(rng.uniform_double(), rng.uniform_double(), 1.0 / double(n));
+    for (auto& p : pts) {
+      const double v = rng.uniform_double(), u = rng.uniform_double();  // v first: see rng.hpp
+      p = at_chart(u, v, 1.0 / double(n));
+    }
     return pts;
   }
   std::vector<SurfacePoint> lattice(size_t n) const override {
@@ -195,7 +198,10 @@ class Square final : public Shape {
   double area() const override { return a_ * a_; }
   std::vector<SurfacePoint> sample(Rng& rng, size_t n) const override {
     std::vector<SurfacePoint> pts(n);
-    for (auto& p : pts) p = at_chart(rng.uniform_double(), rng.uniform_double(), 1.0 / double(n));
+    for (auto& p : pts) {
+      const double v = rng.uniform_double(), u = rng.uniform_double();  // v first: see rng.hpp
+      p = at_chart(u, v, 1.0 / double(n));
+    }
     return pts;
   }
   std::vector<SurfacePoint> lattice(size_t n) const override {
