@@ -277,13 +277,15 @@ void fault_point(const char* point, long step) {
 
 std::vector<float> pack_doubles(const std::vector<double>& v) {
   std::vector<float> out(2 * v.size());
-  std::memcpy(out.data(), v.data(), v.size() * sizeof(double));
+  // An empty vector's data() may be null, and memcpy from null is undefined even for 0 bytes
+  // (UBSan found it: a pose graph without edges, tests/pipeline/test_sgnlf.cpp).
+  if (!v.empty()) std::memcpy(out.data(), v.data(), v.size() * sizeof(double));
   return out;
 }
 
 std::vector<double> unpack_doubles(const std::vector<float>& v) {
   std::vector<double> out(v.size() / 2);
-  std::memcpy(out.data(), v.data(), out.size() * sizeof(double));
+  if (!out.empty()) std::memcpy(out.data(), v.data(), out.size() * sizeof(double));
   return out;
 }
 
