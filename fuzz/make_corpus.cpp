@@ -16,6 +16,8 @@
 #include "io/scan_io.hpp"
 #include "io/trajectory_io.hpp"
 #include "pipeline/checkpoint.hpp"
+#include "pipeline/presets.hpp"
+#include "pipeline/train_config.hpp"
 
 using namespace sgnlf;
 namespace fs = std::filesystem;
@@ -150,6 +152,27 @@ int main(int argc, char** argv) {
   write_json_file(tmp + "/res.json", res);
   seed(out + "/fuzz_compare_results", "smoke_first_row.json", read_all(tmp + "/res.json"), 0);
   seed(out + "/fuzz_compare_results", "smoke_first_row_as_baseline.json", read_all(tmp + "/res.json"), 1);
+
+  // Training configs: overrides onto a preset (the prefix byte picks it: 2·k for the k-th of
+  // preset_names()) and whole configs as run.json holds them (odd prefix).
+  const std::vector<std::string> presets = pipeline::preset_names();
+  auto preset_prefix = [&](const std::string& name) {
+    for (size_t k = 0; k < presets.size(); ++k)
+      if (presets[k] == name) return int(2 * k);
+    throw Error("make_corpus: no preset " + name);
+  };
+  const std::string tc = out + "/fuzz_train_config";
+  seed(tc, "overrides_schedule.json", Json{{"schedule", {{"iterations", 10}, {"rays_per_batch", 256}}}}.dump(1),
+       preset_prefix("lidar-nerf-smoke"));
+  seed(tc, "overrides_poses_odometry.json", Json{{"poses", {{"init", "odometry"}}}}.dump(1),
+       preset_prefix("geonlf-quick"));
+  seed(tc, "overrides_spectral.json",
+       Json{{"spectral", {{"psi", {{"k", 8}, {"activation", "sine"}}}, {"fusion", {{"start", 10}, {"end", 20}}}}}}.dump(1),
+       preset_prefix("sg-nlf-smoke"));
+  seed(tc, "whole_sg_nlf_quick.json",
+       pipeline::train_config_to_json(pipeline::resolve_config("sg-nlf", "quick")).dump(1), 1);
+  seed(tc, "whole_lidar_nerf_paper.json",
+       pipeline::train_config_to_json(pipeline::resolve_config("lidar-nerf", "paper")).dump(1), 1);
 
   fs::remove_all(tmp);
   return 0;

@@ -24,26 +24,6 @@ void check_bytes(const cl::Buffer& b, size_t floats, const char* what) {
 size_t ceil_div(size_t a, size_t b) { return (a + b - 1) / b; }
 }  // namespace
 
-Activation activation_from_string(const std::string& s) {
-  if (s == "none") return Activation::None;
-  if (s == "relu") return Activation::Relu;
-  if (s == "tanh") return Activation::Tanh;
-  if (s == "softplus") return Activation::Softplus;
-  if (s == "sine") return Activation::Sine;
-  throw ConfigError("activation '" + s + "' is not one of none, relu, tanh, softplus, sine");
-}
-
-std::string to_string(Activation a) {
-  switch (a) {
-    case Activation::None: return "none";
-    case Activation::Relu: return "relu";
-    case Activation::Tanh: return "tanh";
-    case Activation::Softplus: return "softplus";
-    case Activation::Sine: return "sine";
-  }
-  return "?";
-}
-
 void MlpSpec::validate() const {
   check_range("mlp", "n_in", n_in, 1, 128);
   check_range("mlp", "n_in_group", n_in_group, 0, 128);

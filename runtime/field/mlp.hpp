@@ -26,12 +26,9 @@
 
 #include "cl/runtime.hpp"
 #include "core/config.hpp"
+#include "field/activation.hpp"
 
 namespace sgnlf::field {
-
-enum class Activation { None = 0, Relu = 1, Tanh = 2, Softplus = 3, Sine = 4 };
-Activation activation_from_string(const std::string& s);  // "none", "relu", ...; throws
-std::string to_string(Activation a);
 
 struct MlpLayerSpec {
   int width = 64;

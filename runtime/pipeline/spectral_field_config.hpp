@@ -5,8 +5,8 @@
 // (method_registry: spectral_field), so other methods' config hashes do not change.
 #pragma once
 #include "core/config.hpp"
-#include "spectral/fusion.hpp"
-#include "spectral/psi.hpp"
+#include "spectral/fusion_ramp.hpp"
+#include "spectral/psi_spec.hpp"
 #include "spectral/spectral_loss.hpp"
 
 namespace sgnlf::pipeline {

@@ -8,28 +8,6 @@
 
 namespace sgnlf::spectral {
 
-double FusionRamp::lambda(int iteration) const {
-  if (iteration >= end) return 1.0;
-  if (iteration <= start) return 0.0;
-  return double(iteration - start) / double(end - start);
-}
-
-void FusionRamp::validate() const {
-  check_range("spectral fusion", "start", start, 0, 100000000);
-  check_range("spectral fusion", "end", end, start, 100000000);
-}
-
-FusionRamp FusionRamp::from_json(const Json& j, const std::string& where) {
-  FusionRamp f;
-  ConfigReader r(j, where);
-  r.get("start", f.start).get("end", f.end);
-  r.finish();
-  f.validate();
-  return f;
-}
-
-Json FusionRamp::to_json() const { return Json{{"start", start}, {"end", end}}; }
-
 SpectralFusion::SpectralFusion(cl::Runtime& rt, int geo_width, int k) : geo_width_(geo_width), k_(k) {
   require(geo_width >= 0 && k >= 1, "SpectralFusion: need geo_width >= 0 and k >= 1");
   const std::string opt = "-DFUSION_G=" + std::to_string(geo_width) + " -DFUSION_K=" + std::to_string(k);

@@ -5,17 +5,9 @@
 #pragma once
 #include "cl/runtime.hpp"
 #include "core/config.hpp"
+#include "spectral/fusion_ramp.hpp"
 
 namespace sgnlf::spectral {
-
-struct FusionRamp {
-  int start = 0;     // iteration where λ starts to grow from 0
-  int end = 2000;    // iteration where λ reaches 1 (end == start: a step)
-  double lambda(int iteration) const;
-  void validate() const;
-  static FusionRamp from_json(const Json& j, const std::string& where);
-  Json to_json() const;
-};
 
 class SpectralFusion {
  public:

@@ -16,7 +16,7 @@ HybridEncoder::HybridEncoder(cl::Runtime& rt, const field::HashGridConfig& grid,
     : rt_(rt),
       grid_(rt, grid),
       psi_spec_((psi.validate(), psi)),
-      psi_(rt, psi.mlp_spec()),
+      psi_(rt, psi_mlp_spec(psi)),
       fusion_(rt, grid_.n_output(), psi.k),
       psi_adam_(rt, psi_.n_params()) {
   objective_ = std::make_unique<SpectralObjective>(rt, psi_, loss);

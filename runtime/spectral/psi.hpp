@@ -5,25 +5,13 @@
 #include <memory>
 
 #include "field/mlp.hpp"
+#include "spectral/psi_spec.hpp"
 #include "spectral/rayleigh_ritz.hpp"
 
 namespace sgnlf::spectral {
 
-struct PsiSpec {
-  int k = 16;       // eigenfunctions
-  int width = 64;   // hidden width
-  int hidden = 2;   // hidden layers
-  field::Activation activation = field::Activation::Tanh;  // smooth: tanh, softplus or sine
-  // Initialisation on top of the field's fan-in init: hidden biases U(±bias_init) (zero biases
-  // make a tanh/sine network odd in x at the start), first-layer weights × first_layer_scale
-  // (the frequency content of the first features, SIREN's ω0).
-  double bias_init = 1.0;
-  double first_layer_scale = 1.0;
-  void validate() const;
-  field::MlpSpec mlp_spec() const;
-  static PsiSpec from_json(const Json& j, const std::string& where);
-  Json to_json() const;
-};
+// Ψ's MLP: 3 → width (× hidden) → k, spec's activation, linear output.
+field::MlpSpec psi_mlp_spec(const PsiSpec& spec);
 
 // Initialises Ψ's slice: Mlp::init_params, then the bias/first-layer rules of PsiSpec.
 void init_psi_params(const field::Mlp& mlp, const PsiSpec& spec, std::vector<float>& params, size_t offset,

@@ -43,7 +43,7 @@ Json SpectralTrainConfig::to_json() const {
 SpectralTrainer::SpectralTrainer(cl::Runtime& rt, const SpectralTrainConfig& cfg)
     : rt_(rt),
       cfg_((cfg.validate(), cfg)),
-      mlp_(rt, cfg.psi.mlp_spec()),
+      mlp_(rt, psi_mlp_spec(cfg.psi)),
       params_(rt, mlp_.n_params() * sizeof(float)),
       grad_(rt, mlp_.n_params() * sizeof(float)),
       adam_(rt, mlp_.n_params()),

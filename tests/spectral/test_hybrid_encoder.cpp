@@ -88,7 +88,7 @@ TEST_CASE("hybrid encoder forward matches the host reference", "[hybrid]") {
     s.enc.set_lambda(lambda);
     s.enc.forward(s.params, 0, xb, n, enc);
     const auto got = enc.read_vec<float>(size_t(n) * s.enc.width());
-    const auto want = hybrid_ref(s.g, s.host, small_psi().mlp_spec(), s.enc.psi_state().params,
+    const auto want = hybrid_ref(s.g, s.host, psi_mlp_spec(small_psi()), s.enc.psi_state().params,
                                  x, n, lambda);
     double worst = 0;
     for (size_t i = 0; i < got.size(); ++i) worst = std::max(worst, double(std::abs(got[i] - want[i])));
@@ -123,7 +123,7 @@ TEST_CASE("hybrid encoder dL/dx matches the reference and finite differences", "
   const std::vector<float> ones(size_t(s.g.levels), 1.0f);
   auto want = test::ref::hashgrid_bwd_dx(s.g, s.host, x, ones, d_geo);
   std::vector<float> d_in;
-  test::ref::mlp_bwd(small_psi().mlp_spec(), psi_before.params, x, n, d_psi, d_in);
+  test::ref::mlp_bwd(psi_mlp_spec(small_psi()), psi_before.params, x, n, d_psi, d_in);
   for (size_t i = 0; i < want.size(); ++i) want[i] += d_in[i];
   double worst = 0, scale = 0;
   for (size_t i = 0; i < got.size(); ++i) {
@@ -134,7 +134,7 @@ TEST_CASE("hybrid encoder dL/dx matches the reference and finite differences", "
 
   // Finite differences of L = Σ d_enc · enc(x) in double from the reference forward.
   auto loss = [&](const std::vector<float>& xs) {
-    const auto e = hybrid_ref(s.g, s.host, small_psi().mlp_spec(), psi_before.params, xs, n, lambda);
+    const auto e = hybrid_ref(s.g, s.host, psi_mlp_spec(small_psi()), psi_before.params, xs, n, lambda);
     double l = 0;
     for (size_t i = 0; i < e.size(); ++i) l += double(d_enc[i]) * e[i];
     return l;

@@ -1,0 +1,12 @@
+// The activations of the field's MLPs (field/mlp.hpp) and their names in configs. Host-only, so
+// that configs naming an activation (spectral::PsiSpec) parse without the OpenCL layer.
+#pragma once
+#include <string>
+
+namespace sgnlf::field {
+
+enum class Activation { None = 0, Relu = 1, Tanh = 2, Softplus = 3, Sine = 4 };
+Activation activation_from_string(const std::string& s);  // "none", "relu", ...; ConfigError
+std::string to_string(Activation a);
+
+}  // namespace sgnlf::field

@@ -1,0 +1,20 @@
+// The fusion weight λ(t) of the hybrid feature [f_geo, λ(t)·Ψ(x)] (method.md §4.1): 0 until
+// `start`, linear to 1 at `end`. Host-only config (the config's "spectral"."fusion"); the fusion
+// itself is spectral/fusion.hpp.
+#pragma once
+#include <string>
+
+#include "core/config.hpp"
+
+namespace sgnlf::spectral {
+
+struct FusionRamp {
+  int start = 0;     // iteration where λ starts to grow from 0
+  int end = 2000;    // iteration where λ reaches 1 (end == start: a step)
+  double lambda(int iteration) const;
+  void validate() const;
+  static FusionRamp from_json(const Json& j, const std::string& where);
+  Json to_json() const;
+};
+
+}  // namespace sgnlf::spectral
