@@ -53,9 +53,11 @@ def main(argv):
     runs = [load(p) for p in argv[1:]]
     seeds = [r["config"]["seed"] for r in runs]
     metrics = [k for k in infos if k not in ("frames",)]
+    def stamp(g):
+        return g["sha"][:7] + ("-dirty" if g.get("dirty") else "") if g else "?"
     report = {"seeds": seeds, "runs": argv[1:],
-              "git": [r["context"]["git"]["sha"][:7] + ("-dirty" if r["context"]["git"]["dirty"] else "")
-                      for r in runs],
+              "git": [stamp(r["context"].get("git")) for r in runs],
+              "build_git": [stamp(r["context"].get("build", {}).get("git")) for r in runs],
               "rows": []}
     for ri, row0 in enumerate(runs[0]["rows"]):
         if row0.get("status", "ok") not in ("ok", None) and not row0.get("sequences"):
@@ -83,7 +85,8 @@ def main(argv):
         json.dump(report, sys.stdout, indent=1, allow_nan=True)
         print()
         return
-    print(f"seeds {seeds}; trees {report['git']}\n")
+    print(f"seeds {seeds}; source trees at the start {report['git']}; binaries built from "
+          f"{report['build_git']}\n")
     print("| row | sequence | metric | mean | sd | min | max | loose tol at seed " +
           f"{seeds[0]} | tol / sd | worst seed vs seed {seeds[0]} | loose passes |")
     print("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---|")
