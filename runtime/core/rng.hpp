@@ -35,6 +35,10 @@ inline Philox4 philox_block(uint64_t seed, uint32_t stream, uint64_t index) {
 inline float u32_to_unit_float(uint32_t x) { return float(x >> 8) * (1.0f / 16777216.0f); }
 
 // Sequential generator over one stream, four words per block.
+// Same seed, same draws whatever the compiler only if each call is sequenced: never draw twice
+// within one function call's arguments (f(rng.uniform(), rng.uniform()), Vec3(rng.normal(),
+// ...)), whose evaluation order is unspecified (GCC goes last to first, Clang first to last; a
+// Clang build once simulated another street from the same seed). Draw into named values first.
 class Rng {
  public:
   Rng(uint64_t seed, uint32_t stream = 0) : seed_(seed), stream_(stream) {}

@@ -1,10 +1,8 @@
 // Procedural street generation (see sim_street.hpp). All draws come from Rng(seed, stream) in a
-// fixed order, so a seed gives one world bit for bit, whatever the compiler: never draw twice
-// within one function call's arguments (f(rng.uniform(), rng.uniform()), V3(rng..., rng...)),
-// whose evaluation order is unspecified and differs between GCC and Clang (a Clang build made
-// another street from the same seed; tests/datasets/test_simulate_compiler.cpp). Draws that
-// were once in an argument list are made last argument first, the order GCC used, so the data
-// of every committed result is unchanged.
+// fixed order, so a seed gives one world bit for bit, whatever the compiler (core/rng.hpp: never
+// two draws in one argument list; tests/datasets/test_simulate_compiler.cpp). Draws that were
+// once in an argument list are made last argument first, the order GCC used, so the data of
+// every committed result is unchanged.
 #include "datasets/sim_street.hpp"
 
 #include <algorithm>

@@ -25,7 +25,7 @@ FeatureProvider standin_fourier_features(const StandinFeatureConfig& c) {
   for (int k = 0; k < c.frequencies; ++k) {
     Eigen::Vector3d w;
     do {
-      const double z = rng.normal(), y = rng.normal(), x = rng.normal();  // z first: see rng.hpp
+      const double z = rng.normal(), y = rng.normal(), x = rng.normal();  // z first: GCC's order (core/rng.hpp)
       w = Eigen::Vector3d(x, y, z);
     } while (w.norm() < 1e-6);
     const double lambda = std::exp(log_lo + (log_hi - log_lo) * rng.uniform_double());

@@ -91,7 +91,7 @@ class Cylinder final : public Shape {
   std::vector<SurfacePoint> sample(Rng& rng, size_t n) const override {
     std::vector<SurfacePoint> pts(n);
     for (auto& p : pts) {
-      const double v = rng.uniform_double(), u = rng.uniform_double();  // v first: see rng.hpp
+      const double v = rng.uniform_double(), u = rng.uniform_double();  // v first: GCC's order (core/rng.hpp)
       p = at_chart(u, v, 1.0 / double(n));
     }
     return pts;
@@ -199,7 +199,7 @@ class Square final : public Shape {
   std::vector<SurfacePoint> sample(Rng& rng, size_t n) const override {
     std::vector<SurfacePoint> pts(n);
     for (auto& p : pts) {
-      const double v = rng.uniform_double(), u = rng.uniform_double();  // v first: see rng.hpp
+      const double v = rng.uniform_double(), u = rng.uniform_double();  // v first: GCC's order (core/rng.hpp)
       p = at_chart(u, v, 1.0 / double(n));
     }
     return pts;
