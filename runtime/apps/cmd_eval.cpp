@@ -68,6 +68,9 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
       for (const char* k : {"ate_m", "rpe_t_cm", "rpe_r_deg"})
         std::printf("%-18s %12s %12s\n", k, num(p.at(k)).c_str(), num(i.at(k)).c_str());
     }
+    if (j.contains("trajectory_check") && !j.at("trajectory_check").at("converged").get<bool>())
+      std::printf("\nWARNING: the poses did not converge: %s\n",
+                  j.at("trajectory_check").at("reason").get<std::string>().c_str());
     if (j.contains("pose_graph")) {
       const Json& g = j.at("pose_graph");
       std::printf("\nconfidence-aware pose graph (epoch %ld): %ld non-adjacent edges in use (%s)\n",

@@ -1,6 +1,7 @@
 #include "datasets/loader.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "core/error.hpp"
@@ -190,7 +191,14 @@ void load_frame_scan(Frame& f, const std::string& scan_path, const Sensor& s, bo
   dropped.out_of_fov += ps.out_of_fov;
   dropped.occluded += ps.occluded;
   dropped.projected += ps.projected;
-  if (load_points) f.points = std::move(pts);
+  if (!load_points) return;
+  pts.erase(std::remove_if(pts.begin(), pts.end(),
+                           [&](const PointXYZI& p) {
+                             return !s.in_range(std::sqrt(double(p.x) * p.x + double(p.y) * p.y +
+                                                          double(p.z) * p.z));
+                           }),
+            pts.end());
+  f.points = std::move(pts);
 }
 
 void finish_dataset(Dataset& d, const ProjectionStats& dropped) {
@@ -201,7 +209,7 @@ void finish_dataset(Dataset& d, const ProjectionStats& dropped) {
   size_t pts = 0;
   for (const auto& f : d.frames) pts += f.points.size();
   log::info(d.path, ": ", d.frames.size(), " frames (", d.source, ", ", d.frequency, "), ", pts,
-            " points kept, ", dropped.projected, " range-image returns; dropped from the range images: ",
+            " points kept, ", dropped.projected, " range-image returns; dropped from the range images (and, out of range, from the points): ",
             dropped.non_finite, " NaN/Inf (also dropped from the points), ", dropped.beyond_range,
             " at >= ", d.sensor.max_range_m, " m, ", dropped.below_min_range, " within min range, ",
             dropped.out_of_fov, " outside the field of view, ", dropped.occluded,

@@ -18,8 +18,10 @@ int default_count(const LoadOptions& opt, const std::string& frequency);
 std::string resolve_frequency(const LoadOptions& opt, const std::string& fallback);
 Sensor resolve_sensor(const LoadOptions& opt, const Sensor& layout_default);
 
-// Reads the scan into `f.points` and projects it into `f.image`; the points the projection
-// drops (and NaN/Inf records) are added to `dropped` and logged per frame at debug level.
+// Reads the scan, projects it into `f.image` and keeps in `f.points` the returns within the
+// sensor's range (Sensor::in_range: the vehicle's own returns within min_range_m and those beyond
+// max_range_m are not scene geometry for any method); the points the projection drops (and
+// NaN/Inf records) are added to `dropped` and logged per frame at debug level.
 void load_frame_scan(Frame& f, const std::string& scan_path, const Sensor& s, bool load_points,
                      ProjectionStats& dropped);
 // Fills timestamps relative to the first frame and the split; logs a summary with the totals

@@ -41,12 +41,8 @@ RangeImage project_points(const Sensor& s, const std::vector<PointXYZI>& pts,
     const double x = p.x, y = p.y, z = p.z;
     const double rxy = std::sqrt(x * x + y * y);
     const double range = std::sqrt(x * x + y * y + z * z);
-    if (range >= s.max_range_m) {
-      ++st.beyond_range;
-      continue;
-    }
-    if (range <= s.min_range_m || range == 0.0) {
-      ++st.below_min_range;
+    if (!s.in_range(range)) {
+      ++(range >= s.max_range_m ? st.beyond_range : st.below_min_range);
       continue;
     }
     const long c = std::lround((M_PI - std::atan2(y, x)) / col_step);

@@ -19,6 +19,13 @@ struct Sensor {
   double min_range_m = 0.0;  // nuScenes drops returns ≤ 1.8 m
   double rate_hz = 10.0;
 
+  // A return at this range is a measurement of the scene: min_range_m < range < max_range_m
+  // (returns within min_range_m are the vehicle itself, e.g. ~20 % of a nuScenes sweep). The
+  // one rule for the range images and the points every method uses.
+  bool in_range(double range) const {
+    return range > min_range_m && range > 0.0 && range < max_range_m;
+  }
+
   void validate() const;
 };
 

@@ -12,6 +12,8 @@
 #include "pipeline/checkpoint.hpp"
 #include "posegraph/annealed_run.hpp"
 #include "posegraph/confidence_graph.hpp"
+#include "posegraph/trajectory_check.hpp"
+#include "core/log.hpp"
 
 namespace sgnlf::pipeline {
 namespace fs = std::filesystem;
@@ -153,6 +155,13 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
               {"loss_before", r.loss_before}, {"loss_after", r.loss_after},
               {"max_rotation_rad", r.max_rotation_rad},
               {"max_translation_m", r.max_translation_m}};
+    if (epoch == 0) {  // did the coarse alignment register the scans? (no ground truth used)
+      const auto chk = posegraph::check_trajectory(
+          *clouds, T, posegraph::sequential_edges(int(T.size()), {1}));
+      line["check"] = chk.to_json();
+      if (!chk.converged)
+        log::warn("the coarse geometric alignment did not converge: ", chk.reason);
+    }
     if (!graph_line.is_null()) {
       graph_line["edges_in_use"] = graph->edges.size();
       graph_line["graph_epoch"] = graph->built_epoch;

@@ -15,6 +15,7 @@
 #include "datasets/protocol.hpp"
 #include "metrics/pose_errors.hpp"
 #include "pipeline/geometric_stage.hpp"
+#include "pipeline/pose_check.hpp"
 #include "pipeline/pose_free_step.hpp"
 #include "pipeline/spectral_schedule.hpp"
 #include "pipeline/trajectory_files.hpp"
@@ -147,6 +148,11 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
       j["consistency_steps"] = consistency_step->steps_taken();
     }
     j["trajectories"] = write_run_trajectories(req.run_dir, d, rs.T_world_lidar_init, current_poses());
+    const posegraph::TrajectoryCheck chk = check_run_poses(d, current_poses());
+    j["trajectory_check"] = chk.to_json();
+    if (!chk.converged)
+      log::warn(d.name, ": the poses did NOT converge (", chk.reason,
+                "); the run's metrics describe a broken trajectory (summary.json trajectory_check)");
   }
   write_json_file((run / "summary.json").string(), j);
   return j;
@@ -225,6 +231,11 @@ Json eval_run(LoadedRun& run, const std::string& run_dir) {
     j["pose_metrics"] = pose_metrics_json(run.T_world_lidar, gt);
     j["initial_pose_metrics"] = pose_metrics_json(run.T_world_lidar_init, gt);
     j["pose_init"] = run.manifest.config.pose_free.poses.init;
+    const fs::path summary = fs::path(run_dir) / "summary.json";  // the training's own check
+    if (fs::exists(summary)) {
+      const Json sj = load_json_file(summary.string());
+      if (sj.contains("trajectory_check")) j["trajectory_check"] = sj.at("trajectory_check");
+    }
     // SG-NLF: the confidence-aware pose graph in force at the end of training.
     const fs::path graph = fs::path(run_dir) / "pose_graph" / "latest.json";
     if (fs::exists(graph)) {
