@@ -2,7 +2,7 @@
 // config's "consistency" section: when the term runs (every `every` steps after `warmup_steps`),
 // its weight λ_con, which adjacent frames pair up, the sub-sampled images it works on, and the
 // PatchGAN discriminator (adversarial::PatchDiscriminatorConfig, its "discriminator" object).
-// Present only in the configs of methods with the term (method_registry: consistency), so the
+// Present only in the configs of methods with the term (ConfigSections::consistency, methods/), so the
 // other methods' config hashes do not change.
 //
 // Image sizes (the cost of one consistency step: results/benchmarks/consistency.md):

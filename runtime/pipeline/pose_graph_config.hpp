@@ -3,7 +3,7 @@
 // sequential graph to the confidence graph (built from the field's f_hyb under the current
 // poses), and the graph's own parameters (posegraph::ConfidenceGraphConfig, whose
 // reevaluate_every counts epochs here). Present only in the configs of methods with the
-// confidence graph (method_registry: confidence_graph).
+// confidence graph (ConfigSections::pose_graph, methods/).
 #pragma once
 #include "core/config.hpp"
 #include "posegraph/confidence_graph_config.hpp"

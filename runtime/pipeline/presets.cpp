@@ -4,7 +4,7 @@
 #include <string_view>
 #include <utility>
 
-#include "pipeline/method_registry.hpp"
+#include "pipeline/methods/registry.hpp"
 
 namespace sgnlf::pipeline {
 
@@ -54,9 +54,11 @@ Json odometry_start_json(const std::string& method, const std::string& preset) {
 
 TrainConfig resolve_config(const std::string& method, const std::string& preset,
                            const Json& overrides) {
-  const MethodSpec& spec = method_spec(method);
+  const Method& spec = find_method(method);
   Json base = preset_json(spec.preset_family, preset);
-  if (!spec.consistency) base.erase("consistency");  // see MethodSpec::consistency
+  // A method without the consistency section drops it from its family's presets, so that its
+  // config and hash stay those of a method that never had the term (ConfigSections).
+  if (!spec.sections.consistency) base.erase("consistency");
   base = merge_config_json(std::move(base), spec.overrides);
   Json merged = merge_config_json(base, overrides);
   std::string where = "preset " + method + "-" + preset;

@@ -2,7 +2,7 @@
 // Ψ's architecture and loss, the fusion ramp λ(t), and the schedule on which Ψ trains on
 // area-uniform samples of the current surface during pose-free training
 // (spectral_schedule.hpp). Present only in the configs of methods built on the hybrid field
-// (method_registry: spectral_field), so other methods' config hashes do not change.
+// (ConfigSections::spectral, methods/), so other methods' config hashes do not change.
 #pragma once
 #include "core/config.hpp"
 #include "spectral/fusion_ramp.hpp"

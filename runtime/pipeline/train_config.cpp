@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "pipeline/method_registry.hpp"
+#include "pipeline/methods/registry.hpp"
 
 namespace sgnlf::pipeline {
 
@@ -44,30 +44,25 @@ void ScheduleConfig::validate(const std::string& w) const {
   check_range(w, "render_chunk_rays", render_chunk_rays, 64, 1 << 22);
 }
 
-bool TrainConfig::is_pose_free() const { return method_spec(method).pose_free; }
-bool TrainConfig::has_spectral_field() const { return method_spec(method).spectral_field; }
-bool TrainConfig::has_pose_graph() const { return method_spec(method).confidence_graph; }
-bool TrainConfig::has_consistency() const { return method_spec(method).consistency; }
-
 void TrainConfig::validate() const {
   const std::string w = "config";
   std::string trainable;
   for (const auto& m : method_registry())
     if (m.implemented) trainable += (trainable.empty() ? "" : ", ") + m.name;
-  const MethodSpec* spec = nullptr;
+  const Method* spec = nullptr;
   for (const auto& m : method_registry())
     if (m.name == method && m.implemented) spec = &m;
   if (!spec)
     throw ConfigError(w + ": 'method' = \"" + method + "\" is not a trainable method (" +
                       trainable + ")");
-  if (spec->pose_free) pose_free.validate(w);
-  if (spec->spectral_field) spectral.validate(w);
-  if (spec->confidence_graph) pose_graph.validate(w);
-  if (spec->consistency) {
-    consistency.validate(w);
-    const long rays = long(consistency.render_rows) * consistency.render_cols;
+  if (pose_free) pose_free->validate(w);
+  if (spectral) spectral->validate(w);
+  if (pose_graph) pose_graph->validate(w);
+  if (consistency) {
+    consistency->validate(w);
+    const long rays = long(consistency->render_rows) * consistency->render_cols;
     const long capacity = std::max(schedule.rays_per_batch, schedule.render_chunk_rays);
-    if (consistency.enabled && rays > capacity)
+    if (consistency->enabled && rays > capacity)
       throw ConfigError(w + ".consistency: the render grid render_rows × render_cols = " +
                         std::to_string(rays) + " rays exceeds the model's ray capacity " +
                         std::to_string(capacity) +
@@ -118,10 +113,12 @@ TrainConfig train_config_from_json(const Json& j, const std::string& where) {
     s.get("patches_on_even_epochs", c.schedule.patches_on_even_epochs);
     s.finish();
   }
-  if (c.is_pose_free()) c.pose_free = PoseFreeConfig::from_json(r);
-  if (c.has_spectral_field()) c.spectral = SpectralFieldConfig::from_json(r);
-  if (c.has_pose_graph()) c.pose_graph = PoseGraphConfig::from_json(r);
-  if (c.has_consistency()) c.consistency = ConsistencyConfig::from_json(r);
+  // The method's own sections (methods/method.hpp); ConfigError for an unknown method.
+  const ConfigSections& sections = find_method(c.method).sections;
+  if (sections.pose_free) c.pose_free = PoseFreeConfig::from_json(r);
+  if (sections.spectral) c.spectral = SpectralFieldConfig::from_json(r);
+  if (sections.pose_graph) c.pose_graph = PoseGraphConfig::from_json(r);
+  if (sections.consistency) c.consistency = ConsistencyConfig::from_json(r);
   r.finish();
   c.validate();
   return c;
@@ -158,10 +155,10 @@ Json train_config_to_json(const TrainConfig& c) {
         {"divergence_factor", c.schedule.divergence_factor},
         {"render_chunk_rays", c.schedule.render_chunk_rays},
         {"patches_on_even_epochs", c.schedule.patches_on_even_epochs}}}};
-  if (c.is_pose_free()) c.pose_free.to_json(j);
-  if (c.has_spectral_field()) c.spectral.to_json(j);
-  if (c.has_pose_graph()) c.pose_graph.to_json(j);
-  if (c.has_consistency()) c.consistency.to_json(j);
+  if (c.pose_free) c.pose_free->to_json(j);
+  if (c.spectral) c.spectral->to_json(j);
+  if (c.pose_graph) c.pose_graph->to_json(j);
+  if (c.consistency) c.consistency->to_json(j);
   return j;
 }
 

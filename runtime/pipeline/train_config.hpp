@@ -4,6 +4,7 @@
 // runtime/pipeline/presets/, embedded into the binary (presets.hpp).
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "core/config.hpp"
@@ -62,23 +63,20 @@ struct TrainConfig {
   render::RenderConfig render;
   OptimConfig optim;
   ScheduleConfig schedule;
-  // Pose-free methods only (method_registry: pose_free); absent from the JSON of the others.
-  PoseFreeConfig pose_free;
-  // Methods on SG-NLF's hybrid field only (method_registry: spectral_field); absent otherwise.
-  SpectralFieldConfig spectral;
-  bool has_spectral_field() const;  // the method's config carries the "spectral" section
-  bool hybrid_encoder() const { return has_spectral_field() && spectral.enabled; }
-  // Methods with SG-NLF's confidence-aware pose graph only (method_registry: confidence_graph).
-  PoseGraphConfig pose_graph;
-  bool has_pose_graph() const;
-  bool confidence_graph() const { return has_pose_graph() && pose_graph.enabled; }
-  // Methods with SG-NLF's adversarial cross-frame consistency only (method_registry:
-  // consistency); absent otherwise.
-  ConsistencyConfig consistency;
-  bool has_consistency() const;
-  bool consistency_term() const { return has_consistency() && consistency.enabled; }
+  // The optional sections: present exactly when the method carries them (methods/method.hpp,
+  // ConfigSections; set by train_config_from_json), absent from the JSON otherwise, so other
+  // methods' configs and hashes do not change. A feature is on when its section is present and
+  // says so: the predicates below are the only place that decides it.
+  std::optional<PoseFreeConfig> pose_free;          // pose-free methods (GeoNLF, SG-NLF)
+  std::optional<SpectralFieldConfig> spectral;      // SG-NLF's hybrid field
+  std::optional<PoseGraphConfig> pose_graph;        // SG-NLF's confidence-aware pose graph
+  std::optional<ConsistencyConfig> consistency;     // SG-NLF's adversarial consistency
 
-  bool is_pose_free() const;
+  bool is_pose_free() const { return pose_free.has_value(); }
+  bool hybrid_encoder() const { return spectral && spectral->enabled; }
+  bool confidence_graph() const { return pose_graph && pose_graph->enabled; }
+  bool consistency_term() const { return consistency && consistency->enabled; }
+
   void validate() const;
   // Hash of the resolved config (checkpoints refuse to resume under a different config).
   uint64_t hash() const;

@@ -127,12 +127,12 @@ TEST_CASE("a start from the odometry applies the preset's from_odometry section"
       CHECK_FALSE(contains_leaves(noisy, start));  // only when starting from the odometry
       // The user's keys still win over the section.
       const Json mine{{"poses", {{"init", "odometry"}}}, {"geometric", {{"first_steps", 7}}}};
-      CHECK(resolve_config(method, p, mine).pose_free.geometric.first_steps == 7);
+      CHECK(resolve_config(method, p, mine).pose_free->geometric.first_steps == 7);
     }
   }
   // Ablations built on a family's preset inherit its section.
-  CHECK(resolve_config("sg-nlf-no-graph", "quick", odometry).pose_free.geometric.first_steps ==
-        resolve_config("sg-nlf", "quick", odometry).pose_free.geometric.first_steps);
+  CHECK(resolve_config("sg-nlf-no-graph", "quick", odometry).pose_free->geometric.first_steps ==
+        resolve_config("sg-nlf", "quick", odometry).pose_free->geometric.first_steps);
   CHECK(odometry_start_json("lidar-nerf", "quick").empty());
   // A malformed init is still named by the strict reader.
   CHECK(error_of([] { resolve_config("geonlf", "quick", Json{{"poses", {{"init", 5}}}}); })
