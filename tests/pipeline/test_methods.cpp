@@ -1,5 +1,6 @@
-// The methods (runtime/pipeline/methods/): every registered method is described once, its
-// config carries exactly its sections, and it composes its step from the parts in its order.
+// The methods (runtime/pipeline/methods/) and the presets' "extends": every registered method
+// is described once, its config carries exactly its sections, it composes its step from the
+// parts in its own order, and a preset that extends another resolves to the whole config.
 #include <catch2/catch.hpp>
 
 #include <set>
@@ -84,4 +85,51 @@ TEST_CASE("every method is described once and composes its step from the parts",
   CHECK_FALSE(resolve_config("sg-nlf-baseline", "smoke").consistency_term());
   CHECK(resolve_config("sg-nlf-no-graph", "smoke").hybrid_encoder());
   CHECK_FALSE(resolve_config("sg-nlf-no-graph", "smoke").confidence_graph());
+}
+
+namespace {
+// Every key path of `part` exists in `whole`.
+bool has_paths(const Json& whole, const Json& part) {
+  for (auto it = part.begin(); it != part.end(); ++it) {
+    if (!whole.contains(it.key())) return false;
+    if (it.value().is_object() && !has_paths(whole.at(it.key()), it.value())) return false;
+  }
+  return true;
+}
+}  // namespace
+
+TEST_CASE("a preset that extends another resolves to the whole config",
+          "[pipeline][config][presets]") {
+  const PresetTexts texts = {
+      {"a", R"({"method": "geonlf", "field": {"levels": 8, "geo_features": 15},
+                "geometric": {"edge_offsets": [1, 2]}, "from_odometry": {"pose_optim": {"lr_rot": 1}}})"},
+      {"b", R"({"extends": "a", "field": {"levels": 4}, "geometric": {"edge_offsets": [3]},
+                "from_odometry": {"pose_optim": {"start_step": 5}}})"},
+      {"c", R"({"extends": "b", "method": "sg-nlf"})"},
+      {"loop1", R"({"extends": "loop2"})"},
+      {"loop2", R"({"extends": "loop1"})"},
+      {"orphan", R"({"extends": "nowhere"})"},
+      {"bad", R"({"extends": 3})"},
+  };
+  const Json c = resolve_preset("c", texts);
+  CHECK_FALSE(c.contains("extends"));
+  CHECK(c["method"] == "sg-nlf");
+  CHECK(c["field"] == Json{{"levels", 4}, {"geo_features", 15}});       // merged key by key
+  CHECK(c["geometric"]["edge_offsets"] == Json::array({3}));            // arrays replaced
+  CHECK(c["from_odometry"]["pose_optim"] == Json{{"lr_rot", 1}, {"start_step", 5}});
+  CHECK(resolve_preset("a", texts) == Json::parse(texts[0].second));    // no extends: as written
+  CHECK(error_of([&] { resolve_preset("loop1", texts); }).find("cycle") != std::string::npos);
+  CHECK(error_of([&] { resolve_preset("orphan", texts); }).find("orphan: 'extends' = \"nowhere\"") !=
+        std::string::npos);
+  CHECK(error_of([&] { resolve_preset("bad", texts); }).find("bad: 'extends'") != std::string::npos);
+
+  // The embedded SG-NLF presets extend GeoNLF's: everything GeoNLF's preset holds is there.
+  for (const char* scale : {"smoke", "quick", "paper"}) {
+    CAPTURE(scale);
+    const Json sg = preset_json("sg-nlf", scale), geo = preset_json("geonlf", scale);
+    CHECK_FALSE(sg.contains("extends"));
+    CHECK(has_paths(sg, geo));
+    CHECK(sg["field"] == geo["field"]);
+    CHECK(has_paths(odometry_start_json("sg-nlf", scale), odometry_start_json("geonlf", scale)));
+  }
 }
