@@ -76,8 +76,8 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
   gc.lr_translation = g.lr_trans;
   gc.tau_scale = geometric_tau_scale(g, d.sensor);
   gc.points_per_frame = size_t(g.points_per_frame);
-  gc.seed = 1;
-  gc.threads = 2;
+  gc.seed = g.seed;
+  gc.threads = g.threads;
   gc.residual = g.residual;
   gc.validate();
   std::vector<std::vector<PointXYZI>> scans;

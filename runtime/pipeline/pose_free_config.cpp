@@ -46,6 +46,7 @@ void PoseFreeConfig::validate(const std::string& w) const {
     throw ConfigError(g + ": 'residual' = \"" + geometric.residual +
                       "\" is not one of \"point_to_point\", \"point_to_plane\"");
   for (int k : geometric.edge_offsets) check_range(g, "edge_offsets[]", k, 1, 1000);
+  check_range(g, "threads", geometric.threads, 1, 256);
 }
 
 PoseFreeConfig PoseFreeConfig::from_json(ConfigReader& r) {
@@ -80,6 +81,7 @@ PoseFreeConfig PoseFreeConfig::from_json(ConfigReader& r) {
     g.get("steps_per_epoch", gc.steps_per_epoch).get("stop_progress", gc.stop_progress);
     g.get("tau_scale", gc.tau_scale).get("lr_rot", gc.lr_rot).get("lr_trans", gc.lr_trans);
     g.get("lr_final", gc.lr_final).get("residual", gc.residual);
+    g.get("seed", gc.seed).get("threads", gc.threads);
     g.finish();
   }
   return c;
@@ -117,6 +119,8 @@ void PoseFreeConfig::to_json(Json& j) const {
                         {"lr_final", geometric.lr_final}};
   // Written only when not GeoNLF's, so that configs from before the key keep their hash.
   if (geometric.residual != "point_to_point") j["geometric"]["residual"] = geometric.residual;
+  if (geometric.seed != 1) j["geometric"]["seed"] = geometric.seed;
+  if (geometric.threads != 2) j["geometric"]["threads"] = geometric.threads;
 }
 
 }  // namespace sgnlf::pipeline

@@ -58,6 +58,12 @@ struct GeometricScheduleConfig {
   // Direction term of the graph loss: "point_to_point" (GeoNLF's robust Chamfer) or
   // "point_to_plane" (posegraph/point_to_plane.hpp).
   std::string residual = "point_to_point";
+  // The stage's own draws (each frame's point subsample, posegraph::GeometricConfig::seed) and
+  // its worker threads (the graph loss's direction terms; results identical for any count).
+  // Written only when not these values, so configs from before the keys keep their hash; the
+  // thread count is left out of the hash (TrainConfig::hash).
+  uint64_t seed = 1;
+  int threads = 2;
   int steps_at(long epoch, double progress) const;
 };
 

@@ -78,7 +78,17 @@ void TrainConfig::validate() const {
                       " is not a multiple of the patch size " + std::to_string(patch));
 }
 
-uint64_t TrainConfig::hash() const { return fnv1a64(train_config_to_json(*this).dump()); }
+// Thread counts change no number (the pose graph's pair matching and the geometric stage's
+// direction terms give identical results for any count), so the hash counts them at 2, the
+// count every committed result was made with: its hash stays, a run resumes on a machine with
+// other cores, and a preset may set them for its machine (run.json still records them).
+uint64_t TrainConfig::hash() const {
+  constexpr int kHashedThreads = 2;
+  TrainConfig h = *this;
+  if (h.pose_free) h.pose_free->geometric.threads = kHashedThreads;
+  if (h.pose_graph) h.pose_graph->graph.threads = kHashedThreads;
+  return fnv1a64(train_config_to_json(h).dump());
+}
 
 TrainConfig train_config_from_json(const Json& j, const std::string& where) {
   TrainConfig c;

@@ -78,7 +78,8 @@ struct TrainConfig {
   bool consistency_term() const { return consistency && consistency->enabled; }
 
   void validate() const;
-  // Hash of the resolved config (checkpoints refuse to resume under a different config).
+  // Hash of the resolved config (checkpoints refuse to resume under a different config); the
+  // thread counts are counted at one value (train_config.cpp).
   uint64_t hash() const;
 };
 

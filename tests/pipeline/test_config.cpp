@@ -139,6 +139,26 @@ TEST_CASE("a start from the odometry applies the preset's from_odometry section"
             .find("init") != std::string::npos);
 }
 
+TEST_CASE("thread counts are recorded but left out of the hash; the geometric seed is in it",
+          "[pipeline][config]") {
+  const TrainConfig sg = resolve_config("sg-nlf", "smoke");
+  const Json sg_json = train_config_to_json(sg);
+  // Keys added after results were committed are written only when not their old value.
+  CHECK_FALSE(sg_json["geometric"].contains("seed"));
+  CHECK_FALSE(sg_json["geometric"].contains("threads"));
+  const TrainConfig more = resolve_config(
+      "sg-nlf", "smoke", Json{{"pose_graph", {{"threads", 7}}}, {"geometric", {{"threads", 3}}}});
+  CHECK(train_config_to_json(more)["pose_graph"]["threads"] == 7);
+  CHECK(train_config_to_json(more)["geometric"]["threads"] == 3);
+  CHECK(more.hash() == sg.hash());
+  const TrainConfig seeded = resolve_config("geonlf", "smoke", Json{{"geometric", {{"seed", 5}}}});
+  CHECK(seeded.pose_free->geometric.seed == 5);
+  CHECK(seeded.hash() != resolve_config("geonlf", "smoke").hash());
+  CHECK(train_config_from_json(train_config_to_json(seeded), "rt").hash() == seeded.hash());
+  CHECK(error_of([] { resolve_config("geonlf", "smoke", Json{{"geometric", {{"threads", 0}}}}); })
+            .find("threads") != std::string::npos);
+}
+
 TEST_CASE("learning rate decays exponentially to final_factor", "[pipeline][config]") {
   OptimConfig o;
   o.lr = 0.01;
