@@ -159,6 +159,44 @@ TEST_CASE("thread counts are recorded but left out of the hash; the geometric se
             .find("threads") != std::string::npos);
 }
 
+TEST_CASE("the field lists describe, read, write and range-check each section",
+          "[pipeline][config]") {
+  const Json schema = train_config_schema();
+  const Json written = train_config_to_json(resolve_config("sg-nlf", "smoke"));
+  const TrainConfig defaults;
+  CHECK(schema["optim"]["lr"]["default"] == defaults.optim.lr);
+  CHECK(schema["schedule"]["iterations"]["min"] == 1);
+  CHECK(schema["schedule"]["patches_on_even_epochs"]["type"] == "boolean");
+  CHECK(schema["spectral"]["psi"]["type"] == "object");
+  for (const auto& entry : schema.items()) {
+    const std::string section = entry.key();
+    const Json& keys = entry.value();
+    CAPTURE(section);
+    REQUIRE(written.contains(section));
+    for (const auto& field : keys.items()) {
+      const std::string key = field.key();
+      const Json& d = field.value();
+      CAPTURE(key);
+      CHECK(written[section].contains(key));  // every described key is written
+      if (!d.contains("max")) continue;
+      // Every range is enforced, naming the section and the key.
+      const Json too_big = d["max"].is_number_integer() ? Json(d["max"].get<long long>() * 2 + 1)
+                                                        : Json(d["max"].get<double>() * 2 + 1);
+      const std::string e =
+          error_of([&] { resolve_config("sg-nlf", "smoke", Json{{section, {{key, too_big}}}}); });
+      CHECK(e.find("." + section) != std::string::npos);
+      CHECK(e.find("'" + key + "'") != std::string::npos);
+    }
+  }
+  // ... and every key written for these sections is described (pose_graph's own keys only: the
+  // confidence graph's are posegraph's).
+  for (const char* section : {"field", "optim", "schedule", "spectral", "consistency"})
+    for (const auto& field : written[section].items()) {
+      CAPTURE(section, field.key());
+      CHECK(schema[section].contains(field.key()));
+    }
+}
+
 TEST_CASE("learning rate decays exponentially to final_factor", "[pipeline][config]") {
   OptimConfig o;
   o.lr = 0.01;
