@@ -97,12 +97,14 @@ Json train_config_to_json(const TrainConfig& c) {
 }
 
 Json train_config_schema() {
-  return Json{{"field", config::describe_fields<FieldSizes>()},
-              {"optim", config::describe_fields<OptimConfig>()},
-              {"schedule", config::describe_fields<ScheduleConfig>()},
-              {"spectral", config::describe_fields<SpectralFieldConfig>()},
-              {"pose_graph", config::describe_fields<PoseGraphConfig>()},
-              {"consistency", config::describe_fields<ConsistencyConfig>()}};
+  Json j{{"field", config::describe_fields<FieldSizes>()},
+         {"optim", config::describe_fields<OptimConfig>()},
+         {"schedule", config::describe_fields<ScheduleConfig>()},
+         {"spectral", config::describe_fields<SpectralFieldConfig>()},
+         {"pose_graph", config::describe_fields<PoseGraphConfig>()},
+         {"consistency", config::describe_fields<ConsistencyConfig>()}};
+  j.update(config::describe_fields<PoseFreeConfig>());  // poses, pose_optim, ..., geometric
+  return j;
 }
 
 Json merge_config_json(Json base, const Json& overrides) {
