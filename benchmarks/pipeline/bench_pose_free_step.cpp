@@ -56,7 +56,7 @@ void BM_SpectralStep(benchmark::State& state) {
   auto& h = dynamic_cast<spectral::HybridEncoder&>(model.encoder());
   const auto shape = spectral::make_shape(spectral::ShapeSpec::preset(spectral::ShapeKind::sphere));
   Rng rng(3, 1);
-  auto batch = shape->sample(rng, size_t(c.spectral.batch));
+  auto batch = shape->sample(rng, size_t(c.spectral->batch));
   h.spectral_step(batch, 1e-2f);
   for (auto _ : state) benchmark::DoNotOptimize(h.spectral_step(batch, 1e-2f));
 }
@@ -68,7 +68,7 @@ void BM_ConsistencyStep(benchmark::State& state) {
   LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), c.schedule.rays_per_batch);
   model.init_params(1);
   dynamic_cast<spectral::HybridEncoder&>(model.encoder()).set_lambda(1.0f);
-  ConsistencyTerm term(bench::runtime(), scene, c.consistency, c.schedule.rays_per_batch);
+  ConsistencyTerm term(bench::runtime(), scene, *c.consistency, c.schedule.rays_per_batch);
   ConsistencyPair p;
   p.i = 3, p.j = 4;
   p.T_init_i = scene.T_world_lidar[3], p.T_init_j = scene.T_world_lidar[4];

@@ -6,7 +6,7 @@
 #include <iostream>
 
 #include "apps/command.hpp"
-#include "pipeline/method_registry.hpp"
+#include "pipeline/methods/registry.hpp"
 #include "pipeline/presets.hpp"
 #include "pipeline/session.hpp"
 
@@ -53,7 +53,7 @@ const Registrar reg("train", "Train a method on a dataset into a run folder", []
     req.manifest.data_options = a->load;
     Json overrides = a->config.empty() ? Json::object() : load_json_file(a->config);
     if (!a->pose_init.empty()) {
-      if (!pipeline::method_spec(a->method).pose_free)
+      if (!pipeline::find_method(a->method).sections.pose_free)
         throw ConfigError("--pose-init: method '" + a->method + "' uses ground-truth poses");
       overrides = pipeline::merge_config_json(overrides, Json{{"poses", {{"init", a->pose_init}}}});
     }

@@ -2,7 +2,6 @@
 #include "pipeline/consistency_config.hpp"
 
 #include "core/error.hpp"
-#include "geometry/pixel_boundaries.hpp"
 
 namespace sgnlf::pipeline {
 namespace {
@@ -20,52 +19,20 @@ void check_width(const Sensor& s, const std::string& what) {
 
 void ConsistencyConfig::validate(const std::string& where) const {
   const std::string w = where + ".consistency";
-  check_range(w, "every", every, 1L, 100000000L);
-  check_range(w, "warmup_steps", warmup_steps, 0L, 100000000L);
-  check_range(w, "weight", weight, 0.0, 1e6);
+  config::check_fields(*this, w);
   if (offsets.empty()) throw ConfigError(w + ": 'offsets' is empty (expected e.g. [1])");
   for (size_t k = 0; k < offsets.size(); ++k)
     check_range(w, "offsets[" + std::to_string(k) + "]", offsets[k], 1, 1000);
-  check_range(w, "render_rows", render_rows, 1, 4096);
-  check_range(w, "render_cols", render_cols, kMinBoundaryWidth, 65536);
-  check_range(w, "image_row_stride", image_row_stride, 1, 4096);
-  check_range(w, "image_col_stride", image_col_stride, 1, 65536);
-  check_range(w, "return_threshold", return_threshold, 0.0, 1.0);
   discriminator.validate(w + ".discriminator");
 }
 
 ConsistencyConfig ConsistencyConfig::from_json(ConfigReader& r) {
   ConsistencyConfig c;
-  if (!r.has("consistency")) return c;
-  auto s = r.child("consistency");
-  s.get("enabled", c.enabled).get("every", c.every).get("warmup_steps", c.warmup_steps);
-  s.get("weight", c.weight).get("offsets", c.offsets);
-  s.get("render_rows", c.render_rows).get("render_cols", c.render_cols);
-  s.get("image_row_stride", c.image_row_stride).get("image_col_stride", c.image_col_stride);
-  s.get("return_threshold", c.return_threshold);
-  if (s.has("discriminator")) {
-    Json d;
-    s.get("discriminator", d);
-    c.discriminator = adversarial::PatchDiscriminatorConfig::from_json(
-        d, r.where() + ".consistency.discriminator");
-  }
-  s.finish();
+  if (r.has("consistency")) config::read_fields(r, "consistency", c);
   return c;
 }
 
-void ConsistencyConfig::to_json(Json& j) const {
-  j["consistency"] = Json{{"enabled", enabled},
-                          {"every", every},
-                          {"warmup_steps", warmup_steps},
-                          {"weight", weight},
-                          {"offsets", offsets},
-                          {"render_rows", render_rows},
-                          {"render_cols", render_cols},
-                          {"image_row_stride", image_row_stride},
-                          {"image_col_stride", image_col_stride},
-                          {"return_threshold", return_threshold},
-                          {"discriminator", discriminator.to_json()}};
-}
+void ConsistencyConfig::to_json(Json& j) const { j["consistency"] = config::write_fields(*this); }
 
 Sensor consistency_render_sensor(const ConsistencyConfig& c, const Sensor& s) {
   Sensor r = s;

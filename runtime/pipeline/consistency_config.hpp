@@ -2,7 +2,7 @@
 // config's "consistency" section: when the term runs (every `every` steps after `warmup_steps`),
 // its weight λ_con, which adjacent frames pair up, the sub-sampled images it works on, and the
 // PatchGAN discriminator (adversarial::PatchDiscriminatorConfig, its "discriminator" object).
-// Present only in the configs of methods with the term (method_registry: consistency), so the
+// Present only in the configs of methods with the term (ConfigSections::consistency, methods/), so the
 // other methods' config hashes do not change.
 //
 // Image sizes (the cost of one consistency step: results/benchmarks/consistency.md):
@@ -19,6 +19,8 @@
 
 #include "adversarial/patch_discriminator_config.hpp"
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
+#include "geometry/pixel_boundaries.hpp"
 #include "geometry/sensor.hpp"
 
 namespace sgnlf::pipeline {
@@ -38,6 +40,21 @@ struct ConsistencyConfig {
   double return_threshold = 0.5;
   adversarial::PatchDiscriminatorConfig discriminator;
 
+  // The keys and ranges (core/config_fields.hpp); offsets' entries are checked by validate().
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("enabled", s.enabled);
+    v("every", s.every, 1L, 100000000L);
+    v("warmup_steps", s.warmup_steps, 0L, 100000000L);
+    v("weight", s.weight, 0.0, 1e6);
+    v("offsets", s.offsets);
+    v("render_rows", s.render_rows, 1, 4096);
+    v("render_cols", s.render_cols, kMinBoundaryWidth, 65536);
+    v("image_row_stride", s.image_row_stride, 1, 4096);
+    v("image_col_stride", s.image_col_stride, 1, 65536);
+    v("return_threshold", s.return_threshold, 0.0, 1.0);
+    v.object("discriminator", s.discriminator);
+  }
   void validate(const std::string& where) const;  // where + ".consistency" in errors
   static ConsistencyConfig from_json(ConfigReader& r);  // reads "consistency"
   void to_json(Json& j) const;                         // adds the "consistency" section

@@ -25,7 +25,7 @@ ConsistencySchedule::ConsistencySchedule(StepPolicy& inner, cl::Runtime& rt, con
       cfg_(cfg),
       poses_(poses),
       seed_(seed),
-      term_(rt, scene, cfg.consistency, max_rays) {
+      term_(rt, scene, *cfg.consistency, max_rays) {
   require(poses.size() == scene.T_world_lidar.size(),
           "ConsistencySchedule: " + std::to_string(poses.size()) + " poses for " +
               std::to_string(scene.T_world_lidar.size()) + " frames");
@@ -40,7 +40,7 @@ std::pair<int, int> ConsistencySchedule::pair_at(uint64_t seed, long step) const
   const int i = batch_frame(scene_, seed, step);
   if (!trainable(i)) return {-1, -1};
   std::vector<int> partners;
-  for (int o : cfg_.consistency.offsets)
+  for (int o : cfg_.consistency->offsets)
     for (int j : {i + o, i - o})
       if (trainable(j)) partners.push_back(j);
   if (partners.empty()) return {-1, -1};
@@ -50,20 +50,20 @@ std::pair<int, int> ConsistencySchedule::pair_at(uint64_t seed, long step) const
 }
 
 void ConsistencySchedule::step(LidarNerfModel& model, uint64_t seed, long step, float lr) {
-  if (cfg_.consistency.active_at(step)) {
+  if (cfg_.consistency->active_at(step)) {
     const auto [i, j] = pair_at(seed, step);
     if (i >= 0) {
       const auto t0 = std::chrono::steady_clock::now();
       // The coarse-to-fine mask of this step (the wrapped step sets the same one after us):
       // rendering with the previous step's mask would make a resumed run differ.
-      if (cfg_.pose_free.coarse_to_fine)
+      if (cfg_.pose_free->coarse_to_fine)
         model.set_level_weights(field::barf_level_weights(
             double(step) / double(cfg_.schedule.iterations), model.levels()));
       ConsistencyPair p;
       p.i = i, p.j = j;
       p.T_init_i = poses_.initial(size_t(i)), p.xi_i = poses_.correction(size_t(i));
       p.T_init_j = poses_.initial(size_t(j)), p.xi_j = poses_.correction(size_t(j));
-      const bool optimize = cfg_.pose_free.pose_optim.optimize;
+      const bool optimize = cfg_.pose_free->pose_optim.optimize;
       last_ = term_.run(model, p, seed, step, true, optimize);
       if (optimize) {
         poses_.add_pending(size_t(i), last_.grad_xi_i);

@@ -70,16 +70,16 @@ posegraph::FeatureProvider field_features(LidarNerfModel& model, const SceneNorm
 
 GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const TrainConfig& c,
                                     posegraph::FeatureProvider features, std::string run_dir) {
-  const GeometricScheduleConfig& g = c.pose_free.geometric;
-  if (!g.enabled || !c.pose_free.pose_optim.optimize) return {};
+  const GeometricScheduleConfig& g = c.pose_free->geometric;
+  if (!g.enabled || !c.pose_free->pose_optim.optimize) return {};
   posegraph::GeometricConfig gc;
   gc.edge_offsets = g.edge_offsets;
   gc.lr_rotation = g.lr_rot;
   gc.lr_translation = g.lr_trans;
   gc.tau_scale = geometric_tau_scale(g, d.sensor);
   gc.points_per_frame = size_t(g.points_per_frame);
-  gc.seed = 1;
-  gc.threads = 2;
+  gc.seed = g.seed;
+  gc.threads = g.threads;
   gc.residual = g.residual;
   gc.validate();
   std::vector<std::vector<PointXYZI>> scans;
@@ -93,7 +93,7 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
   const bool confidence = c.confidence_graph();
   if (confidence && !features.eval)
     throw Error("make_geometric_stage: the confidence pose graph needs a feature provider");
-  const PoseGraphConfig pg = c.pose_graph;
+  const PoseGraphConfig pg = c.pose_graph.value_or(PoseGraphConfig{});
   auto graph = std::make_shared<GraphState>();
 
   GeometricStage stage;

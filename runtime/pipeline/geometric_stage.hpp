@@ -2,7 +2,7 @@
 // graph optimiser (posegraph::GeometricOptimizer, robust Chamfer over the edges (i, i+k) of the
 // config's offsets) moves every pose for GeometricScheduleConfig::steps_at(epoch, progress)
 // pose-only Adam steps, fresh each time. Each frame's observed scan is subsampled once
-// (points_per_frame, seed 1) and its k-d tree built once in its own LiDAR frame. The optimiser
+// (points_per_frame, its seed) and its k-d tree built once in its own LiDAR frame. The optimiser
 // works in metres: poses are denormalised before and normalised after. τ and the learning rates
 // follow the stage's own clock (GeometricScheduleConfig::clock).
 #pragma once

@@ -1,12 +1,12 @@
 // run_method() (method.hpp): the harness's entry point. Every implemented method of the
-// registry (method_registry.hpp) trains and evaluates a run folder through session.hpp; the
+// registry (methods/registry.hpp) trains and evaluates a run folder through session.hpp; the
 // others report implemented = false.
 #include "pipeline/method.hpp"
 
 #include <algorithm>
 #include <chrono>
 
-#include "pipeline/method_registry.hpp"
+#include "pipeline/methods/registry.hpp"
 #include "pipeline/presets.hpp"
 #include "pipeline/session.hpp"
 

@@ -46,10 +46,15 @@ field::MlpSpec head_spec(const FieldSizes& f) {
   return s;
 }
 
-std::unique_ptr<field::Encoder> make_encoder(cl::Runtime& rt, const TrainConfig& c) {
-  if (c.hybrid_encoder())
-    return std::make_unique<spectral::HybridEncoder>(rt, grid_config(c.field), c.spectral.psi,
-                                                     c.spectral.loss);
+// The position encoder of `c`; `hybrid` points at it when it is SG-NLF's hybrid one.
+std::unique_ptr<field::Encoder> make_encoder(cl::Runtime& rt, const TrainConfig& c,
+                                             spectral::HybridEncoder*& hybrid) {
+  if (c.hybrid_encoder()) {
+    auto e = std::make_unique<spectral::HybridEncoder>(rt, grid_config(c.field), c.spectral->psi,
+                                                       c.spectral->loss);
+    hybrid = e.get();
+    return e;
+  }
   return std::make_unique<field::HashGridEncoder>(rt, grid_config(c.field));
 }
 
@@ -62,7 +67,7 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
     : rt_(rt),
       cfg_(c),
       max_rays_(max_rays),
-      encoder_(make_encoder(rt, c)),
+      encoder_(make_encoder(rt, c, hybrid_)),
       density_(rt, field::make_mlp_spec(encoder_->width(),
                                         c.field.density_hidden, 1, 1 + c.field.geo_features,
                                         field::Activation::Relu)),

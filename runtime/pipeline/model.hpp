@@ -21,6 +21,10 @@
 #include "render/ray_sampler.hpp"
 #include "render/volume_renderer.hpp"
 
+namespace sgnlf::spectral {
+class HybridEncoder;
+}
+
 namespace sgnlf::pipeline {
 
 // Device-side state that checkpoints hold (host copies).
@@ -92,6 +96,8 @@ class LidarNerfModel {
   // The position encoder (the hash grid, or spectral::HybridEncoder when the config's
   // hybrid_encoder() is on: the spectral schedule reaches Ψ through it).
   field::Encoder& encoder() { return *encoder_; }
+  // The same encoder as SG-NLF's hybrid one when the config's hybrid_encoder() is on, else null.
+  spectral::HybridEncoder* hybrid_encoder() { return hybrid_; }
   // Encodings f (N × encoder().width()) at n points (N × 3, normalised box): the per-point
   // features of the pose graph's matching (method.md §4.2). Blocking; chunks of max_rays.
   std::vector<float> encode_points(const std::vector<float>& x, int n);
@@ -145,6 +151,7 @@ class LidarNerfModel {
   TrainConfig cfg_;
   int max_rays_;
   field::ParamLayout layout_;
+  spectral::HybridEncoder* hybrid_ = nullptr;  // encoder_ when it is the hybrid one (set first)
   std::unique_ptr<field::Encoder> encoder_;
   field::Mlp density_, head_;
   field::DirEncoding dirs_;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 
 namespace sgnlf::pipeline {
 
@@ -14,6 +15,13 @@ struct PoseInitConfig {
   std::string init = "noisy";  // "gt", "noisy" (protocol §3), "identity" or "odometry"
   uint64_t noise_seed = 1;
   double sigma_rot_rad = 0.151, sigma_trans_m = 2.0;
+  template <class Self, class V>  // keys and ranges (core/config_fields.hpp)
+  static void fields(Self& s, V& v) {
+    v("init", s.init);  // one of the four: PoseFreeConfig::validate
+    v("noise_seed", s.noise_seed);
+    v("sigma_rot_rad", s.sigma_rot_rad, 0.0, 3.2);
+    v("sigma_trans_m", s.sigma_trans_m, 0.0, 1e3);
+  }
 };
 
 // Per-frame Adam on ξ = (ω, u) (method.md §0): lr decays exponentially to lr·final_factor;
@@ -28,6 +36,18 @@ struct PoseOptimConfig {
   double lr_rot = 5e-3, lr_trans = 1e-3, final_factor = 0.01, identity_lr_factor = 6.0;
   double beta1 = 0.9, beta2 = 0.999, eps = 1e-8;
   double lr_scale(const std::string& init) const { return init == "identity" ? identity_lr_factor : 1.0; }
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("optimize", s.optimize);
+    v("lr_rot", s.lr_rot, 0.0, 1.0);
+    v("lr_trans", s.lr_trans, 0.0, 1.0);
+    v("final_factor", s.final_factor, 1e-6, 1.0);
+    v("identity_lr_factor", s.identity_lr_factor, 1e-3, 1e3);
+    v("start_step", s.start_step, 0L, 1L << 40, config::omit_when(0L));  // added later
+    v("beta1", s.beta1, 0.0, 0.999999);
+    v("beta2", s.beta2, 0.0, 0.999999999);
+    v("eps", s.eps, 1e-30, 1.0);
+  }
 };
 
 // GeoNLF's selective reweighting (our reading of method.md §3): a per-frame moving average of
@@ -36,6 +56,13 @@ struct PoseOptimConfig {
 struct ReweightConfig {
   bool enabled = true;
   double fraction = 0.1, factor = 0.25, ema = 0.9;
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("enabled", s.enabled);
+    v("fraction", s.fraction, 0.0, 1.0);
+    v("factor", s.factor, 0.0, 1.0);
+    v("ema", s.ema, 0.0, 0.999999);
+  }
 };
 
 // The geometric optimiser before each epoch (method.md §3), a shrinking schedule: before the
@@ -58,7 +85,32 @@ struct GeometricScheduleConfig {
   // Direction term of the graph loss: "point_to_point" (GeoNLF's robust Chamfer) or
   // "point_to_plane" (posegraph/point_to_plane.hpp).
   std::string residual = "point_to_point";
+  // The stage's own draws (each frame's point subsample, posegraph::GeometricConfig::seed) and
+  // its worker threads (the graph loss's direction terms; results identical for any count).
+  // Written only when not these values, so configs from before the keys keep their hash; the
+  // thread count is left out of the hash (TrainConfig::hash).
+  uint64_t seed = 1;
+  int threads = 2;
   int steps_at(long epoch, double progress) const;
+  // Keys and ranges; tau_scale, edge_offsets' entries and residual are checked by
+  // PoseFreeConfig::validate. Keys added after results were committed are written only when
+  // not their old value.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("enabled", s.enabled);
+    v("points_per_frame", s.points_per_frame, 16, 1 << 22);
+    v("edge_offsets", s.edge_offsets);
+    v("first_steps", s.first_steps, 0, 1 << 20);
+    v("steps_per_epoch", s.steps_per_epoch, 0.0, 1e6);
+    v("stop_progress", s.stop_progress, 0.0, 1.0);
+    v("tau_scale", s.tau_scale);
+    v("lr_rot", s.lr_rot, 0.0, 1.0);
+    v("lr_trans", s.lr_trans, 0.0, 100.0);
+    v("lr_final", s.lr_final, 1e-6, 1.0);
+    v("residual", s.residual, config::omit_when<std::string>("point_to_point"));
+    v("seed", s.seed, config::omit_when<uint64_t>(1));
+    v("threads", s.threads, 1, 256, config::omit_when(2));
+  }
 };
 
 struct PoseFreeConfig {
@@ -67,6 +119,15 @@ struct PoseFreeConfig {
   ReweightConfig reweight;
   bool coarse_to_fine = true;  // BARF level mask over the hash-grid levels (method.md §3)
   GeometricScheduleConfig geometric;
+  // Its keys sit at the top of the training config.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v.section("poses", s.poses);
+    v.section("pose_optim", s.pose_optim);
+    v.section("reweight", s.reweight);
+    v("coarse_to_fine", s.coarse_to_fine);
+    v.section("geometric", s.geometric);
+  }
 
   void validate(const std::string& where) const;
   static PoseFreeConfig from_json(ConfigReader& r);  // reads its keys; errors name r.where()

@@ -67,7 +67,7 @@ void PoseFreeStep::on_epoch(long epoch, long step) {
 }
 
 double PoseFreeStep::reweight(int frame) const {
-  const ReweightConfig& rc = cfg_.pose_free.reweight;
+  const ReweightConfig& rc = cfg_.pose_free->reweight;
   if (!rc.enabled || rc.fraction <= 0.0) return 1.0;
   std::vector<double> losses;
   for (int f : scene_.train) {
@@ -81,7 +81,7 @@ double PoseFreeStep::reweight(int frame) const {
 }
 
 void PoseFreeStep::step(LidarNerfModel& model, uint64_t seed, long step, float lr) {
-  const PoseFreeConfig& pc = cfg_.pose_free;
+  const PoseFreeConfig& pc = *cfg_.pose_free;
   const double progress = double(step) / double(cfg_.schedule.iterations);
   if (pc.coarse_to_fine) {
     auto w = field::barf_level_weights(progress, model.levels());
@@ -135,7 +135,7 @@ NamedArrays PoseFreeStep::state() const {
 }
 
 void PoseFreeStep::load_state(const Checkpoint& ck, LidarNerfModel& model) {
-  if (cfg_.pose_free.coarse_to_fine && ck.step > 0) {  // the mask of the last step (step_policy.hpp)
+  if (cfg_.pose_free->coarse_to_fine && ck.step > 0) {  // the mask of the last step (step_policy.hpp)
     level_w_ = field::barf_level_weights(
         double(ck.step - 1) / double(cfg_.schedule.iterations), model.levels());
     model.set_level_weights(level_w_);

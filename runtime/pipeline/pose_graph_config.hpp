@@ -3,9 +3,10 @@
 // sequential graph to the confidence graph (built from the field's f_hyb under the current
 // poses), and the graph's own parameters (posegraph::ConfidenceGraphConfig, whose
 // reevaluate_every counts epochs here). Present only in the configs of methods with the
-// confidence graph (method_registry: confidence_graph).
+// confidence graph (ConfigSections::pose_graph, methods/).
 #pragma once
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 #include "posegraph/confidence_graph_config.hpp"
 
 namespace sgnlf::pipeline {
@@ -24,7 +25,16 @@ struct PoseGraphConfig {
   // the seven epochs after the first build (results/sgnlf-loop). 0: no such run.
   int steps_on_build = 0;
   double lr_on_build = 0.25;
-  posegraph::ConfidenceGraphConfig graph;
+  posegraph::ConfidenceGraphConfig graph;  // its keys sit in the same "pose_graph" object
+
+  // This struct's own keys and ranges (core/config_fields.hpp).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("enabled", s.enabled);
+    v("start_epoch", s.start_epoch, 1, 100000000);
+    v("steps_on_build", s.steps_on_build, 0, 1000000);
+    v("lr_on_build", s.lr_on_build, 1e-6, 1.0);
+  }
 
   void validate(const std::string& where) const;
   static PoseGraphConfig from_json(ConfigReader& r);  // reads "pose_graph"; errors name r.where()

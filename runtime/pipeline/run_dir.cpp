@@ -46,7 +46,7 @@ RunScene make_run_scene(const Dataset& d, const TrainConfig& c) {
     throw ConfigError("dataset " + d.name + ": " + std::to_string(d.frames.size()) +
                       " frames hold none of the protocol's test frames (4, 12, 20 of a 36-frame "
                       "low-frequency window); a pose-free run needs at least one test view");
-  std::vector<Pose> init = initial_poses(d, c.pose_free.poses);
+  std::vector<Pose> init = initial_poses(d, c.pose_free->poses);
   return RunScene{make_pose_free_scene(d, init), std::move(init)};
 }
 
@@ -95,7 +95,7 @@ LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
   run.pose_free = c.is_pose_free();
   run.T_world_lidar = run.T_world_lidar_init;
   if (run.pose_free) {
-    PoseSet poses(run.scene->T_world_lidar, c.pose_free.pose_optim);
+    PoseSet poses(run.scene->T_world_lidar, c.pose_free->pose_optim);
     poses.load_state([&](const std::string& name, size_t n) { return ck.array(name, n); });
     for (size_t i = 0; i < poses.size(); ++i)
       run.T_world_lidar[i] = denormalize_pose(poses.pose(i), run.scene->norm);

@@ -9,15 +9,13 @@
 #include "datasets/loader.hpp"
 #include "io/png_writer.hpp"
 #include "io/range_array.hpp"
-#include "pipeline/consistency_schedule.hpp"
 #include "pipeline/evaluate.hpp"
 #include "pipeline/render_view.hpp"
 #include "datasets/protocol.hpp"
 #include "metrics/pose_errors.hpp"
-#include "pipeline/geometric_stage.hpp"
+#include "pipeline/methods/registry.hpp"
 #include "pipeline/pose_check.hpp"
-#include "pipeline/pose_free_step.hpp"
-#include "pipeline/spectral_schedule.hpp"
+#include "pipeline/step_parts.hpp"
 #include "pipeline/trajectory_files.hpp"
 
 namespace sgnlf::pipeline {
@@ -77,40 +75,13 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
   opt.resume = req.resume;
   opt.stop_at = req.stop_at;
   opt.show_progress = req.show_progress;
-  // Pose-free methods: the poses are parameters, and a geometric stage may run before epochs.
-  std::unique_ptr<PoseSet> poses;
-  std::unique_ptr<PoseFreeStep> pose_step;
-  if (c.is_pose_free()) {
-    const PoseFreeConfig& pf = c.pose_free;
-    poses = std::make_unique<PoseSet>(scene.T_world_lidar, pf.pose_optim,
-                                      pf.pose_optim.lr_scale(pf.poses.init));
-    pose_step = std::make_unique<PoseFreeStep>(
-        scene, c, *poses, gt_poses(d), req.run_dir,
-        c.confidence_graph()
-            ? make_geometric_stage(d, scene, c, field_features(model, scene.norm), req.run_dir)
-            : make_geometric_stage(d, scene, c));
-    opt.policy = pose_step.get();
-  }
-  // SG-NLF's adversarial cross-frame consistency around the pose-free step.
-  std::unique_ptr<ConsistencySchedule> consistency_step;
-  if (c.consistency_term()) {
-    require(pose_step != nullptr, "the cross-frame consistency needs a pose-free method");
-    consistency_step = std::make_unique<ConsistencySchedule>(
-        *pose_step, rt, scene, c, *poses, model_capacity(c), req.manifest.seed);
-    opt.policy = consistency_step.get();
-  }
-  // SG-NLF's hybrid field: Ψ trains on the current surface around the steps above (it sets
-  // λ(t) before they render).
-  std::unique_ptr<SpectralSchedule> spectral_step;
-  if (c.hybrid_encoder()) {
-    require(pose_step != nullptr, "the hybrid spectral field needs a pose-free method");
-    const PoseSet& ps = *poses;
-    spectral_step = std::make_unique<SpectralSchedule>(
-        *opt.policy, dynamic_cast<spectral::HybridEncoder&>(model.encoder()), c,
-        make_surface_pool_source(d, scene, c.spectral.points_per_frame, req.manifest.seed),
-        [&ps](int frame) { return ps.pose(size_t(frame)); }, req.manifest.seed);
-    opt.policy = spectral_step.get();
-  }
+  // The method composes its step from the parts (methods/); a part whose feature the config
+  // turns off is not built.
+  RunStepParts parts(rt, d, scene, c, model, req.run_dir, req.manifest.seed);
+  opt.policy = &find_method(c.method).compose(parts);
+  PoseFreeStep* pose_step = parts.pose_step();
+  ConsistencySchedule* consistency_step = parts.consistency_step();
+  SpectralSchedule* spectral_step = parts.spectral_step();
   auto current_poses = [&] { return pose_step ? pose_step->poses_world() : rs.T_world_lidar_init; };
   const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_load).count();
   opt.evaluate = [&](long) {
@@ -230,7 +201,7 @@ Json eval_run(LoadedRun& run, const std::string& run_dir) {
     const auto gt = gt_poses(*run.dataset);
     j["pose_metrics"] = pose_metrics_json(run.T_world_lidar, gt);
     j["initial_pose_metrics"] = pose_metrics_json(run.T_world_lidar_init, gt);
-    j["pose_init"] = run.manifest.config.pose_free.poses.init;
+    j["pose_init"] = run.manifest.config.pose_free->poses.init;
     const fs::path summary = fs::path(run_dir) / "summary.json";  // the training's own check
     if (fs::exists(summary)) {
       const Json sj = load_json_file(summary.string());

@@ -2,9 +2,10 @@
 // Ψ's architecture and loss, the fusion ramp λ(t), and the schedule on which Ψ trains on
 // area-uniform samples of the current surface during pose-free training
 // (spectral_schedule.hpp). Present only in the configs of methods built on the hybrid field
-// (method_registry: spectral_field), so other methods' config hashes do not change.
+// (ConfigSections::spectral, methods/), so other methods' config hashes do not change.
 #pragma once
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 #include "spectral/fusion_ramp.hpp"
 #include "spectral/psi_spec.hpp"
 #include "spectral/spectral_loss.hpp"
@@ -22,6 +23,20 @@ struct SpectralFieldConfig {
   int points_per_frame = 2000;       // observed points per training frame in the surface pool
   double radius_m = 1.0;             // neighbourhood of the uniform-area thinning and the PCA
                                      // normals (spectral::surface_from_points), metres
+  // The keys and ranges (core/config_fields.hpp).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("enabled", s.enabled);
+    v.object("psi", s.psi);
+    v.object("loss", s.loss);
+    v.object("fusion", s.fusion);
+    v("every", s.every, 1, 1000000);
+    v("batch", s.batch, 16, 1 << 20);
+    v("lr", s.lr, 0.0, 1.0);
+    v("lr_final", s.lr_final, 0.0, 1.0);
+    v("points_per_frame", s.points_per_frame, 16, 1 << 22);
+    v("radius_m", s.radius_m, 1e-3, 100.0);
+  }
 
   void validate(const std::string& where) const;
   static SpectralFieldConfig from_json(ConfigReader& r);  // reads "spectral"; errors name r.where()

@@ -69,12 +69,12 @@ void SpectralSchedule::build_pool(long epoch, const std::vector<Pose>& T_norm) {
   }
   Rng rng(seed_, kPoolStream + uint32_t(epoch));
   spectral::PointCloudSurfaceStats st;
-  pool_ = spectral::surface_from_points(pts, cfg_.spectral.radius_m * s, rng, &st);
-  if (pool_.size() < size_t(cfg_.spectral.batch) / 4)
+  pool_ = spectral::surface_from_points(pts, cfg_.spectral->radius_m * s, rng, &st);
+  if (pool_.size() < size_t(cfg_.spectral->batch) / 4)
     throw NumericError("spectral embedding: the surface pool of epoch " + std::to_string(epoch) +
                        " kept " + std::to_string(pool_.size()) + " of " +
                        std::to_string(st.input) + " observed points (radius_m " +
-                       std::to_string(cfg_.spectral.radius_m) + " too small for the scans?)");
+                       std::to_string(cfg_.spectral->radius_m) + " too small for the scans?)");
   pool_poses_ = T_norm;
   pool_epoch_ = epoch;
 }
@@ -89,20 +89,20 @@ void SpectralSchedule::on_epoch(long epoch, long step) {
 }
 
 void SpectralSchedule::step(LidarNerfModel& model, uint64_t seed, long step, float lr) {
-  encoder_.set_lambda(float(cfg_.spectral.fusion.lambda(int(step))));
+  encoder_.set_lambda(float(cfg_.spectral->fusion.lambda(int(step))));
   inner_.step(model, seed, step, lr);
-  if (step % cfg_.spectral.every != 0) return;
+  if (step % cfg_.spectral->every != 0) return;
   if (pool_.empty()) throw Error("SpectralSchedule::step: no surface pool (on_epoch not called)");
   const auto t0 = std::chrono::steady_clock::now();
   Rng rng(seed_ ^ (seed * 0x9E3779B97F4A7C15ull) ^ (uint64_t(step) * 0xD1B54A32D192ED03ull),
           kBatchStream);
-  std::vector<spectral::SurfacePoint> batch(size_t(cfg_.spectral.batch));
+  std::vector<spectral::SurfacePoint> batch(size_t(cfg_.spectral->batch));
   for (auto& p : batch) {
     p = pool_[size_t(rng.next_u64() % pool_.size())];
     p.w = 1.0 / double(batch.size());
   }
   last_loss_ = encoder_.spectral_step(
-      batch, float(cfg_.spectral.lr_at(step, cfg_.schedule.iterations)));
+      batch, float(cfg_.spectral->lr_at(step, cfg_.schedule.iterations)));
   if (!std::isfinite(last_loss_))
     throw NumericError("spectral embedding: loss not finite at step " + std::to_string(step));
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -150,9 +150,9 @@ void SpectralSchedule::load_state(const Checkpoint& ck, LidarNerfModel& model) {
 
 void restore_hybrid_encoder(LidarNerfModel& model, const TrainConfig& cfg, const Checkpoint& ck) {
   if (!cfg.hybrid_encoder()) return;
-  auto& enc = dynamic_cast<spectral::HybridEncoder&>(model.encoder());
+  spectral::HybridEncoder& enc = *model.hybrid_encoder();
   enc.set_psi_state(psi_state_from(ck, enc.psi_params()));
-  enc.set_lambda(float(cfg.spectral.fusion.lambda(int(std::max(0L, ck.step - 1)))));
+  enc.set_lambda(float(cfg.spectral->fusion.lambda(int(std::max(0L, ck.step - 1)))));
 }
 
 SurfacePoolSource make_surface_pool_source(const Dataset& d, const Scene& scene,

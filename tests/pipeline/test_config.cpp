@@ -127,16 +127,81 @@ TEST_CASE("a start from the odometry applies the preset's from_odometry section"
       CHECK_FALSE(contains_leaves(noisy, start));  // only when starting from the odometry
       // The user's keys still win over the section.
       const Json mine{{"poses", {{"init", "odometry"}}}, {"geometric", {{"first_steps", 7}}}};
-      CHECK(resolve_config(method, p, mine).pose_free.geometric.first_steps == 7);
+      CHECK(resolve_config(method, p, mine).pose_free->geometric.first_steps == 7);
     }
   }
   // Ablations built on a family's preset inherit its section.
-  CHECK(resolve_config("sg-nlf-no-graph", "quick", odometry).pose_free.geometric.first_steps ==
-        resolve_config("sg-nlf", "quick", odometry).pose_free.geometric.first_steps);
+  CHECK(resolve_config("sg-nlf-no-graph", "quick", odometry).pose_free->geometric.first_steps ==
+        resolve_config("sg-nlf", "quick", odometry).pose_free->geometric.first_steps);
   CHECK(odometry_start_json("lidar-nerf", "quick").empty());
   // A malformed init is still named by the strict reader.
   CHECK(error_of([] { resolve_config("geonlf", "quick", Json{{"poses", {{"init", 5}}}}); })
             .find("init") != std::string::npos);
+}
+
+TEST_CASE("thread counts are recorded but left out of the hash; the geometric seed is in it",
+          "[pipeline][config]") {
+  const TrainConfig sg = resolve_config("sg-nlf", "smoke");
+  const Json sg_json = train_config_to_json(sg);
+  // Keys added after results were committed are written only when not their old value.
+  CHECK_FALSE(sg_json["geometric"].contains("seed"));
+  CHECK_FALSE(sg_json["geometric"].contains("threads"));
+  const TrainConfig more = resolve_config(
+      "sg-nlf", "smoke", Json{{"pose_graph", {{"threads", 7}}}, {"geometric", {{"threads", 3}}}});
+  CHECK(train_config_to_json(more)["pose_graph"]["threads"] == 7);
+  CHECK(train_config_to_json(more)["geometric"]["threads"] == 3);
+  CHECK(more.hash() == sg.hash());
+  const TrainConfig seeded = resolve_config("geonlf", "smoke", Json{{"geometric", {{"seed", 5}}}});
+  CHECK(seeded.pose_free->geometric.seed == 5);
+  CHECK(seeded.hash() != resolve_config("geonlf", "smoke").hash());
+  CHECK(train_config_from_json(train_config_to_json(seeded), "rt").hash() == seeded.hash());
+  CHECK(error_of([] { resolve_config("geonlf", "smoke", Json{{"geometric", {{"threads", 0}}}}); })
+            .find("threads") != std::string::npos);
+}
+
+TEST_CASE("the field lists describe, read, write and range-check each section",
+          "[pipeline][config]") {
+  const Json schema = train_config_schema();
+  const Json written = train_config_to_json(resolve_config("sg-nlf", "smoke"));
+  const TrainConfig defaults;
+  CHECK(schema["optim"]["lr"]["default"] == defaults.optim.lr);
+  CHECK(schema["schedule"]["iterations"]["min"] == 1);
+  CHECK(schema["schedule"]["patches_on_even_epochs"]["type"] == "boolean");
+  CHECK(schema["spectral"]["psi"]["type"] == "object");
+  for (const auto& entry : schema.items()) {
+    const std::string section = entry.key();
+    const Json& keys = entry.value();
+    CAPTURE(section);
+    if (keys.contains("type")) {  // a top-level key, not a section
+      CHECK(written.contains(section));
+      continue;
+    }
+    REQUIRE(written.contains(section));
+    for (const auto& field : keys.items()) {
+      const std::string key = field.key();
+      const Json& d = field.value();
+      CAPTURE(key);
+      // Every described key is written (keys added later: only when not their old value).
+      if (!d.contains("written")) CHECK(written[section].contains(key));
+      if (!d.contains("max")) continue;
+      // Every range is enforced, naming the section and the key.
+      const Json too_big = d["max"].is_number_integer() ? Json(d["max"].get<long long>() * 2 + 1)
+                                                        : Json(d["max"].get<double>() * 2 + 1);
+      const std::string e =
+          error_of([&] { resolve_config("sg-nlf", "smoke", Json{{section, {{key, too_big}}}}); });
+      CHECK(e.find("." + section) != std::string::npos);
+      CHECK(e.find("'" + key + "'") != std::string::npos);
+    }
+  }
+  // ... and every key written for these sections is described (pose_graph's own keys only: the
+  // confidence graph's are posegraph's).
+  CHECK(schema["geometric"]["threads"]["max"] == 256);
+  for (const char* section : {"field", "optim", "schedule", "spectral", "consistency", "poses",
+                              "pose_optim", "reweight", "geometric"})
+    for (const auto& field : written[section].items()) {
+      CAPTURE(section, field.key());
+      CHECK(schema[section].contains(field.key()));
+    }
 }
 
 TEST_CASE("learning rate decays exponentially to final_factor", "[pipeline][config]") {

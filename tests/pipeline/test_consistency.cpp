@@ -124,7 +124,7 @@ TEST_CASE("consistency term: analytic dL_con/dxi through render, reprojection an
   opt.resume = false;
   train(model, scene, c, opt);  // a field with structure (ground-truth poses)
 
-  ConsistencyTerm term(test::runtime(), scene, c.consistency, 512);
+  ConsistencyTerm term(test::runtime(), scene, *c.consistency, 512);
   ConsistencyPair p;
   p.i = 4, p.j = 5;
   p.T_init_i = scene.T_world_lidar[4], p.T_init_j = scene.T_world_lidar[5];
@@ -249,7 +249,7 @@ TEST_CASE("sg-nlf run folder: consistency logged, exact resume of field, discrim
   for (size_t i = 0; i < a.T_world_lidar.size(); ++i)
     CHECK(a.T_world_lidar[i].matrix() == b.T_world_lidar[i].matrix());
   // The discriminator trained: its parameters moved from the initial ones.
-  const adversarial::PatchDiscriminator d0(test::runtime(), tiny_sgnlf().consistency.discriminator);
+  const adversarial::PatchDiscriminator d0(test::runtime(), tiny_sgnlf().consistency->discriminator);
   CHECK(ca.array("consistency.disc.params") != d0.initial_params());
 }
 
@@ -277,7 +277,7 @@ TEST_CASE("consistency config: validated section, unknown keys rejected, ablatio
   // Sizes that depend on the dataset's sensor (16 × 128) fail when the term is built.
   const Scene scene = make_scene(test::tiny_dataset());
   auto build = [&](const Json& extra) {
-    return ConsistencyTerm(test::runtime(), scene, tiny_sgnlf(extra).consistency, 512);
+    return ConsistencyTerm(test::runtime(), scene, *tiny_sgnlf(extra).consistency, 512);
   };
   CHECK_THROWS_WITH(build(Json{{"consistency", {{"image_col_stride", 3}}}}),
                     Catch::Contains("image_col_stride"));
@@ -304,7 +304,7 @@ TEST_CASE("consistency config: validated section, unknown keys rejected, ablatio
       if (std::string(scale) == "smoke") sc.sensor.width = 256;
       sc.norm.scale = 0.01;
       sc.images.assign(2, RangeImage(sc.sensor.height, sc.sensor.width));
-      CHECK_NOTHROW(ConsistencyTerm(test::runtime(), sc, pc.consistency,
+      CHECK_NOTHROW(ConsistencyTerm(test::runtime(), sc, *pc.consistency,
                                     std::max(pc.schedule.rays_per_batch,
                                              pc.schedule.render_chunk_rays)));
     }

@@ -8,7 +8,7 @@
 #include <filesystem>
 
 #include "datasets/simulate.hpp"
-#include "pipeline/method_registry.hpp"
+#include "pipeline/methods/registry.hpp"
 #include "pipeline/pose_set.hpp"
 #include "pipeline/ray_batch.hpp"
 #include "pipeline/run_dir.hpp"

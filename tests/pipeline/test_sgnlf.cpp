@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "pipeline/method_registry.hpp"
+#include "pipeline/methods/registry.hpp"
 #include "pipeline/presets.hpp"
 #include "pipeline/ray_batch.hpp"
 #include "pipeline/run_dir.hpp"
@@ -152,5 +152,5 @@ TEST_CASE("hybrid field config: validated section, unknown keys rejected",
   // sg-nlf itself is trainable since its adversarial term exists (test_consistency.cpp); the
   // ablation without it keeps the config it had.
   CHECK(resolve_config("sg-nlf", "smoke", Json::object()).consistency_term());
-  CHECK_FALSE(tiny_hybrid().has_consistency());
+  CHECK_FALSE(tiny_hybrid().consistency.has_value());
 }

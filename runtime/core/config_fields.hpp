@@ -1,0 +1,225 @@
+// A config struct described once. The struct lists its fields in one static member template,
+//
+//   template <class Self, class V> static void fields(Self& s, V& v) {
+//     v("levels", s.levels, 1, 32);          // key, member, allowed range [lo, hi]
+//     v("jitter", s.jitter);                 // key, member (no range: bools, strings, lists)
+//     v("start_step", s.start_step, 0L, 9L, omit_when(0L));  // written only when not 0
+//     v.section("geometric", s.geometric);   // a nested struct with its own fields() list
+//     v.object("psi", s.psi);                // a nested config with its own from_json/to_json
+//   }
+//
+// and the visitors below drive from that one list the strict reader (ConfigReader: unknown keys
+// and values of the wrong type refused, naming the config and key), the writer, the range
+// checks of validate() (check_range: the key and value named) and the schema description. The
+// config hash is the writer's JSON hashed, so it follows the same list. A nested config
+// (T::from_json(json, where), t.to_json()) is read and written by its own functions; its
+// checks stay with the parent's validate(), which calls the nested one's. omit_when(x) marks a
+// key added after results were committed: it is written only when not x, so their configs and
+// hashes stay as they were.
+#pragma once
+#include <string>
+#include <type_traits>
+
+#include "core/config.hpp"
+
+namespace sgnlf::config {
+
+template <typename T>
+struct OmitWhen {
+  T value;
+};
+template <typename T>
+OmitWhen<T> omit_when(T value) {
+  return {value};
+}
+
+// Reads each listed key present in the reader's object into its member.
+class FieldReader {
+ public:
+  explicit FieldReader(ConfigReader& r) : r_(r) {}
+  template <typename T>
+  void operator()(const char* key, T& member) {
+    r_.get(key, member);
+  }
+  template <typename T, typename L>
+  void operator()(const char* key, T& member, L, L) {
+    r_.get(key, member);
+  }
+  template <typename T, typename L>
+  void operator()(const char* key, T& member, L, L, OmitWhen<T>) {
+    r_.get(key, member);
+  }
+  template <typename T>
+  void operator()(const char* key, T& member, OmitWhen<T>) {
+    r_.get(key, member);
+  }
+  template <typename S>
+  void section(const char* key, S& member) {
+    ConfigReader c = r_.child(key);
+    FieldReader v(c);
+    S::fields(member, v);
+    c.finish();
+  }
+  template <typename T>
+  void object(const char* key, T& member) {
+    if (!r_.has(key)) return;
+    Json sub;
+    r_.get(key, sub);
+    member = T::from_json(sub, r_.where() + "." + key);
+  }
+
+ private:
+  ConfigReader& r_;
+};
+
+// Writes every listed member under its key.
+class FieldWriter {
+ public:
+  explicit FieldWriter(Json& j) : j_(j) {}
+  template <typename T>
+  void operator()(const char* key, const T& member) {
+    j_[key] = member;
+  }
+  template <typename T, typename L>
+  void operator()(const char* key, const T& member, L, L) {
+    j_[key] = member;
+  }
+  template <typename T, typename L>
+  void operator()(const char* key, const T& member, L, L, OmitWhen<T> omit) {
+    if (!(member == omit.value)) j_[key] = member;
+  }
+  template <typename T>
+  void operator()(const char* key, const T& member, OmitWhen<T> omit) {
+    if (!(member == omit.value)) j_[key] = member;
+  }
+  template <typename S>
+  void section(const char* key, const S& member) {
+    Json sub = Json::object();
+    FieldWriter v(sub);
+    S::fields(member, v);
+    j_[key] = sub;
+  }
+  template <typename T>
+  void object(const char* key, const T& member) {
+    j_[key] = member.to_json();
+  }
+
+ private:
+  Json& j_;
+};
+
+// Checks every ranged member, in list order (the first one outside its range is named).
+class FieldChecker {
+ public:
+  explicit FieldChecker(std::string where) : where_(std::move(where)) {}
+  template <typename T>
+  void operator()(const char*, const T&) {}
+  template <typename T, typename L>
+  void operator()(const char* key, const T& member, L lo, L hi) {
+    check_range<T>(where_, key, member, T(lo), T(hi));
+  }
+  template <typename T, typename L>
+  void operator()(const char* key, const T& member, L lo, L hi, OmitWhen<T>) {
+    (*this)(key, member, lo, hi);
+  }
+  template <typename T>
+  void operator()(const char*, const T&, OmitWhen<T>) {}
+  template <typename S>
+  void section(const char* key, const S& member) {
+    FieldChecker v(where_ + "." + key);
+    S::fields(member, v);
+  }
+  template <typename T>
+  void object(const char*, const T&) {}
+
+ private:
+  std::string where_;
+};
+
+// The schema: per key its JSON type, default (the struct's value) and range when it has one.
+class FieldDescriber {
+ public:
+  explicit FieldDescriber(Json& j) : j_(j) {}
+  template <typename T>
+  void operator()(const char* key, const T& member) {
+    j_[key] = Json{{"type", type_of<T>()}, {"default", member}};
+  }
+  template <typename T, typename L>
+  void operator()(const char* key, const T& member, L lo, L hi) {
+    j_[key] = Json{{"type", type_of<T>()}, {"default", member}, {"min", T(lo)}, {"max", T(hi)}};
+  }
+  template <typename T, typename L>
+  void operator()(const char* key, const T& member, L lo, L hi, OmitWhen<T>) {
+    (*this)(key, member, lo, hi);
+    j_[key]["written"] = "only when not the default";
+  }
+  template <typename T>
+  void operator()(const char* key, const T& member, OmitWhen<T>) {
+    (*this)(key, member);
+    j_[key]["written"] = "only when not the default";
+  }
+  template <typename S>
+  void section(const char* key, const S& member) {
+    Json sub = Json::object();
+    FieldDescriber v(sub);
+    S::fields(member, v);
+    j_[key] = sub;
+  }
+  template <typename T>
+  void object(const char* key, const T& member) {
+    j_[key] = Json{{"type", "object"}, {"default", member.to_json()}};
+  }
+
+ private:
+  template <typename T>
+  static const char* type_of() {
+    if constexpr (std::is_same_v<T, bool>) return "boolean";
+    else if constexpr (std::is_integral_v<T>) return "integer";
+    else if constexpr (std::is_floating_point_v<T>) return "number";
+    else if constexpr (std::is_same_v<T, std::string>) return "string";
+    else return "array";
+  }
+  Json& j_;
+};
+
+// The struct's object under `key` of `r` (absent: the defaults stay), read strictly.
+template <typename S>
+void read_fields(ConfigReader& r, const std::string& key, S& s) {
+  ConfigReader c = r.child(key);
+  FieldReader v(c);
+  S::fields(s, v);
+  c.finish();
+}
+
+// The struct's keys read from `r`'s own object (the caller finishes `r`).
+template <typename S>
+void read_fields_here(ConfigReader& r, S& s) {
+  FieldReader v(r);
+  S::fields(s, v);
+}
+
+template <typename S>
+Json write_fields(const S& s) {
+  Json j = Json::object();
+  FieldWriter v(j);
+  S::fields(s, v);
+  return j;
+}
+
+template <typename S>
+void check_fields(const S& s, const std::string& where) {
+  FieldChecker v(where);
+  S::fields(s, v);
+}
+
+// The schema of S at its defaults: {key: {type, default[, min, max]}}.
+template <typename S>
+Json describe_fields() {
+  const S s{};
+  Json j = Json::object();
+  FieldDescriber v(j);
+  S::fields(s, v);
+  return j;
+}
+
+}  // namespace sgnlf::config

@@ -1,0 +1,15 @@
+// Ablation (method.md §5): SG-NLF without the global pose graph.
+#include "pipeline/methods/methods.hpp"
+
+namespace sgnlf::pipeline::methods {
+
+Method sg_nlf_no_graph() {
+  Method m = sg_nlf();
+  m.name = "sg-nlf-no-graph";
+  m.description =
+      "SG-NLF without the global pose graph (method.md §5 ablation): sequential edges only";
+  m.overrides = Json{{"method", m.name}, {"pose_graph", {{"enabled", false}}}};
+  return m;
+}
+
+}  // namespace sgnlf::pipeline::methods
