@@ -244,6 +244,8 @@ StreetWorld generate_street(const StreetConfig& cfg) {
     m.reflectance = mrng.uniform(0.15f, 0.7f);
     w.movers.push_back(m);
   }
+  if (cfg.vegetation) add_vegetation(w, cfg.seed);
+  if (cfg.pedestrians > 0) add_pedestrians(w, cfg.pedestrians, cfg.seed);
   w.scene.build(2.0f);
   return w;
 }
