@@ -23,6 +23,7 @@ void LidarModel::validate() const {
   check_range(w, "burst_columns", burst_columns, 1, 100000);
   check_range(w, "far_drop", far_drop, 0.0, 1.0);
   check_range(w, "random_drop", random_drop, 0.0, 1.0);
+  check_range(w, "ego_top_m", ego_top_m, 0.0, 10.0);
 }
 
 BeamPattern beam_pattern(const Sensor& s, const std::string& beams) {
@@ -52,8 +53,9 @@ namespace {
 double unit(uint32_t x) { return (double(x) + 0.5) * (1.0 / 4294967296.0); }
 
 // Ego car body in the LiDAR frame (sensor on the roof): rays into it return nothing.
-bool hits_ego(const Eigen::Vector3f& d, float sensor_height) {
-  const float lo[3] = {-2.4f, -0.9f, -sensor_height}, hi[3] = {1.4f, 0.9f, -1.0f};  // hood / trunk level
+bool hits_ego(const Eigen::Vector3f& d, float sensor_height, const LidarModel& m) {
+  const float lo[3] = {-float(m.ego_back_m), -float(m.ego_half_width_m), -sensor_height},
+              hi[3] = {float(m.ego_front_m), float(m.ego_half_width_m), -float(m.ego_top_m)};
   float t0 = 0.f, t1 = 1e30f;
   for (int a = 0; a < 3; ++a) {
     if (std::abs(d[a]) < 1e-9f) { if (0.f < lo[a] || 0.f > hi[a]) return false; continue; }
@@ -70,7 +72,7 @@ RayReturn cast_pixel(const Scene& scene, const Sensor& s, const Pose& T, const L
                     const Eigen::Vector3f& d_l, double beam_gain, DropStats& st) {
   RayReturn out;
   ++st.rays;
-  if (m.ego_vehicle && hits_ego(d_l, float(T.translation().z() - scene.ground_z))) { ++st.ego; return out; }
+  if (m.ego_vehicle && hits_ego(d_l, float(T.translation().z() - scene.ground_z), m)) { ++st.ego; return out; }
   const bool real = m.noise && m.realistic_drop();
   if (real && m.burst_drop > 0) {  // one draw per (laser, block of azimuth steps)
     const int blocks = (width + m.burst_columns - 1) / m.burst_columns;

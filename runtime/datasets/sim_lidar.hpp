@@ -33,6 +33,9 @@ struct LidarModel {
   // beams are sparser than the grid, several returns per pixel); "grid": one ray per pixel.
   std::string beams = "native";
   bool ego_vehicle = true;  // rays blocked by the ego car's body return nothing
+  // The ego car's body below the sensor (LiDAR frame: x forward): a box from ego_back_m behind
+  // to ego_front_m ahead, ±ego_half_width_m, from the ground up to ego_top_m below the sensor.
+  double ego_front_m = 1.4, ego_back_m = 2.4, ego_half_width_m = 0.9, ego_top_m = 1.0;
   // Real-scan ray drop (opt-in: 0 keeps every twin of the committed results bit for bit; the
   // real-like sequences set them, simulate.cpp). Their draws come from a separate Philox
   // stream, so the other causes see the same numbers with or without them.

@@ -7,12 +7,12 @@ namespace sgnlf {
 
 namespace {
 // What the real-like sequences add (issue 30); the drop causes' rates are in simulate.cpp.
-const SimRealism kRealLike{true, 10, true, true};
+const SimRealism kRealLike{true, 10, true, true, 6.0};
 }  // namespace
 
 Json SimRealism::to_json() const {
   return Json{{"motion_distortion", motion_distortion}, {"pedestrians", pedestrians}, {"vegetation", vegetation},
-              {"real_drop", real_drop}};
+              {"real_drop", real_drop}, {"extra_setback_m", extra_setback_m}};
 }
 
 const std::vector<NamedSequence>& named_sequences() {

@@ -17,7 +17,8 @@ struct SimRealism {
   int pedestrians = 0;      // people walking along the sidewalks (moving cylinders)
   bool vegetation = false;  // hedges and bushes: irregular foliage blobs along the sidewalks
   bool real_drop = false;   // the real-scan ray-drop causes (sim::LidarModel, simulate.cpp)
-  bool any() const { return motion_distortion || pedestrians > 0 || vegetation || real_drop; }
+  double extra_setback_m = 0.0;  // buildings this much farther from the road: more open streets
+  bool any() const { return motion_distortion || pedestrians > 0 || vegetation || real_drop || extra_setback_m > 0; }
   Json to_json() const;
 };
 

@@ -42,6 +42,7 @@ struct StreetWorld {
   Path path;
   double road_half_width = 5.0, sidewalk_width = 3.0;
   double ego_start_s = 0, ego_lateral = -2.0;
+  double extra_setback_m = 0.0;  // added to every building's setback (StreetConfig)
   std::vector<MovingVehicle> movers;
   std::vector<Pedestrian> walkers;
   // Replaces scene.dynamic with the moving vehicles and pedestrians at time t.
@@ -54,6 +55,7 @@ struct StreetConfig {
   int moving_vehicles = 0;
   int pedestrians = 0;      // opt-in (sim_street_life.cpp)
   bool vegetation = false;  // opt-in hedges and bushes (sim_street_life.cpp)
+  double extra_setback_m = 0.0;  // opt-in: buildings farther from the road (open, real-like streets)
   uint64_t seed = 1;
 };
 

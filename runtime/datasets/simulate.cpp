@@ -17,13 +17,19 @@ namespace {
 // The real-scan ray-drop causes of the real-like twins, set so that the simulated range images
 // drop about what the real ones do (datasets/README.md "Real-like twins": nuScenes scene-0916
 // drops 0.29 of its 32 × 1080 pixels, KITTI 0.28 of 66 × 1030).
-void apply_real_drop(sim::LidarModel& m) {
-  m.beam_gain_sigma = 0.5;
-  m.dark_drop = 0.5;
-  m.burst_drop = 0.02;
+void apply_real_drop(sim::LidarModel& m, bool nuscenes) {
   m.burst_columns = 12;
-  m.far_drop = 0.3;
-  m.random_drop = 0.03;
+  if (nuscenes) {
+    m.beam_gain_sigma = 0.5;
+    m.dark_drop = 0.25;
+    m.burst_drop = 0.01;
+    m.ego_top_m = 0.7;  // the lowest lasers of the real LIDAR_TOP see the car's roof
+  } else {  // real KITTI loses more in every row, and its lowest rows see the car
+    m.beam_gain_sigma = 0.8;
+    m.dark_drop = 0.6;
+    m.burst_drop = 0.02;
+    m.ego_top_m = 0.6;
+  }
 }
 
 SimRealism resolve_realism(const SimRealism& seq, const SimRealism& opt) {
@@ -32,6 +38,7 @@ SimRealism resolve_realism(const SimRealism& seq, const SimRealism& opt) {
   r.pedestrians = std::max(r.pedestrians, opt.pedestrians);
   r.vegetation = r.vegetation || opt.vegetation;
   r.real_drop = r.real_drop || opt.real_drop;
+  r.extra_setback_m = std::max(r.extra_setback_m, opt.extra_setback_m);
   return r;
 }
 }  // namespace
@@ -45,6 +52,7 @@ void SimOptions::validate() const {
   if (height == 0 || height < -1) throw ConfigError("simulate: height = " + std::to_string(height));
   if (realism.pedestrians < 0 || realism.pedestrians > 10000)
     throw ConfigError("simulate: pedestrians = " + std::to_string(realism.pedestrians));
+  check_range("simulate", "extra_setback_m", realism.extra_setback_m, 0.0, 100.0);
   lidar.validate();
 }
 
@@ -79,13 +87,14 @@ SimResult simulate(const SimOptions& opt) {
   const SimRealism realism = resolve_realism(ns.realism, opt.realism);
   sim::LidarModel lidar = opt.lidar;
   if (nus) lidar.intensity_gain *= 0.3;  // real nuScenes LIDAR_TOP: mean intensity 0.074 after / 255
-  if (realism.real_drop) apply_real_drop(lidar);
+  if (realism.real_drop) apply_real_drop(lidar, nus);
   sim::StreetConfig sc;
   sc.layout = ns.layout;
   sc.seed = world_seed;
   sc.moving_vehicles = movers;
   sc.pedestrians = realism.pedestrians;
   sc.vegetation = realism.vegetation;
+  sc.extra_setback_m = realism.extra_setback_m;
   sc.drive_length_m = times.back() * dc.v_max + 10.0;
   sim::StreetWorld world = sim::generate_street(sc);
   // With motion distortion the drive is sampled at each sweep's start and end (the world's clock
