@@ -31,8 +31,22 @@ Summary summarize(const std::vector<double>& v) {
 }
 Json to_json(const Summary& s) { return Json{{"min", s.min}, {"mean", s.mean}, {"max", s.max}, {"count", s.n}}; }
 
+// Share of the returns per range bin (edges in metres, the last bin open-ended).
+const std::vector<double> kRangeEdges{0, 5, 10, 15, 20, 30, 40, 50, 60, 80};
+
+Json range_histogram(const std::vector<double>& ranges) {
+  std::vector<double> frac(kRangeEdges.size(), 0.0);
+  for (double r : ranges) {
+    size_t b = 0;
+    while (b + 1 < kRangeEdges.size() && r >= kRangeEdges[b + 1]) ++b;
+    frac[b] += 1.0 / double(ranges.size());
+  }
+  return Json{{"edges_m", kRangeEdges}, {"fraction", frac}};
+}
+
 Json inspect_json(const Dataset& d) {
   std::vector<double> npts, ranges, inten, steps, rot_steps, ret_frac;
+  std::vector<double> row_returns(size_t(d.sensor.height), 0.0);
   for (size_t k = 0; k < d.frames.size(); ++k) {
     const auto& f = d.frames[k];
     npts.push_back(double(f.points.size()));
@@ -40,6 +54,7 @@ Json inspect_json(const Dataset& d) {
     for (size_t i = 0; i < f.image.size(); ++i)
       if (f.image.range[i] > 0.f) {
         ++ret;
+        row_returns[i / size_t(d.sensor.width)] += 1.0 / double(d.sensor.width * d.frames.size());
         ranges.push_back(f.image.range[i]);
         inten.push_back(f.image.intensity[i]);
       }
@@ -58,7 +73,8 @@ Json inspect_json(const Dataset& d) {
               {"points_per_scan", to_json(summarize(npts))},
               {"return_fraction", to_json(summarize(ret_frac))},
               {"drop_rate", 1.0 - summarize(ret_frac).mean},
-              {"range_m", to_json(summarize(ranges))}, {"intensity", to_json(summarize(inten))},
+              {"range_m", to_json(summarize(ranges))}, {"range_histogram", range_histogram(ranges)},
+              {"return_fraction_by_row", row_returns}, {"intensity", to_json(summarize(inten))},
               {"pose_step_m", to_json(summarize(steps))}, {"pose_step_deg", to_json(summarize(rot_steps))},
               {"split", {{"train", d.split.train}, {"test", d.split.test}}}};
 }
@@ -114,6 +130,13 @@ const Registrar reg("inspect", "Describe a dataset (synthetic, KITTI-360, KITTI 
     print_summary("return fraction", j["return_fraction"], "");
     std::printf("  %-16s %.4f\n", "drop rate", j["drop_rate"].get<double>());
     print_summary("range", j["range_m"], "m");
+    const auto& h = j["range_histogram"];
+    std::printf("  %-16s", "range histogram");
+    for (size_t b = 0; b < kRangeEdges.size(); ++b)
+      std::printf(" %g%s:%.3f", kRangeEdges[b], b + 1 < kRangeEdges.size() ? "" : "+", h["fraction"][b].get<double>());
+    std::printf("\n  %-16s", "returns by row");
+    for (const auto& x : j["return_fraction_by_row"]) std::printf(" %.2f", x.get<double>());
+    std::printf("\n");
     print_summary("intensity", j["intensity"], "");
     if (d.frames.size() > 1) {
       print_summary("pose step", j["pose_step_m"], "m");

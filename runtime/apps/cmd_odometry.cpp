@@ -1,5 +1,5 @@
 // `sgnlf odometry --data <dataset> --out poses.txt [--tum poses.tum.txt] [--svg top.svg]
-// [--log odometry.json] [--config odometry.json] [--threads N] [--sequence S] [--start ID]
+// [--log odometry.json] [--config odometry.json] [--threads N] [--deskew] [--sequence S] [--start ID]
 // [--frames N] [--frequency standard|low] [--stride K]`: the LiDAR odometry alone
 // (odometry/lidar_odometry.hpp) on a dataset's scans. Writes T_world_lidar (first frame at the
 // identity) as KITTI (--out) and TUM (--tum, default <out without .txt>.tum.txt) files, prints
@@ -25,6 +25,7 @@ namespace {
 struct OdometryArgs {
   std::string data, out, tum, svg, log, config;
   int threads = 0;
+  bool deskew = false;
   LoadOptions load;
 };
 
@@ -43,6 +44,7 @@ const Registrar reg("odometry", "Estimate poses from raw scans with the built-in
   sub.add_option("--log", a->log, "JSON file: config, per-frame registration results, metrics");
   sub.add_option("--config", a->config, "JSON file of odometry options (odometry/odometry_config.hpp)");
   sub.add_option("--threads", a->threads, "Threads of the registration (overrides the config)");
+  sub.add_flag("--deskew", a->deskew, "Deskew each scan with the sensor's time model (config 'deskew': true)");
   sub.add_option("--sequence", a->load.sequence, "Sequence / drive / scene of a real layout");
   sub.add_option("--start", a->load.start, "First frame id of the window");
   sub.add_option("--frames", a->load.frames, "Frames in the window (default: the protocol's 64 / 36)");
@@ -57,6 +59,7 @@ const Registrar reg("odometry", "Estimate poses from raw scans with the built-in
       cfg = odometry::OdometryConfig::from_json(r);
     }
     if (a->threads > 0) cfg.threads = a->threads;
+    if (a->deskew) cfg.deskew = true;
     cfg.validate("odometry");
     const Dataset d = load_dataset(a->data, a->load);
     std::vector<const std::vector<PointXYZI>*> scans;
@@ -67,7 +70,7 @@ const Registrar reg("odometry", "Estimate poses from raw scans with the built-in
     }
     Progress progress("odometry " + d.name, long(scans.size()), 2.0);
     const auto res = odometry::estimate_trajectory(
-        scans, stamps, cfg, [&](size_t k, const odometry::FrameResult& fr) {
+        scans, stamps, cfg, d.sensor, [&](size_t k, const odometry::FrameResult& fr) {
           char extra[160];
           const double rate = double(k + 1) / std::max(progress.elapsed_s(), 1e-9);
           std::snprintf(extra, sizeof extra, "%.1f scans/s  fitness %.2f  sigma %.2f m%s", rate,

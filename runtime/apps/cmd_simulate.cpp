@@ -31,6 +31,11 @@ const Registrar reg("simulate", "Generate a synthetic LiDAR sequence (urban stre
   sub.add_option("--moving-vehicles", o->moving_vehicles, "Number of moving vehicles (default: the sequence's)");
   sub.add_option("--threads", o->threads, "Ray-casting threads (0 = all cores; output is identical)");
   sub.add_flag("--no-noise", *no_noise, "Exact ranges and intensities, no random drop");
+  sub.add_flag("--motion-distortion", o->realism.motion_distortion,
+               "Points timed by azimuth over the sweep, cast from the moving sensor (uncompensated)");
+  sub.add_flag("--real-drop", o->realism.real_drop, "Real-scan ray drop: weak lasers, dark surfaces, bursts, far returns");
+  sub.add_option("--pedestrians", o->realism.pedestrians, "People walking on the sidewalks");
+  sub.add_flag("--vegetation", o->realism.vegetation, "Hedges and bushes along the sidewalks");
   sub.add_option("--beams", o->lidar.beams, "native (the sensor's lasers and azimuth steps) | grid (one ray per pixel)");
   return std::function<int()>([=] {
     if (*list && *list_json) {
@@ -38,9 +43,9 @@ const Registrar reg("simulate", "Generate a synthetic LiDAR sequence (urban stre
       return 0;
     }
     if (*list) {
-      std::printf("%-18s %-9s %-9s %-6s %6s %7s  %s\n", "name", "preset", "frequency", "layout", "frames", "movers", "description");
+      std::printf("%-22s %-9s %-9s %-6s %6s %7s  %s\n", "name", "preset", "frequency", "layout", "frames", "movers", "description");
       for (const auto& s : named_sequences())
-        std::printf("%-18s %-9s %-9s %-6s %6d %7d  %s\n", s.name.c_str(), s.preset.c_str(), s.frequency.c_str(),
+        std::printf("%-22s %-9s %-9s %-6s %6d %7d  %s\n", s.name.c_str(), s.preset.c_str(), s.frequency.c_str(),
                     s.layout.c_str(), s.frames, s.moving_vehicles, s.description.c_str());
       return 0;
     }
@@ -53,12 +58,15 @@ const Registrar reg("simulate", "Generate a synthetic LiDAR sequence (urban stre
     auto frac = [&](const char* k) { return rd[k].get<double>() / rays; };
     std::printf("wrote %s: %zu frames, %dx%d range images (%s, %s, stride %d, %s beams)\n"
                 "  range-image drop rate %.4f; per ray: drop %.4f = no hit %.4f + ego car %.4f + out of range %.4f"
-                " + grazing %.4f + weak %.4f + specular %.4f + random %.4f\n",
+                " + grazing %.4f + weak %.4f + specular %.4f + random %.4f",
                 out->c_str(), r.dataset.frames.size(), r.dataset.sensor.height, r.dataset.sensor.width,
                 r.dataset.sensor.name.c_str(), r.dataset.frequency.c_str(), r.metadata["stride"].get<int>(),
                 o->lidar.beams.c_str(), rd["image_drop_rate"].get<double>(), rd["drop_rate"].get<double>(),
                 frac("no_hit"), frac("ego"), frac("out_of_range"), frac("grazing"), frac("weak"), frac("specular"),
                 frac("random"));
+    if (rd.contains("dark"))
+      std::printf(" + dark %.4f + burst %.4f + far %.4f", frac("dark"), frac("burst"), frac("far"));
+    std::printf("\n");
     return 0;
   });
 });

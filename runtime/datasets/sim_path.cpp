@@ -68,6 +68,13 @@ void StreetWorld::place_movers(double t_s) {
                                                 V3(float(m.length * 0.27), float(m.width / 2 - 0.1), 0.3f),
                                                 yaw, Material::car_glass, 0.12f));
   }
+  for (const auto& p : walkers) {
+    const double s = p.s0 + p.speed * t_s;
+    if (!path.closed && (s < 0 || s > path.length())) continue;
+    const Eigen::Vector2d c = path.point(s) + path.left(s) * p.lateral;
+    scene.dynamic.push_back(Primitive::make_cylinder(float(c.x()), float(c.y()), 0.f, float(p.height),
+                                                     float(p.radius), Material::plastic, float(p.reflectance)));
+  }
 }
 
 std::vector<Pose> drive(const StreetWorld& w, const DriveConfig& cfg, const std::vector<double>& times_s) {

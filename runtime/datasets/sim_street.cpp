@@ -173,10 +173,10 @@ void add_side(Placer& P, int side, double L, double wr, double sw) {
     }
   }
   // Buildings: frontage runs with gaps (walls in some), varied setback, depth, height, material.
-  double setback = rng.uniform(0.3f, 5.f);
+  double setback = rng.uniform(0.3f, 5.f) + P.w.extra_setback_m;
   for (double s = rng.uniform(-10.f, 0.f); s < L + 10;) {
     const double front = rng.uniform(8.f, 26.f);
-    if (rng.uniform() < 0.25f) setback = rng.uniform(0.3f, 6.f);
+    if (rng.uniform() < 0.25f) setback = rng.uniform(0.3f, 6.f) + P.w.extra_setback_m;
     const double depth = rng.uniform(8.f, 16.f), height = rng.uniform() < 0.3f ? rng.uniform(3.f, 7.f) : rng.uniform(7.f, 24.f);
     float refl;
     const Material m = pick_facade(rng, refl);
@@ -226,6 +226,7 @@ StreetWorld generate_street(const StreetConfig& cfg) {
   }
   const double wr = w.road_half_width, sw = w.sidewalk_width, L = w.path.length();
   w.ego_lateral = -(wr - 2.2) / 2;
+  w.extra_setback_m = cfg.extra_setback_m;
   w.scene.texture_seed = cfg.seed;
   w.scene.ground_reflectance = rng.uniform(0.22f, 0.32f);
   Placer P{w, rng};
@@ -244,6 +245,8 @@ StreetWorld generate_street(const StreetConfig& cfg) {
     m.reflectance = mrng.uniform(0.15f, 0.7f);
     w.movers.push_back(m);
   }
+  if (cfg.vegetation) add_vegetation(w, cfg.seed);
+  if (cfg.pedestrians > 0) add_pedestrians(w, cfg.pedestrians, cfg.seed);
   w.scene.build(2.0f);
   return w;
 }

@@ -32,13 +32,20 @@ struct MovingVehicle {
   double length = 4.4, width = 1.8, reflectance = 0.4;
 };
 
+struct Pedestrian {
+  double s0 = 0, speed = 0, lateral = 0;  // arc position at t = 0, m/s along the path, offset
+  double radius = 0.25, height = 1.75, reflectance = 0.3;
+};
+
 struct StreetWorld {
   Scene scene;
   Path path;
   double road_half_width = 5.0, sidewalk_width = 3.0;
   double ego_start_s = 0, ego_lateral = -2.0;
+  double extra_setback_m = 0.0;  // added to every building's setback (StreetConfig)
   std::vector<MovingVehicle> movers;
-  // Replaces scene.dynamic with the moving vehicles at time t.
+  std::vector<Pedestrian> walkers;
+  // Replaces scene.dynamic with the moving vehicles and pedestrians at time t.
   void place_movers(double t_s);
 };
 
@@ -46,10 +53,19 @@ struct StreetConfig {
   std::string layout = "street";  // "street" (open road with turns) or "loop" (block loop)
   double drive_length_m = 80;     // expected ego travel; the road extends 90 m beyond it
   int moving_vehicles = 0;
+  int pedestrians = 0;      // opt-in (sim_street_life.cpp)
+  bool vegetation = false;  // opt-in hedges and bushes (sim_street_life.cpp)
+  double extra_setback_m = 0.0;  // opt-in: buildings farther from the road (open, real-like streets)
   uint64_t seed = 1;
 };
 
 StreetWorld generate_street(const StreetConfig& cfg);
+
+// Opt-in street life (issue 30), each from its own Rng stream so the rest of the world is
+// unchanged: hedges and bushes (clusters of foliage ellipsoids) at the back of the sidewalks,
+// added before the scene is built; people walking along the sidewalks.
+void add_vegetation(StreetWorld& w, uint64_t seed);
+void add_pedestrians(StreetWorld& w, int count, uint64_t seed);
 
 // Ego motion: speed keypoints every ~3 s in [v_min, v_max] with smooth (cosine) blends,
 // integrated along the road; returns T_world_lidar at each time (sensor at `height` m).

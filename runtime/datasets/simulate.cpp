@@ -1,57 +1,47 @@
+// simulate(): a named sequence's street, drive and scans (see simulate.hpp).
 #include "datasets/simulate.hpp"
 
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
+#include <algorithm>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/progress.hpp"
 #include "datasets/protocol.hpp"
 #include "datasets/sim_street.hpp"
-#include "io/scan_io.hpp"
-#include "io/trajectory_io.hpp"
+#include "datasets/sim_sweep.hpp"
 
 namespace sgnlf {
-namespace fs = std::filesystem;
 
-const std::vector<NamedSequence>& named_sequences() {
-  static const std::vector<NamedSequence> seqs = {
-      {"kitti360-1538", "kitti360", "standard", "street", 64, 0, "standard frequency, twin of KITTI-360 start 1538"},
-      {"kitti360-1728", "kitti360", "standard", "street", 64, 0, "standard frequency, twin of KITTI-360 start 1728"},
-      {"kitti360-1908", "kitti360", "standard", "street", 64, 0, "standard frequency, twin of KITTI-360 start 1908"},
-      {"kitti360-3353", "kitti360", "standard", "street", 64, 0, "standard frequency, twin of KITTI-360 start 3353"},
-      {"kitti360-low-a", "kitti360", "low", "street", 36, 0, "low frequency (2 Hz), street with turns"},
-      {"kitti360-low-b", "kitti360", "low", "street", 36, 0, "low frequency (2 Hz), street with turns"},
-      {"kitti360-low-c", "kitti360", "low", "street", 36, 0, "low frequency (2 Hz), street with turns"},
-      {"kitti360-low-d", "kitti360", "low", "street", 36, 0, "low frequency (2 Hz), street with turns"},
-      {"kitti360-loop", "kitti360", "low", "loop", 36, 0, "low frequency, drives around a block and revisits its start"},
-      {"kitti360-dynamic", "kitti360", "standard", "street", 64, 6, "standard frequency with moving vehicles"},
-      {"nuscenes-low-a", "nuscenes", "low", "street", 36, 0, "nuScenes-like, 2 Hz keyframes"},
-      {"nuscenes-low-b", "nuscenes", "low", "street", 36, 0, "nuScenes-like, 2 Hz keyframes"},
-      {"nuscenes-low-c", "nuscenes", "low", "street", 36, 0, "nuScenes-like, 2 Hz keyframes"},
-      {"nuscenes-loop", "nuscenes", "low", "loop", 36, 0, "nuScenes-like loop around a block"},
-      {"nuscenes-dynamic", "nuscenes", "low", "street", 36, 6, "nuScenes-like with moving vehicles"},
-  };
-  return seqs;
-}
-
-const NamedSequence& find_sequence(const std::string& name) {
-  std::string known;
-  for (const auto& s : named_sequences()) {
-    if (s.name == name) return s;
-    known += (known.empty() ? "" : ", ") + s.name;
+namespace {
+// The real-scan ray-drop causes of the real-like twins, set so that the simulated range images
+// drop about what the real ones do (datasets/README.md "Real-like twins": nuScenes scene-0916
+// drops 0.29 of its 32 × 1080 pixels, KITTI 0.28 of 66 × 1030).
+void apply_real_drop(sim::LidarModel& m, bool nuscenes) {
+  m.burst_columns = 12;
+  if (nuscenes) {
+    m.beam_gain_sigma = 0.5;
+    m.dark_drop = 0.25;
+    m.burst_drop = 0.01;
+    m.ego_top_m = 0.7;  // the lowest lasers of the real LIDAR_TOP see the car's roof
+  } else {  // real KITTI loses more in every row, and its lowest rows see the car
+    m.beam_gain_sigma = 0.8;
+    m.dark_drop = 0.6;
+    m.burst_drop = 0.02;
+    m.ego_top_m = 0.6;
   }
-  throw ConfigError("unknown synthetic sequence '" + name + "' (known: " + known + ")");
 }
 
-Json named_sequences_json() {
-  Json a = Json::array();
-  for (const auto& s : named_sequences())
-    a.push_back(Json{{"name", s.name}, {"preset", s.preset}, {"frequency", s.frequency}, {"layout", s.layout},
-                     {"frames", s.frames}, {"moving_vehicles", s.moving_vehicles}, {"description", s.description}});
-  return a;
+SimRealism resolve_realism(const SimRealism& seq, const SimRealism& opt) {
+  SimRealism r = seq;
+  r.motion_distortion = r.motion_distortion || opt.motion_distortion;
+  r.pedestrians = std::max(r.pedestrians, opt.pedestrians);
+  r.vegetation = r.vegetation || opt.vegetation;
+  r.real_drop = r.real_drop || opt.real_drop;
+  r.extra_setback_m = std::max(r.extra_setback_m, opt.extra_setback_m);
+  return r;
 }
+}  // namespace
 
 void SimOptions::validate() const {
   find_sequence(sequence);
@@ -60,6 +50,10 @@ void SimOptions::validate() const {
   if (frames == 0 || frames < -1 || frames > 100000) throw ConfigError("simulate: frames = " + std::to_string(frames));
   if (width == 0 || width < -1) throw ConfigError("simulate: width = " + std::to_string(width));
   if (height == 0 || height < -1) throw ConfigError("simulate: height = " + std::to_string(height));
+  if (realism.pedestrians < 0 || realism.pedestrians > 10000)
+    throw ConfigError("simulate: pedestrians = " + std::to_string(realism.pedestrians));
+  check_range("simulate", "extra_setback_m", realism.extra_setback_m, 0.0, 100.0);
+  lidar.validate();
 }
 
 SimResult simulate(const SimOptions& opt) {
@@ -90,15 +84,30 @@ SimResult simulate(const SimOptions& opt) {
     ids.push_back(k * stride);
     times.push_back(k * stride / sensor.rate_hz);
   }
+  const SimRealism realism = resolve_realism(ns.realism, opt.realism);
   sim::LidarModel lidar = opt.lidar;
   if (nus) lidar.intensity_gain *= 0.3;  // real nuScenes LIDAR_TOP: mean intensity 0.074 after / 255
+  if (realism.real_drop) apply_real_drop(lidar, nus);
   sim::StreetConfig sc;
   sc.layout = ns.layout;
   sc.seed = world_seed;
   sc.moving_vehicles = movers;
+  sc.pedestrians = realism.pedestrians;
+  sc.vegetation = realism.vegetation;
+  sc.extra_setback_m = realism.extra_setback_m;
   sc.drive_length_m = times.back() * dc.v_max + 10.0;
   sim::StreetWorld world = sim::generate_street(sc);
-  const auto poses = sim::drive(world, dc, times);
+  // With motion distortion the drive is sampled at each sweep's start and end (the world's clock
+  // runs one sweep ahead of the frames' timestamps, so that the first sweep starts at t ≥ 0).
+  const double sweep_s = sensor.sweep_duration_s(), clock = realism.motion_distortion ? sweep_s : 0.0;
+  std::vector<double> drive_times;
+  for (double t : times) {
+    if (!realism.motion_distortion) { drive_times.push_back(t); continue; }
+    const double start = t + clock - sensor.sweep.reference * sweep_s;
+    drive_times.push_back(start);
+    drive_times.push_back(start + sweep_s);
+  }
+  const auto poses = sim::drive(world, dc, drive_times);
 
   SimResult res;
   Dataset& d = res.dataset;
@@ -110,14 +119,26 @@ SimResult simulate(const SimOptions& opt) {
   std::vector<Json> per_frame;
   double image_drop = 0;
   for (int k = 0; k < n; ++k) {
-    world.place_movers(times[size_t(k)]);
     Frame f;
     f.id = ids[size_t(k)];
     f.timestamp_s = times[size_t(k)];
-    f.T_world_lidar = poses[size_t(k)];
     sim::DropStats st;
-    f.points = sim::cast_scan(world.scene, sensor, f.T_world_lidar, lidar, world_seed, uint32_t(f.id),
-                              opt.threads, &st);
+    Json sweep_json;
+    if (realism.motion_distortion) {
+      const sim::SweepPoses sp{poses[2 * size_t(k)], poses[2 * size_t(k) + 1]};
+      const double start = drive_times[2 * size_t(k)];
+      f.T_world_lidar = sp.at(sensor.sweep.reference);
+      f.points = sim::cast_sweep(world.scene, sensor, sp, lidar, world_seed, uint32_t(f.id), opt.threads, &st,
+                                 [&](double fraction) { world.place_movers(start + fraction * sweep_s); });
+      res.sweeps.push_back(sp);
+      const Vec6 xi = sp.twist_per_s(sweep_s);
+      sweep_json = Json::array({xi[0], xi[1], xi[2], xi[3], xi[4], xi[5]});
+    } else {
+      world.place_movers(times[size_t(k)]);
+      f.T_world_lidar = poses[size_t(k)];
+      f.points = sim::cast_scan(world.scene, sensor, f.T_world_lidar, lidar, world_seed, uint32_t(f.id),
+                                opt.threads, &st);
+    }
     ProjectionStats ps;
     f.image = project_points(sensor, f.points, &ps);
     res.drops.add(st);
@@ -125,6 +146,7 @@ SimResult simulate(const SimOptions& opt) {
     image_drop += img_drop / n;
     per_frame.push_back(Json{{"frame", f.id}, {"points", f.points.size()}, {"ray_drop_rate", st.drop_rate()},
                              {"image_drop_rate", img_drop}});
+    if (!sweep_json.is_null()) per_frame.back()["sweep_twist_per_s"] = sweep_json;
     d.frames.push_back(std::move(f));
     prog.update(k + 1);
   }
@@ -144,83 +166,19 @@ SimResult simulate(const SimOptions& opt) {
                     {"no_hit", D.no_hit}, {"out_of_range", D.out_of_range}, {"grazing", D.grazing},
                     {"weak", D.weak}, {"specular", D.specular}, {"random", D.random}}},
       {"per_frame", per_frame}};
+  if (realism.any()) {  // only then: the metadata of the other sequences stays as it was
+    res.metadata["realism"] = realism.to_json();
+    res.metadata["sweep"] = Json{{"duration_s", sweep_s}, {"timing", sweep_timing_to_json(sensor.sweep)}};
+    auto& rd = res.metadata["ray_drop"];
+    rd["dark"] = D.dark;
+    rd["burst"] = D.burst;
+    rd["far"] = D.far;
+  }
   log::info("simulated ", ns.name, ": ", n, " frames, ", D.rays, " rays, ray drop rate ", D.drop_rate(),
             ", range-image drop rate ", image_drop);
   return res;
 }
 
 Dataset simulate_dataset(const SimOptions& opt) { return simulate(opt).dataset; }
-
-namespace {
-// Fixed extrinsics of the synthetic car, shaped like KITTI-360's (camera axes: x right,
-// y down, z forward; LiDAR and IMU: x forward, y left, z up).
-Pose cam_to_velo() {
-  Pose T = Pose::Identity();
-  T.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;  // columns: camera axes in LiDAR coordinates
-  T.linear() = T.linear() * exp_so3(Vec3(0.004, -0.012, 0.002));
-  T.translation() = Vec3(0.27, -0.01, -0.08);
-  return T;  // T_velo_cam: maps camera points into the LiDAR frame
-}
-Pose cam_to_pose() {
-  Pose T = Pose::Identity();
-  T.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-  T.linear() = T.linear() * exp_so3(Vec3(-0.03, 0.01, 0.005));
-  T.translation() = Vec3(1.55, -0.3, 0.05);
-  return T;
-}
-std::string pose12(const Pose& T) {
-  double v[12];
-  pose_to_3x4(T, v);
-  std::string s;
-  char b[40];
-  for (int k = 0; k < 12; ++k) { std::snprintf(b, sizeof(b), "%.17g", v[k]); s += (k ? " " : "") + std::string(b); }
-  return s;
-}
-}  // namespace
-
-void write_synthetic(const SimResult& r, const std::string& dir) {
-  const Dataset& d = r.dataset;
-  const std::string seq = r.metadata.at("sequence").get<std::string>();
-  const fs::path root(dir);
-  fs::create_directories(root / "calibration");
-  // calib_cam_to_velo.txt stores the camera → LiDAR transform (it maps camera points into
-  // the LiDAR frame, i.e. T_velo_cam); calib_cam_to_pose.txt stores T_imu_cam.
-  const Pose T_velo_cam = cam_to_velo(), T_imu_cam = cam_to_pose();
-  write_text_file((root / "calibration" / "calib_cam_to_velo.txt").string(), pose12(T_velo_cam) + "\n");
-  write_text_file((root / "calibration" / "calib_cam_to_pose.txt").string(),
-                  "image_00: " + pose12(T_imu_cam) + "\nimage_01: " + pose12(T_imu_cam) + "\n");
-  const Pose T_lidar_imu = (T_imu_cam * T_velo_cam.inverse()).inverse();
-  std::vector<int> ids;
-  std::vector<Pose> imu_poses, lidar_poses;
-  std::vector<double> stamps;
-  std::string ts;
-  const fs::path scan_dir = root / "data_3d_raw" / seq / "velodyne_points" / "data";
-  fs::create_directories(scan_dir);
-  fs::create_directories(root / "data_poses" / seq);
-  for (const auto& f : d.frames) {
-    ids.push_back(f.id);
-    imu_poses.push_back(f.T_world_lidar * T_lidar_imu);  // imu_to_world
-    lidar_poses.push_back(f.T_world_lidar);
-    stamps.push_back(f.timestamp_s);
-    char name[32];
-    std::snprintf(name, sizeof(name), "%010d.bin", f.id);
-    io::write_kitti_bin((scan_dir / name).string(), f.points);
-  }
-  // timestamps.txt has one line per native frame (KITTI-360 format, a fixed synthetic date).
-  const int last = d.frames.back().id;
-  for (int id = 0; id <= last; ++id) {
-    const double t = id / d.sensor.rate_hz;
-    char b[64];
-    std::snprintf(b, sizeof(b), "2013-05-28 08:%02d:%012.9f\n", int(t / 60.0), std::fmod(t, 60.0));
-    ts += b;
-  }
-  write_text_file((scan_dir.parent_path() / "timestamps.txt").string(), ts);
-  io::write_indexed_poses((root / "data_poses" / seq / "poses.txt").string(), ids, imu_poses);
-  fs::create_directories(root / "ground_truth");
-  io::write_kitti_poses((root / "ground_truth" / "T_world_lidar.txt").string(), lidar_poses);
-  io::write_tum_poses((root / "ground_truth" / "T_world_lidar.tum").string(), stamps, lidar_poses);
-  write_json_file((root / "sensor.json").string(), sensor_to_json(d.sensor));
-  write_json_file((root / "sgnlf_dataset.json").string(), r.metadata);
-}
 
 }  // namespace sgnlf

@@ -9,19 +9,10 @@
 #include "core/config.hpp"
 #include "datasets/dataset.hpp"
 #include "datasets/sim_lidar.hpp"
+#include "datasets/sim_sequences.hpp"
+#include "datasets/sim_sweep.hpp"
 
 namespace sgnlf {
-
-struct NamedSequence {
-  std::string name, preset, frequency, layout;  // layout: "street" or "loop"
-  int frames = 64;
-  int moving_vehicles = 0;
-  std::string description;
-};
-
-const std::vector<NamedSequence>& named_sequences();
-const NamedSequence& find_sequence(const std::string& name);  // ConfigError listing known names
-Json named_sequences_json();  // what datasets/sequences.json holds
 
 struct SimOptions {
   std::string sequence = "kitti360-low-a";
@@ -35,6 +26,9 @@ struct SimOptions {
   std::string sensor_json;   // user-defined sensor (overrides the preset)
   int threads = 0;
   sim::LidarModel lidar;
+  // Realism on top of the sequence's (issue 30; simulate --motion-distortion, --real-drop,
+  // --pedestrians, --vegetation): each switches a part on, never off.
+  SimRealism realism;
 
   void validate() const;
 };
@@ -44,6 +38,10 @@ struct SimResult {
   Dataset dataset;
   Json metadata;
   sim::DropStats drops;
+  // With motion distortion: each frame's sensor poses at its sweep's start and end (the truth
+  // a deskewing can be checked against; metadata per_frame "sweep_twist_per_s" holds the
+  // velocity). Empty otherwise.
+  std::vector<sim::SweepPoses> sweeps;
 };
 
 SimResult simulate(const SimOptions& opt);

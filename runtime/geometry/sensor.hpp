@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/config.hpp"
+#include "geometry/sweep_timing.hpp"
 
 namespace sgnlf {
 
@@ -18,6 +19,8 @@ struct Sensor {
   double max_range_m = 80.0;
   double min_range_m = 0.0;  // nuScenes drops returns ≤ 1.8 m
   double rate_hz = 10.0;
+  // When each point of a sweep was measured (sweep_timing.hpp); a sweep lasts 1 / rate_hz.
+  SweepTiming sweep;
 
   // A return at this range is a measurement of the scene: min_range_m < range < max_range_m
   // (returns within min_range_m are the vehicle itself, e.g. ~20 % of a nuScenes sweep). The
@@ -25,12 +28,18 @@ struct Sensor {
   bool in_range(double range) const {
     return range > min_range_m && range > 0.0 && range < max_range_m;
   }
-
+  double sweep_duration_s() const { return 1.0 / rate_hz; }
   void validate() const;
 };
 
+// The per-point time model of a named preset ("kitti360", "nuscenes"); the default for others.
+SweepTiming preset_sweep_timing(const std::string& name);
+
 // Built-in presets: "kitti360" (HDL-64E) and "nuscenes" (HDL-32E).
 Sensor sensor_preset(const std::string& name);
+// JSON: the keys of the struct; "sweep" {direction, start_azimuth_deg, reference} is optional
+// and written only when it differs from preset_sweep_timing(name), so the sensor records
+// written before the time model existed read and write back unchanged.
 Sensor sensor_from_json(const Json& j, const std::string& where);
 Json sensor_to_json(const Sensor& s);
 

@@ -5,16 +5,29 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "geometry/deskew.hpp"
 #include "odometry/motion_model.hpp"
 #include "odometry/voxel_grid.hpp"
 
 namespace sgnlf::odometry {
 
-LidarOdometry::LidarOdometry(const OdometryConfig& config)
+LidarOdometry::LidarOdometry(const OdometryConfig& config, const SweepTiming& sweep, double sweep_duration_s)
     : cfg_((config.validate("odometry"), config)),
+      sweep_(sweep),
+      sweep_duration_s_(sweep_duration_s),
       map_(config.resolved_voxel_size(), config.max_points_per_voxel, config.max_range),
       coarse_map_(0.5 * config.coarse_threshold, config.max_points_per_voxel, config.max_range),
-      threshold_(config.initial_threshold, config.min_motion, config.max_range) {}
+      threshold_(config.initial_threshold, config.min_motion, config.max_range) {
+  sweep_.validate("odometry: sweep");
+  if (cfg_.deskew && !(sweep_duration_s_ > 0))
+    throw ConfigError("odometry: 'deskew' needs the sensor's sweep duration (got " +
+                      std::to_string(sweep_duration_s_) + " s)");
+}
+
+Cloud LidarOdometry::deskewed(const Cloud& scan_lidar, const Pose& T_world_a, const Pose& T_world_b,
+                              double dt_s) const {
+  return deskew(scan_lidar, sweep_, sweep_duration_s_, constant_velocity_twist(T_world_a, T_world_b, dt_s));
+}
 
 Cloud LidarOdometry::transformed(const Cloud& c, const Pose& T) {
   Cloud out(c.size());
@@ -27,9 +40,17 @@ FrameResult LidarOdometry::register_frame(const Cloud& scan_lidar, double timest
     throw Error("LidarOdometry: timestamp " + std::to_string(timestamp_s) +
                 " s is before the previous frame's " + std::to_string(timestamps_.back()) + " s");
   const double v = cfg_.resolved_voxel_size();
+  const size_t n = poses_.size();
+  // Step 0 (KISS-ICP §III-A, with cfg_.deskew): deskew with the last two poses' velocity.
+  Cloud scan;
+  const Cloud* in = &scan_lidar;
+  if (cfg_.deskew && n >= 2 && timestamps_[n - 1] > timestamps_[n - 2]) {
+    scan = deskewed(scan_lidar, poses_[n - 2], poses_[n - 1], timestamps_[n - 1] - timestamps_[n - 2]);
+    in = &scan;
+  }
   // Step 1 (KISS-ICP §III-B): the map keeps the 0.5 v grid, ICP registers the 1.5 v grid.
-  const Cloud frame = voxel_downsample(crop_range(scan_lidar, cfg_.min_range, cfg_.max_range), 0.5 * v);
-  const Cloud source = voxel_downsample(frame, 1.5 * v);
+  Cloud frame = voxel_downsample(crop_range(*in, cfg_.min_range, cfg_.max_range), 0.5 * v);
+  Cloud source = voxel_downsample(frame, 1.5 * v);
   FrameResult fr;
   fr.source_points = source.size();
   fr.sigma = threshold_.sigma();
@@ -108,6 +129,19 @@ FrameResult LidarOdometry::register_frame(const Cloud& scan_lidar, double timest
       return fr;
     }
     fr.T_world_lidar = fr.registration.T_world_source;
+    // Deskew passes after the first: the velocity from the previous pose to this frame's
+    // registered one, then the fine stage again from the registered pose.
+    for (int pass = 1; cfg_.deskew && pass < cfg_.deskew_passes && timestamp_s > timestamps_.back(); ++pass) {
+      scan = deskewed(scan_lidar, poses_.back(), fr.T_world_lidar, timestamp_s - timestamps_.back());
+      frame = voxel_downsample(crop_range(scan, cfg_.min_range, cfg_.max_range), 0.5 * v);
+      source = voxel_downsample(frame, 1.5 * v);
+      RegistrationResult again = register_scan(source, map_, fr.T_world_lidar, o);
+      if (!again.converged) break;
+      again.iterations += fr.registration.iterations;
+      fr.registration = again;
+      fr.T_world_lidar = again.T_world_source;
+      fr.source_points = source.size();
+    }
     has_motion_ = true;
     // Step 4: σ from the model deviation (eq. 5–6).
     threshold_.update(fr.T_world_lidar_predicted.inverse() * fr.T_world_lidar);

@@ -7,6 +7,8 @@
 //      whose voxels are coarse_threshold / 2 wide, correspondences within
 //      max(coarse_threshold, 3σ); then the KISS-ICP stage: the fine map, 3σ, κ = σ/3;
 //   4. update σ from the model deviation (adaptive_threshold.hpp) and both maps.
+// With config.deskew each scan is first deskewed (KISS-ICP §III-A, geometry/deskew.hpp) and,
+// once registered, deskewed again with the refined velocity and registered once more.
 // A frame whose registration fails (too few points, no overlap, low fitness, no convergence)
 // keeps the predicted pose, is reported with converged = false, and does not enter the maps.
 // The first frame (or any frame arriving while the map is empty) defines the map at its
@@ -14,6 +16,7 @@
 #pragma once
 #include <vector>
 
+#include "geometry/sweep_timing.hpp"
 #include "odometry/adaptive_threshold.hpp"
 #include "odometry/odometry_config.hpp"
 #include "odometry/registration.hpp"
@@ -33,7 +36,10 @@ struct FrameResult {
 
 class LidarOdometry {
  public:
-  explicit LidarOdometry(const OdometryConfig& config);
+  // `sweep` and `sweep_duration_s` (the sensor's per-point time model, Sensor::sweep and
+  // 1 / rate_hz) are used with config.deskew only, which needs a positive duration.
+  explicit LidarOdometry(const OdometryConfig& config, const SweepTiming& sweep = {},
+                         double sweep_duration_s = 0.0);
 
   // Registers a scan (sensor frame, metres) taken at `timestamp_s` (non-decreasing).
   FrameResult register_frame(const Cloud& scan_lidar, double timestamp_s);
@@ -44,8 +50,12 @@ class LidarOdometry {
 
  private:
   static Cloud transformed(const Cloud& c, const Pose& T);
+  // The scan deskewed with the constant velocity between two poses dt_s apart.
+  Cloud deskewed(const Cloud& scan_lidar, const Pose& T_world_a, const Pose& T_world_b, double dt_s) const;
 
   OdometryConfig cfg_;
+  SweepTiming sweep_;
+  double sweep_duration_s_ = 0.0;
   VoxelHashMap map_, coarse_map_;
   AdaptiveThreshold threshold_;
   std::vector<Pose> poses_;

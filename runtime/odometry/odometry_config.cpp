@@ -21,6 +21,7 @@ void OdometryConfig::validate(const std::string& w) const {
   check_range(w, "min_points", min_points, 3, 1 << 24);
   check_range(w, "min_fitness", min_fitness, 0.0, 1.0);
   check_range(w, "threads", threads, 1, 256);
+  check_range(w, "deskew_passes", deskew_passes, 1, 10);
 }
 
 OdometryConfig OdometryConfig::from_json(ConfigReader& r) {
@@ -34,6 +35,7 @@ OdometryConfig OdometryConfig::from_json(ConfigReader& r) {
   r.get("initial_search_step", c.initial_search_step).get("inlier_distance", c.inlier_distance);
   r.get("initial_search_iterations", c.initial_search_iterations);
   r.get("min_points", c.min_points).get("min_fitness", c.min_fitness).get("threads", c.threads);
+  r.get("deskew", c.deskew).get("deskew_passes", c.deskew_passes);
   r.finish();
   c.validate(r.where());
   return c;
@@ -57,7 +59,9 @@ Json OdometryConfig::to_json() const {
               {"initial_search_iterations", initial_search_iterations},
               {"min_points", min_points},
               {"min_fitness", min_fitness},
-              {"threads", threads}};
+              {"threads", threads},
+              {"deskew", deskew},
+              {"deskew_passes", deskew_passes}};
 }
 
 }  // namespace sgnlf::odometry

@@ -44,6 +44,14 @@ struct OdometryConfig {
   int min_points = 100;
   double min_fitness = 0.3;
   int threads = 1;  // correspondence search and normal equations; reduced in a fixed order
+  // Deskewing (KISS-ICP §III-A, geometry/deskew.hpp): each scan's points are moved to the
+  // frame's reference time with the sensor's per-point time model (Sensor::sweep) and the
+  // constant velocity of the last two poses, before downsampling; after the registration the
+  // scan is deskewed again with the velocity from the previous pose to the registered one and
+  // registered once more from there (deskew_passes = 2). Off by default: the committed results
+  // were made without it.
+  bool deskew = false;
+  int deskew_passes = 2;
 
   double resolved_voxel_size() const { return voxel_size > 0 ? voxel_size : max_range / 100.0; }
   void validate(const std::string& where) const;

@@ -14,13 +14,34 @@ Cloud to_cloud(const std::vector<PointXYZI>& points) {
   return c;
 }
 
+namespace {
+TrajectoryResult run(const std::vector<const std::vector<PointXYZI>*>& scans,
+                     const std::vector<double>& timestamps, LidarOdometry& odom,
+                     const std::function<void(size_t, const FrameResult&)>& on_frame);
+}  // namespace
+
 TrajectoryResult estimate_trajectory(
     const std::vector<const std::vector<PointXYZI>*>& scans, const std::vector<double>& timestamps,
     const OdometryConfig& config, const std::function<void(size_t, const FrameResult&)>& on_frame) {
+  LidarOdometry odom(config);
+  return run(scans, timestamps, odom, on_frame);
+}
+
+TrajectoryResult estimate_trajectory(
+    const std::vector<const std::vector<PointXYZI>*>& scans, const std::vector<double>& timestamps,
+    const OdometryConfig& config, const Sensor& sensor,
+    const std::function<void(size_t, const FrameResult&)>& on_frame) {
+  LidarOdometry odom(config, sensor.sweep, sensor.sweep_duration_s());
+  return run(scans, timestamps, odom, on_frame);
+}
+
+namespace {
+TrajectoryResult run(const std::vector<const std::vector<PointXYZI>*>& scans,
+                     const std::vector<double>& timestamps, LidarOdometry& odom,
+                     const std::function<void(size_t, const FrameResult&)>& on_frame) {
   if (scans.size() != timestamps.size())
     throw Error("estimate_trajectory: " + std::to_string(scans.size()) + " scans but " +
                 std::to_string(timestamps.size()) + " timestamps");
-  LidarOdometry odom(config);
   TrajectoryResult r;
   const auto t0 = std::chrono::steady_clock::now();
   for (size_t k = 0; k < scans.size(); ++k) {
@@ -33,5 +54,6 @@ TrajectoryResult estimate_trajectory(
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
+}  // namespace
 
 }  // namespace sgnlf::odometry

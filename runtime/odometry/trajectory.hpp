@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "geometry/range_image.hpp"
+#include "geometry/sensor.hpp"
 #include "odometry/lidar_odometry.hpp"
 
 namespace sgnlf::odometry {
@@ -20,9 +21,15 @@ struct TrajectoryResult {
 Cloud to_cloud(const std::vector<PointXYZI>& points);
 
 // `on_frame(k, result)` after each frame (progress). Timestamps non-decreasing, one per scan.
+// Without a sensor, config.deskew is refused (the time model is the sensor's).
 TrajectoryResult estimate_trajectory(
     const std::vector<const std::vector<PointXYZI>*>& scans, const std::vector<double>& timestamps,
     const OdometryConfig& config,
+    const std::function<void(size_t, const FrameResult&)>& on_frame = {});
+// The same for scans of `sensor` (its per-point time model and sweep duration deskew them).
+TrajectoryResult estimate_trajectory(
+    const std::vector<const std::vector<PointXYZI>*>& scans, const std::vector<double>& timestamps,
+    const OdometryConfig& config, const Sensor& sensor,
     const std::function<void(size_t, const FrameResult&)>& on_frame = {});
 
 }  // namespace sgnlf::odometry

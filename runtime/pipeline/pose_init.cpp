@@ -17,7 +17,7 @@ std::vector<Pose> odometry_poses(const Dataset& d) {
     scans.push_back(&f.points);
     stamps.push_back(f.timestamp_s);
   }
-  const auto r = odometry::estimate_trajectory(scans, stamps, odometry::OdometryConfig{});
+  const auto r = odometry::estimate_trajectory(scans, stamps, odometry::OdometryConfig{}, d.sensor);
   if (!r.failed.empty()) {
     const int k = r.failed.front();
     throw Error("poses.init = \"odometry\": " + std::to_string(r.failed.size()) + " of " +

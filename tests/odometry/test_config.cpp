@@ -15,11 +15,14 @@ TEST_CASE("odometry config is read strictly", "[odometry][config]") {
   OdometryConfig c;
   c.coarse_threshold = 4.0;
   c.threads = 2;
+  c.deskew = true;
   const Json j = c.to_json();
   ConfigReader r(j, "odo");
   const OdometryConfig back = OdometryConfig::from_json(r);
   CHECK(back.coarse_threshold == 4.0);
   CHECK(back.threads == 2);
+  CHECK(back.deskew);
+  CHECK_FALSE(OdometryConfig{}.deskew);  // off by default: the committed results ran without it
   CHECK(back.to_json() == j);
 
   Json unknown = j;
@@ -34,6 +37,14 @@ TEST_CASE("odometry config is read strictly", "[odometry][config]") {
   probe["initial_search_iterations"] = -1;
   ConfigReader rp(probe, "odo");
   CHECK_THROWS_WITH(OdometryConfig::from_json(rp), Catch::Contains("initial_search_iterations"));
+  Json passes = j;
+  passes["deskew_passes"] = 0;
+  ConfigReader rd(passes, "odo");
+  CHECK_THROWS_WITH(OdometryConfig::from_json(rd), Catch::Contains("deskew_passes"));
+  Json wrong = j;
+  wrong["deskew"] = "yes";
+  ConfigReader rw(wrong, "odo");
+  CHECK_THROWS_WITH(OdometryConfig::from_json(rw), Catch::Contains("deskew"));
 }
 
 TEST_CASE("adaptive threshold follows KISS-ICP eq. 5-6", "[odometry]") {

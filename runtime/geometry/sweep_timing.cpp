@@ -1,0 +1,38 @@
+// SweepTiming (see sweep_timing.hpp).
+#include "geometry/sweep_timing.hpp"
+
+#include <cmath>
+
+namespace sgnlf {
+
+void SweepTiming::validate(const std::string& w) const {
+  if (direction != -1 && direction != 1)
+    throw ConfigError(w + ": 'direction' = " + std::to_string(direction) + " (expected -1 clockwise or 1 counter-clockwise)");
+  check_range(w, "start_azimuth_deg", start_azimuth_deg, -360.0, 360.0);
+  check_range(w, "reference", reference, 0.0, 1.0);
+}
+
+double sweep_fraction(const SweepTiming& t, const Vec3& p) {
+  const double beta = std::atan2(p.y(), p.x());
+  double f = double(t.direction) * (beta - t.start_azimuth_deg * (M_PI / 180.0)) / (2.0 * M_PI);
+  f -= std::floor(f);
+  return f < 1.0 ? f : 0.0;  // f − floor(f) can round up to 1 for tiny negative f
+}
+
+double sweep_time_offset(const SweepTiming& t, double duration_s, const Vec3& p) {
+  return (sweep_fraction(t, p) - t.reference) * duration_s;
+}
+
+SweepTiming sweep_timing_from_json(ConfigReader& r) {
+  SweepTiming t;
+  r.get("direction", t.direction).get("start_azimuth_deg", t.start_azimuth_deg).get("reference", t.reference);
+  r.finish();
+  t.validate(r.where());
+  return t;
+}
+
+Json sweep_timing_to_json(const SweepTiming& t) {
+  return Json{{"direction", t.direction}, {"start_azimuth_deg", t.start_azimuth_deg}, {"reference", t.reference}};
+}
+
+}  // namespace sgnlf
