@@ -35,7 +35,7 @@ std::string synthetic_tree() {
                                  {{5.f, 1.f, -1.f, 0.3f}, {-7.f, 2.f, 0.5f, 0.6f}});
     }
     sgnlf::write_text_file(r + "/data_poses/" + drive + "/poses.txt", poses);
-    sgnlf::write_json_file(r + "/sensor.json", sgnlf::sensor_to_json(sgnlf::Sensor{"s", 8, 64, 2.0, 26.9, 80.0, 0.0, 10.0}));
+    sgnlf::write_json_file(r + "/sensor.json", sgnlf::sensor_to_json(sgnlf::Sensor{"s", 8, 64, 2.0, 26.9, 80.0, 0.0, 10.0, sgnlf::SweepTiming{}}));
     return r;
   }();
   return root;
