@@ -1,7 +1,7 @@
-// `sgnlf bench --table T --scale S [--data-root DIR] [--seed N] [--rows A,B] [--sequences X,Y]
-// --out DIR`: runs every row (or the chosen ones) of a table on every sequence (or the chosen
-// ones; runtime/harness), records the context and the device's roofline,
-// and writes <out>/results.json (results/schema.md) and <out>/table.md.
+// `sgnlf bench --table T --scale S [--data-root DIR] [--real-root DIR] [--seed N] [--rows A,B]
+// [--sequences X,Y] --out DIR`: runs every row (or the chosen ones) of a table on every
+// sequence (or the chosen ones; runtime/harness), records the context and the device's
+// roofline, and writes <out>/results.json (results/schema.md) and <out>/table.md.
 #include <iostream>
 #include <memory>
 
@@ -31,7 +31,8 @@ int list_tables() {
     std::cout << "\n";
     for (const auto& [scale, seqs] : t.scales) {
       std::cout << "  " << scale << ":";
-      for (const auto& s : seqs) std::cout << " " << s.name;
+      for (const auto& s : seqs)
+        std::cout << " " << s.name << (s.is_real_dir() ? " (real: " + s.real_dir + ")" : "");
       std::cout << "\n";
     }
   }
@@ -47,6 +48,10 @@ const Registrar reg("bench", "Run a table of the paper (every row on every seque
                  "kitti360-low | kitti360-standard | nuscenes-low | ablation-nuscenes");
   sub.add_option("--scale", o->scale, "smoke | quick | paper")->capture_default_str();
   sub.add_option("--data-root", o->data_root, "Real KITTI-360 / nuScenes in their own layout");
+  sub.add_option("--real-root", o->real_root,
+                 "Folder of the real datasets that a synthetic scale's real sequences read "
+                 "(default $SGNLF_SHARED_DIR/data/real, else ../shared/data/real); a sequence "
+                 "whose folder is missing is skipped and recorded");
   sub.add_option("--seed", o->seed, "Seed of every run")->capture_default_str();
   sub.add_option("--out", o->out_dir, "Output folder");
   sub.add_option("--device", o->device, "OpenCL device index or name (default $SGNLF_DEVICE)");
@@ -62,6 +67,7 @@ const Registrar reg("bench", "Run a table of the paper (every row on every seque
     o->roofline = !*no_roofline;
     o->command = "sgnlf bench --table " + o->table + " --scale " + o->scale +
                  (o->data_root.empty() ? "" : " --data-root " + o->data_root) +
+                 (o->real_root.empty() ? "" : " --real-root " + o->real_root) +
                  " --seed " + std::to_string(o->seed) + " --out " + o->out_dir +
                  (o->device.empty() ? "" : " --device " + o->device) +
                  (o->roofline ? "" : " --no-roofline") + join_list(" --rows ", o->rows) +

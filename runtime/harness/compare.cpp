@@ -247,11 +247,16 @@ CompareReport compare_results(const Json& fresh, const Json& base, const Compare
       continue;
     }
     c.metrics(m + " / mean", at(*nrow, "mean"), at(brow, "mean"));
+    if (at(brow, "mean_real").is_object())  // real sequences of a synthetic scale, averaged apart
+      c.metrics(m + " / mean_real", at(*nrow, "mean_real"), at(brow, "mean_real"));
     for (const auto& bseq : arr(brow, "sequences")) {
       const std::string s = str(bseq, "sequence");
       const Json* nseq = find_by(at(*nrow, "sequences"), "sequence", s);
       if (!nseq) {
-        c.add("missing", true, m + " / " + s, "sequence missing from the new result");
+        const Json* skip = find_by(at(fresh, "skipped_sequences"), "name", s);
+        c.add("missing", true, m + " / " + s,
+              "sequence missing from the new result" +
+                  (skip ? " (skipped: " + str(*skip, "reason") + ")" : std::string()));
         continue;
       }
       c.metrics(m + " / " + s, merged_metrics(*nseq), merged_metrics(bseq));

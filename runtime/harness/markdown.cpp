@@ -55,6 +55,21 @@ Json naive_for(const Json& r, const std::string& sequence) {
   return Json::object();
 }
 
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+  return s;
+}
+
+// Names of the real sequences of a synthetic scale (sequences[] with `real_dir`), or of the
+// twins: the two groups are averaged and shown apart.
+std::vector<std::string> sequence_names(const Json& r, bool real_dir) {
+  std::vector<std::string> v;
+  for (const auto& seq : r.value("sequences", Json::array()))
+    if (seq.contains("real_dir") == real_dir) v.push_back(seq.value("name", ""));
+  return v;
+}
+
 }  // namespace
 
 std::string format_metric(const std::string& key, const Json& v) {
@@ -65,20 +80,12 @@ std::string format_metric(const std::string& key, const Json& v) {
   return buf;
 }
 
-std::string render_markdown(const Json& r) {
-  std::ostringstream o;
-  const auto cols = str_list(r.value("columns", Json::array()));
-  const auto extra = str_list(r.value("extra_columns", Json::array()));
-  const Json& ctx = r.value("context", Json::object());
-  o << "# " << r.value("title", r.value("table", "")) << "\n\n";
-  o << "Table `" << r.value("table", "") << "`, scale `" << r.value("scale", "") << "`, "
-    << r.value("data", "") << " data, seed " << get_or_null(r["config"], "seed").dump()
-    << ", " << r.value("created_utc", "") << ".\n";
-  if (!r.value("command", "").empty()) o << "Command: `" << r.value("command", "") << "`\n";
-  o << "\n";
-
-  // Main table: ours | paper | Δ for each of the paper's columns, then ours-only columns.
-  bool any_unverified = false;
+// One table of the rows' means (`mean_key`: "mean" over the twins, "mean_real" over the real
+// sequences of a synthetic scale): ours | paper | Δ for each of the paper's columns, then
+// ours-only columns, then the naive baseline's mean over `naive_seqs`.
+void main_table(std::ostringstream& o, const Json& r, const std::vector<std::string>& cols,
+                const std::vector<std::string>& extra, const std::string& mean_key,
+                const std::vector<std::string>& naive_seqs, bool& any_unverified) {
   o << "| method |";
   for (const auto& c : cols) o << " " << header(c) << " ours | paper | Δ |";
   for (const auto& c : extra) o << " " << header(c) << " |";
@@ -88,7 +95,7 @@ std::string render_markdown(const Json& r) {
   o << "\n";
   for (const auto& row : r.value("rows", Json::array())) {
     const bool ok = row.value("status", "") == "ok";
-    const Json& mean = row["mean"];
+    const Json& mean = get_or_null(row, mean_key);
     o << "| " << row.value("label", row.value("method", "")) << " |";
     for (const auto& c : cols) {
       Json paper = get_or_null(row["paper"], c);
@@ -111,38 +118,75 @@ std::string render_markdown(const Json& r) {
     o << "\n";
   }
   // Reference row: the naive baseline, mean over the sequences that report it.
-  {
-    std::vector<Json> naive;
-    for (const auto& seq : r.value("sequences", Json::array())) {
-      const Json n = naive_for(r, seq.value("name", ""));
-      if (!n.empty()) naive.push_back(n);
-    }
-    if (!naive.empty()) {
-      o << "| *naive baseline (nearest training scan)* |";
-      auto mean = [&](const std::string& c) -> Json {
-        double sum = 0;
-        for (const auto& n : naive) {
-          if (!n.contains(c) || !n[c].is_number()) return Json();
-          sum += n[c].get<double>();
-        }
-        return sum / double(naive.size());
-      };
-      for (const auto& c : cols) o << " " << format_metric(c, mean(c)) << " | | |";
-      for (const auto& c : extra) o << " " << format_metric(c, mean(c)) << " |";
-      o << "\n";
-    }
+  std::vector<Json> naive;
+  for (const auto& name : naive_seqs) {
+    const Json n = naive_for(r, name);
+    if (!n.empty()) naive.push_back(n);
   }
+  if (!naive.empty()) {
+    o << "| *naive baseline (nearest training scan)* |";
+    auto mean = [&](const std::string& c) -> Json {
+      double sum = 0;
+      for (const auto& n : naive) {
+        if (!n.contains(c) || !n[c].is_number()) return Json();
+        sum += n[c].get<double>();
+      }
+      return sum / double(naive.size());
+    };
+    for (const auto& c : cols) o << " " << format_metric(c, mean(c)) << " | | |";
+    for (const auto& c : extra) o << " " << format_metric(c, mean(c)) << " |";
+    o << "\n";
+  }
+}
+
+std::string render_markdown(const Json& r) {
+  std::ostringstream o;
+  const auto cols = str_list(r.value("columns", Json::array()));
+  const auto extra = str_list(r.value("extra_columns", Json::array()));
+  const Json& ctx = r.value("context", Json::object());
+  o << "# " << r.value("title", r.value("table", "")) << "\n\n";
+  o << "Table `" << r.value("table", "") << "`, scale `" << r.value("scale", "") << "`, "
+    << r.value("data", "") << " data, seed " << get_or_null(r["config"], "seed").dump()
+    << ", " << r.value("created_utc", "") << ".\n";
+  if (!r.value("command", "").empty()) o << "Command: `" << r.value("command", "") << "`\n";
+  o << "\n";
+
+  // Main table: the rows' means over the synthetic twins (or the --data-root windows).
+  bool any_unverified = false;
+  const auto twins = sequence_names(r, false), reals = sequence_names(r, true);
+  main_table(o, r, cols, extra, "mean", twins, any_unverified);
   o << "\nΔ = ours − paper. Paper numbers: protocol §5 (results/paper_tables.json).";
   if (any_unverified) o << " † from third-party notes, not verified.";
   o << " F-score compares squared distances with 0.05, i.e. a √0.05 ≈ 0.224 m threshold "
        "(protocol §4).";
-  if (r.value("data", "") == "synthetic")
+  if (r.value("data", "") == "synthetic" && reals.empty())
     o << " Ours are on the built-in synthetic twins, not on the real sequences: compare "
          "orderings and gaps, not digits.";
+  if (r.value("data", "") == "synthetic" && !reals.empty())
+    o << " Ours above are means over the built-in synthetic twins (" << join(twins)
+      << "), not the real sequences: compare orderings and gaps, not digits. The real "
+         "sequence" << (reals.size() > 1 ? "s " : " ") << join(reals)
+      << (reals.size() > 1 ? " are in their" : " is in its") << " own table below, not in these means.";
   o << "\n";
   for (const auto& row : r.value("rows", Json::array()))
     if (row.value("status", "") == "failed")
       o << "\n**" << row.value("method", "") << " failed:** " << row.value("error", "") << "\n";
+  for (const auto& sk : r.value("skipped_sequences", Json::array()))
+    o << "\n**Sequence " << sk.value("name", "") << " not run:** " << sk.value("reason", "")
+      << "\n";
+
+  // Real sequences of a synthetic scale: the same rows, averaged over them alone.
+  if (!reals.empty()) {
+    o << "\n## Real data: " << join(reals) << " (not in the means above)\n\n";
+    for (const auto& seq : r.value("sequences", Json::array()))
+      if (seq.contains("real_dir"))
+        o << "- " << seq.value("name", "") << ": " << seq.value("real_path", seq.value("real_dir", ""))
+          << (seq.contains("sequence") ? " (" + seq.value("sequence", "") + ")" : std::string())
+          << "\n";
+    o << "\nOurs: " << (reals.size() > 1 ? "mean over these sequences" : "this sequence")
+      << " (`mean_real`); paper: the paper's numbers on its own sequences of the dataset.\n\n";
+    main_table(o, r, cols, extra, "mean_real", reals, any_unverified);
+  }
 
   // Per-sequence tables.
   const std::vector<std::string> all = [&] {
@@ -152,7 +196,7 @@ std::string render_markdown(const Json& r) {
   }();
   for (const auto& seq : r.value("sequences", Json::array())) {
     const std::string name = seq.value("name", "");
-    o << "\n## Sequence " << name;
+    o << "\n## Sequence " << name << (seq.contains("real_dir") ? " — real data" : "");
     const Json& ds = get_or_null(seq, "dataset");
     if (ds.is_object() && ds.contains("frames"))
       o << " (" << ds["frames"].dump() << " frames"

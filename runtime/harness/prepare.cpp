@@ -35,8 +35,10 @@ PreparedSequence prepare_sequence(const SequenceDef& s, const BenchOptions& opt,
   PreparedSequence p;
   p.dataset_dir = dir;
   fs::remove_all(dir);
+  // --data-root, or <real root>/<real_dir> for a real sequence of a synthetic scale.
+  const std::string root = sequence_data_root(s, opt);
   SimResult r;
-  if (opt.data_root.empty()) {
+  if (root.empty()) {
     SimOptions so;
     so.sequence = s.name;
     so.preset = s.preset;
@@ -52,9 +54,9 @@ PreparedSequence prepare_sequence(const SequenceDef& s, const BenchOptions& opt,
     lo.start = s.start;
     lo.frames = s.frames > 0 ? s.frames : -1;
     lo.stride = s.stride > 0 ? s.stride : -1;
-    r.dataset = load_dataset(opt.data_root, lo);
+    r.dataset = load_dataset(root, lo);
     const auto& fr = r.dataset.frames;
-    require(!fr.empty(), "bench: " + opt.data_root + " holds no frames for window " + s.name);
+    require(!fr.empty(), "bench: " + root + " holds no frames for window " + s.name);
     // Keep the real frame ids when they are evenly spaced; otherwise number them 0..n−1.
     int stride = fr.size() > 1 ? fr[1].id - fr[0].id : 1;
     bool even = stride > 0;
@@ -69,7 +71,7 @@ PreparedSequence prepare_sequence(const SequenceDef& s, const BenchOptions& opt,
                       {"sequence", s.name + "_sync"}, {"preset", s.preset},
                       {"frequency", r.dataset.frequency}, {"first_frame", r.dataset.frames[0].id},
                       {"stride", stride}, {"frames", r.dataset.frames.size()},
-                      {"real_source", r.dataset.source}, {"real_path", opt.data_root},
+                      {"real_source", r.dataset.source}, {"real_path", root},
                       {"real_sequence", s.sequence}, {"source_frame_ids", source_ids},
                       {"description", "window of real data copied by sgnlf bench"}};
   }
@@ -78,12 +80,12 @@ PreparedSequence prepare_sequence(const SequenceDef& s, const BenchOptions& opt,
   check.load_points = false;
   const Dataset written = load_dataset(dir, check);
   p.dataset = describe(written, dir);
-  p.dataset["generator"] = opt.data_root.empty() ? Json{{"simulator_seed", kSyntheticDataSeed},
-                                                         {"world_seed", r.metadata.value("world_seed", "")},
-                                                         {"ray_drop", r.metadata.value("ray_drop", Json())}}
-                                                 : Json{{"real_source", r.dataset.source},
-                                                         {"real_path", opt.data_root}};
-  p.dataset["seed"] = opt.data_root.empty() ? Json(kSyntheticDataSeed) : Json(nullptr);
+  p.dataset["generator"] = root.empty() ? Json{{"simulator_seed", kSyntheticDataSeed},
+                                               {"world_seed", r.metadata.value("world_seed", "")},
+                                               {"ray_drop", r.metadata.value("ray_drop", Json())}}
+                                        : Json{{"real_source", r.dataset.source},
+                                               {"real_path", root}};
+  p.dataset["seed"] = root.empty() ? Json(kSyntheticDataSeed) : Json(nullptr);
   p.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   log::info("[bench] prepared ", s.name, " in ", dir, " (", written.frames.size(), " frames, ",
             p.seconds, " s)");

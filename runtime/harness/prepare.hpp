@@ -1,6 +1,7 @@
 // Preparing a table's sequence on disk for the pipeline (built only when the datasets module
 // is wired in): a synthetic twin is simulated and written in the synthetic layout; a real
-// window (--data-root) is loaded from its own layout and written out in the same synthetic
+// window (--data-root, or <real root>/<real_dir> for a real sequence of a synthetic scale:
+// sequence_data_root()) is loaded from its own layout and written out in the same synthetic
 // layout, so the pipeline always reads one folder holding exactly the protocol window.
 #pragma once
 #include <string>

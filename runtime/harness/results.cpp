@@ -1,5 +1,6 @@
 #include "harness/results.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -102,7 +103,8 @@ Json row_timings(const std::vector<Json>& sequences) {
 }
 
 Json make_row(const std::string& table, const RowDef& row, const std::string& status,
-              const std::vector<Json>& sequences, const std::string& error) {
+              const std::vector<Json>& sequences, const std::string& error,
+              const std::vector<std::string>& real_sequences) {
   Json r;
   r["method"] = row.method;
   r["label"] = row.label;
@@ -113,7 +115,15 @@ Json make_row(const std::string& table, const RowDef& row, const std::string& st
   r["paper"] = paper;
   r["paper_unverified"] = unverified_numbers(table, row.method);
   if (status == "ok") {
-    r["mean"] = mean_over_sequences(sequences);
+    std::vector<Json> twins, reals;
+    for (const auto& s : sequences) {
+      const std::string name = s.value("sequence", "");
+      const bool is_real = std::find(real_sequences.begin(), real_sequences.end(), name) !=
+                           real_sequences.end();
+      (is_real ? reals : twins).push_back(s);
+    }
+    r["mean"] = mean_over_sequences(twins);
+    if (!reals.empty()) r["mean_real"] = mean_over_sequences(reals);
     Json all_paper = paper;
     const Json unv = r["paper_unverified"];
     for (auto it = unv.begin(); it != unv.end(); ++it) all_paper[it.key()] = it.value();

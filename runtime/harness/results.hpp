@@ -27,8 +27,12 @@ Json diff_vs_paper(const Json& ours, const Json& paper);
 // {phase: summary} where each phase's repetitions are gathered over the sequences.
 Json row_timings(const std::vector<Json>& sequences);
 
-// A complete row: status "ok" | "not_implemented" | "failed".
+// A complete row: status "ok" | "not_implemented" | "failed" | "skipped". `real_sequences`
+// names the real sequences of a synthetic scale (SequenceDef::real_dir): they are averaged
+// apart, in `mean_real` (present only when one of them ran), and `mean` and `diff_vs_paper`
+// stay over the synthetic twins alone.
 Json make_row(const std::string& table, const RowDef& row, const std::string& status,
-              const std::vector<Json>& sequences, const std::string& error = "");
+              const std::vector<Json>& sequences, const std::string& error = "",
+              const std::vector<std::string>& real_sequences = {});
 
 }  // namespace sgnlf::harness

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <map>
+#include <set>
 
 #include "core/log.hpp"
 #include "core/progress.hpp"
@@ -25,6 +27,8 @@ void BenchOptions::validate() const {
   if (out_dir.empty()) throw ConfigError("bench: --out is required");
   if (!data_root.empty() && !fs::is_directory(data_root))
     throw ConfigError("bench: --data-root '" + data_root + "' is not a directory");
+  if (!real_root.empty() && !fs::is_directory(real_root))
+    throw ConfigError("bench: --real-root '" + real_root + "' is not a directory");
   const TableDef t = table_def(table);
   for (const auto& r : rows) {
     const bool known = std::any_of(t.rows.begin(), t.rows.end(),
@@ -38,7 +42,30 @@ void BenchOptions::validate() const {
     if (!known)
       throw ConfigError("bench: --sequences: table " + table + " at scale " + scale +
                         " has no sequence '" + q + "'");
+    // A real sequence chosen by name must be there: an error, not a silent skip.
+    for (const auto& d : seqs)
+      if (d.name == q && d.is_real_dir() && data_root.empty() &&
+          !fs::is_directory(sequence_data_root(d, *this)))
+        throw ConfigError("bench: --sequences " + q + ": real data not found at " +
+                          sequence_data_root(d, *this) +
+                          " (--real-root DIR, or $SGNLF_SHARED_DIR/data/real)");
   }
+}
+
+std::string BenchOptions::resolved_real_root() const {
+  return real_root.empty() ? default_real_root() : real_root;
+}
+
+std::string default_real_root() {
+  const char* env = std::getenv("SGNLF_SHARED_DIR");
+  if (env && *env) return (fs::path(env) / "data" / "real").string();
+  return (fs::path("..") / "shared" / "data" / "real").string();
+}
+
+std::string sequence_data_root(const SequenceDef& s, const BenchOptions& opt) {
+  if (!opt.data_root.empty()) return opt.data_root;
+  if (s.is_real_dir()) return (fs::path(opt.resolved_real_root()) / s.real_dir).string();
+  return "";
 }
 
 Json BenchOptions::to_json() const {
@@ -91,6 +118,39 @@ Json run_table(const BenchOptions& opt, const BenchHooks& hooks, Json context) {
                                                  d.name) == opt.sequences.end();
                               }),
                seqs.end());
+  // Real sequences of a synthetic scale: run from their folder when it exists, else skipped
+  // (recorded in `skipped_sequences`); averaged apart from the twins (make_row).
+  Json skipped = Json::array();
+  std::vector<std::string> real_names;
+  bool any_real_dir = false;
+  if (!real) {
+    std::vector<SequenceDef> kept;
+    for (const auto& sd : seqs) {
+      if (!sd.is_real_dir()) {
+        kept.push_back(sd);
+        continue;
+      }
+      any_real_dir = true;
+      const std::string dir = sequence_data_root(sd, opt);
+      if (fs::is_directory(dir)) {
+        kept.push_back(sd);
+        real_names.push_back(sd.name);
+        continue;
+      }
+      const std::string reason = "real data not found at " + dir +
+                                 " (--real-root DIR, or $SGNLF_SHARED_DIR/data/real)";
+      log::warn("[bench] sequence ", sd.name, " skipped: ", reason);
+      skipped.push_back(Json{{"name", sd.name}, {"real_dir", sd.real_dir}, {"path", dir},
+                             {"reason", reason}});
+    }
+    seqs = kept;
+  }
+  if (seqs.empty())
+    throw ConfigError("bench: table " + t.name + " at scale " + opt.scale +
+                      ": no sequence left to run (the real data of every chosen one is missing)");
+  const auto is_real_seq = [&](const std::string& name) {
+    return std::find(real_names.begin(), real_names.end(), name) != real_names.end();
+  };
   const auto selected = [&](const std::string& method) {
     return opt.rows.empty() ||
            std::find(opt.rows.begin(), opt.rows.end(), method) != opt.rows.end();
@@ -108,6 +168,7 @@ Json run_table(const BenchOptions& opt, const BenchHooks& hooks, Json context) {
   prog.total = implemented_rows * long(seqs.size());
 
   std::map<std::string, PreparedSequence> prepared;  // by sequence name, shared by rows
+  std::set<std::string> unloadable;  // real sequences whose folder is there but did not load
   std::vector<double> prepare_s;
   Json runs = Json::array(), rows = Json::array();
   for (size_t ri = 0; ri < t.rows.size(); ++ri) {
@@ -124,14 +185,21 @@ Json run_table(const BenchOptions& opt, const BenchHooks& hooks, Json context) {
     std::string status = "ok", error;
     for (size_t si = 0; si < seqs.size() && status == "ok"; ++si) {
       const SequenceDef& sd = seqs[si];
+      if (unloadable.count(sd.name)) continue;
+      bool preparing = false;
       try {
         if (!prepared.count(sd.name)) {
+          preparing = true;
+          const bool real_seq = is_real_seq(sd.name);
           prog.phase(ri, t.rows.size(), row.method, si, seqs.size(), sd.name,
-                     real ? "load" : "simulate");
+                     real || real_seq ? "load" : "simulate");
           const double ts = now_s();
           const std::string dir = (fs::path(opt.out_dir) / "data" / sd.name).string();
-          prepared[sd.name] = hooks.prepare(sd, opt, dir);
+          BenchOptions popt = opt;  // a real sequence is loaded like a --data-root window
+          if (real_seq) popt.data_root = sequence_data_root(sd, opt);
+          prepared[sd.name] = hooks.prepare(sd, popt, dir);
           prepare_s.push_back(now_s() - ts);
+          preparing = false;
         }
         const PreparedSequence& ps = prepared[sd.name];
         pipeline::MethodRequest req;
@@ -157,20 +225,37 @@ Json run_table(const BenchOptions& opt, const BenchHooks& hooks, Json context) {
                             {"dataset_seed", ps.dataset.value("seed", Json(nullptr))}});
         ++prog.done;
       } catch (const std::exception& e) {
+        if (preparing && is_real_seq(sd.name)) {
+          // An optional real sequence that does not load is skipped like a missing one, so
+          // that the twins' rows still finish.
+          const std::string dir = sequence_data_root(sd, opt);
+          const std::string reason = "real data at " + dir + " could not be loaded: " + e.what();
+          log::warn("[bench] sequence ", sd.name, " skipped: ", reason);
+          skipped.push_back(Json{{"name", sd.name}, {"real_dir", sd.real_dir}, {"path", dir},
+                                 {"reason", reason}});
+          unloadable.insert(sd.name);
+          real_names.erase(std::find(real_names.begin(), real_names.end(), sd.name));
+          for (size_t rj = ri; rj < t.rows.size(); ++rj)
+            prog.total -= impl[rj] && selected(t.rows[rj].method) ? 1 : 0;
+          continue;
+        }
         status = "failed";
         error = sd.name + ": " + e.what();
         log::warn("[bench] row ", row.method, " failed on ", sd.name, ": ", e.what());
       }
     }
-    if (status != "ok") prog.total -= long(seqs.size()) - long(entries.size());
+    if (status != "ok")
+      prog.total -= long(seqs.size() - unloadable.size()) - long(entries.size());
     rows.push_back(make_row(t.name, row, status, status == "ok" ? entries : std::vector<Json>{},
-                            error));
+                            error, real_names));
     if (status == "failed") rows.back()["sequences"] = entries;  // keep what finished
   }
 
   Json seq_list = Json::array();
   for (const auto& sd : seqs) {
+    if (unloadable.count(sd.name)) continue;  // listed in skipped_sequences
     Json s = sd.to_json();
+    if (is_real_seq(sd.name)) s["real_path"] = sequence_data_root(sd, opt);
     if (prepared.count(sd.name)) s["dataset"] = prepared[sd.name].dataset;
     seq_list.push_back(s);
   }
@@ -194,6 +279,8 @@ Json run_table(const BenchOptions& opt, const BenchHooks& hooks, Json context) {
   r["columns"] = t.columns;
   r["extra_columns"] = t.extra_columns;
   r["sequences"] = seq_list;
+  r["skipped_sequences"] = skipped;
+  if (any_real_dir) r["real_root"] = opt.resolved_real_root();
   r["rows"] = rows;
   r["timings"] = Json{{"prepare_s", summarize(prepare_s)}, {"total_s", now_s() - t0}};
   r["peak_rss_kib"] = peak_rss_kib();

@@ -17,6 +17,12 @@ struct BenchOptions {
   std::string table;
   std::string scale = "smoke";
   std::string data_root;  // "" = built-in synthetic twins
+  // Folder holding real datasets for the sequences of a synthetic scale that set `real_dir`
+  // (SequenceDef); "" = default_real_root(). Such a sequence is read from
+  // <real_root>/<real_dir> when that folder exists and skipped (recorded) otherwise. Not part
+  // of to_json() (a machine's path; the twins' numbers do not depend on it): results record it
+  // at the top level (`real_root`, results/schema.md).
+  std::string real_root;
   std::string out_dir;
   std::string device;     // OpenCL device spec ("" = default)
   uint64_t seed = 1;
@@ -27,8 +33,18 @@ struct BenchOptions {
   // config only when non-empty, so a full table's config_hash does not change.
   std::vector<std::string> rows, sequences;
   void validate() const;
-  Json to_json() const;   // the resolved harness config (without `command` and `out_dir`)
+  Json to_json() const;   // the resolved harness config (without `command`, `out_dir`, `real_root`)
+  std::string resolved_real_root() const;  // real_root, or default_real_root() when empty
 };
+
+// $SGNLF_SHARED_DIR/data/real when that variable is set, else "../shared/data/real" (relative
+// to the working directory: the shared folder beside a checkout run from its root).
+std::string default_real_root();
+
+// The folder a sequence's data is read from in its own layout: --data-root for the real
+// windows, <resolved_real_root()>/<real_dir> for a real sequence of a synthetic scale, ""
+// for a synthetic twin (simulated).
+std::string sequence_data_root(const SequenceDef& s, const BenchOptions& opt);
 
 // A sequence ready on disk: the folder the pipeline reads and a description of it
 // (name, source, frames, split, sensor, seed... see results/schema.md "dataset").
@@ -42,13 +58,17 @@ struct PreparedSequence {
 struct BenchHooks {
   std::function<bool(const std::string& method)> implemented;
   std::function<pipeline::MethodResult(const pipeline::MethodRequest&)> run;
+  // For a real sequence of a synthetic scale (`real_dir`), the runner passes options whose
+  // data_root is the resolved folder, so the hook loads it like a --data-root window.
   std::function<PreparedSequence(const SequenceDef&, const BenchOptions&,
                                  const std::string& dir)> prepare;
 };
 
 // Runs the table; `context` is the context block (context_block() + roofline), copied into
 // the result. Failures of single runs are recorded in their row (status "failed") and the
-// table goes on. Writes nothing itself; see write_outputs().
+// table goes on. A real sequence of a synthetic scale whose folder is missing is skipped with
+// a warning and listed in `skipped_sequences` (ConfigError when --sequences named it or no
+// sequence is left). Writes nothing itself; see write_outputs().
 Json run_table(const BenchOptions& opt, const BenchHooks& hooks, Json context);
 
 // Writes <out>/results.json and <out>/table.md; returns their paths.

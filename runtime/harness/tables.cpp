@@ -1,6 +1,7 @@
 #include "harness/tables.hpp"
 
 #include <algorithm>
+#include <filesystem>
 
 namespace sgnlf::harness {
 namespace {
@@ -27,22 +28,10 @@ const Json& paper_root() {
   return j;
 }
 
-SequenceDef parse_sequence(const Json& j, const std::string& where) {
-  SequenceDef s;
-  ConfigReader r(j, where);
-  r.require("name", s.name).require("preset", s.preset).require("frequency", s.frequency);
-  r.get("frames", s.frames).get("width", s.width).get("sequence", s.sequence);
-  r.get("start", s.start).get("stride", s.stride);
-  r.finish();
-  if (s.frequency != "standard" && s.frequency != "low")
-    throw ConfigError(where + ": frequency '" + s.frequency + "' is not standard|low");
-  return s;
-}
-
 std::vector<SequenceDef> parse_list(const Json& j, const std::string& where) {
   std::vector<SequenceDef> out;
   for (size_t i = 0; i < j.size(); ++i)
-    out.push_back(parse_sequence(j[i], where + "[" + std::to_string(i) + "]"));
+    out.push_back(parse_sequence_def(j[i], where + "[" + std::to_string(i) + "]"));
   return out;
 }
 
@@ -55,6 +44,29 @@ const Json& lookup(const Json& root, const std::string& a, const std::string& b,
 
 }  // namespace
 
+SequenceDef parse_sequence_def(const Json& j, const std::string& where) {
+  SequenceDef s;
+  ConfigReader r(j, where);
+  r.require("name", s.name).require("preset", s.preset).require("frequency", s.frequency);
+  r.get("frames", s.frames).get("width", s.width).get("sequence", s.sequence);
+  r.get("start", s.start).get("stride", s.stride);
+  const bool has_real_dir = r.has("real_dir");
+  r.get("real_dir", s.real_dir);
+  r.finish();
+  if (s.frequency != "standard" && s.frequency != "low")
+    throw ConfigError(where + ": frequency '" + s.frequency + "' is not standard|low");
+  if (has_real_dir) {
+    const std::filesystem::path p(s.real_dir);
+    bool up = false;
+    for (const auto& part : p) up = up || part == "..";
+    if (s.real_dir.empty() || p.is_absolute() || up)
+      throw ConfigError(where + ": real_dir '" + s.real_dir +
+                        "' must be a non-empty folder name relative to the real-data root "
+                        "(no leading '/', no '..')");
+  }
+  return s;
+}
+
 Json SequenceDef::to_json() const {
   Json j{{"name", name}, {"preset", preset}, {"frequency", frequency}};
   if (frames) j["frames"] = frames;
@@ -62,6 +74,7 @@ Json SequenceDef::to_json() const {
   if (!sequence.empty()) j["sequence"] = sequence;
   if (start >= 0) j["start"] = start;
   if (stride) j["stride"] = stride;
+  if (!real_dir.empty()) j["real_dir"] = real_dir;
   return j;
 }
 
@@ -99,6 +112,10 @@ TableDef table_def(const std::string& name) {
   for (auto it = scales.begin(); it != scales.end(); ++it)
     t.scales[it.key()] = parse_list(it.value(), where + ".scales." + it.key());
   if (!real.is_null()) t.real = parse_list(real, where + ".real");
+  for (const auto& s : t.real)
+    if (s.is_real_dir())
+      throw ConfigError(where + ".real: sequence " + s.name +
+                        " sets real_dir; the --data-root windows are read from --data-root");
   return t;
 }
 

@@ -27,13 +27,23 @@ struct RowDef {
 // One sequence of a table. Synthetic twins: `name` is a named sequence of the simulator,
 // `frames`/`width` (0 = the sequence's own) shrink it for the smoke scale. Real data: the
 // source sequence, first frame, frame count and stride in the dataset's own layout.
+// A real sequence inside a synthetic scale sets `real_dir`: a folder under the real-data root
+// (BenchOptions::real_root) holding the dataset in its own layout; the window is chosen by
+// sequence/start/frames/stride as under --data-root. It runs only when that folder exists
+// and is averaged apart from the twins (results/schema.md).
 struct SequenceDef {
   std::string name, preset, frequency;
   int frames = 0, width = 0;
   std::string sequence;
   int start = -1, stride = 0;
-  Json to_json() const;
+  std::string real_dir;  // "" = a synthetic twin (or a --data-root window)
+  bool is_real_dir() const { return !real_dir.empty(); }
+  Json to_json() const;  // keys away from their defaults only (real_dir only when set)
 };
+
+// Parses one sequence of tables.json (unknown keys and wrong types rejected); `where` names it
+// in errors. `real_dir` must be a non-empty relative path without "..".
+SequenceDef parse_sequence_def(const Json& j, const std::string& where);
 
 struct TableDef {
   std::string name, title;
@@ -41,7 +51,7 @@ struct TableDef {
   std::vector<std::string> columns;        // the paper's columns (ours beside theirs)
   std::vector<std::string> extra_columns;  // ours only
   std::map<std::string, std::vector<SequenceDef>> scales;  // smoke, quick, paper
-  std::vector<SequenceDef> real;           // with --data-root
+  std::vector<SequenceDef> real;           // with --data-root (no real_dir there)
 };
 
 std::vector<std::string> table_names();

@@ -1,13 +1,16 @@
 // Sequence preparation for `sgnlf bench`: a synthetic twin is simulated into the folder the
 // pipeline reads; a real KITTI-360 window (--data-root) is copied out in the same layout with
 // exactly the protocol window. The "real" tree is a simulated one with its sgnlf metadata
-// removed, which is KITTI-360's raw layout.
+// removed, which is KITTI-360's raw layout. The same window read as a real sequence of a
+// synthetic scale (<real_root>/<real_dir>), and nuscenes-low's real scene-0916 from
+// ../shared/data/real when present.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
 
 #include "datasets/loader.hpp"
 #include "harness/prepare.hpp"
+#include "harness/tables.hpp"
 #include "support/test_device.hpp"
 
 using namespace sgnlf;
@@ -63,4 +66,39 @@ TEST_CASE("prepare a real KITTI-360 window", "[harness][data]") {
   REQUIRE(d.frames.size() == 4);
   CHECK(d.frames[1].id == 7);
   CHECK(d.sensor.width == 1030);  // the real layout's sensor (KITTI-360 preset)
+
+  // The same window as a real sequence of a synthetic scale: no --data-root, the folder is
+  // <real_root>/<real_dir>.
+  harness::SequenceDef rd = win;
+  rd.real_dir = "kitti360";
+  harness::BenchOptions ro;
+  ro.real_root = root;
+  const auto q = harness::prepare_sequence(rd, ro, root + "/prepared-real-dir");
+  CHECK(q.dataset["frame_ids"] == Json::array({2, 7, 12, 17}));
+  CHECK(q.dataset["seed"].is_null());
+  CHECK(q.dataset["generator"]["real_path"] == root + "/kitti360");
+  CHECK(load_dataset(q.dataset_dir).sensor.width == 1030);
+}
+
+TEST_CASE("prepare the nuscenes-low table's real scene from the real-data root",
+          "[harness][data][real]") {
+  const auto seqs = harness::table_sequences(harness::table_def("nuscenes-low"), "quick", false);
+  const harness::SequenceDef& s = seqs.back();
+  REQUIRE(s.is_real_dir());
+  const std::string real_root = test::shared_dir() + "/data/real";
+  if (!test::have_real_data(real_root + "/" + s.real_dir)) return;
+  harness::BenchOptions o;
+  o.real_root = real_root;
+  const std::string dir = test::temp_dir("harness-prepare-nuscenes-real");
+  const auto p = harness::prepare_sequence(s, o, dir + "/seq");
+  // The protocol window: the first 36 of scene-0916's 2 Hz keyframes, test views 4, 12, 20.
+  CHECK(p.dataset["frames"] == 36);
+  CHECK(p.dataset["frequency"] == "low");
+  CHECK(p.dataset["test"] == Json::array({4, 12, 20}));
+  CHECK(p.dataset["seed"].is_null());
+  CHECK(p.dataset["generator"]["real_source"] == "nuscenes");
+  CHECK(p.dataset["generator"]["real_path"] == real_root + "/" + s.real_dir);
+  const Dataset d = load_dataset(p.dataset_dir);
+  REQUIRE(d.frames.size() == 36);
+  CHECK_FALSE(d.frames[0].points.empty());
 }
