@@ -85,6 +85,17 @@ TEST_CASE("every method is described once and composes its step from the parts",
   CHECK_FALSE(resolve_config("sg-nlf-baseline", "smoke").consistency_term());
   CHECK(resolve_config("sg-nlf-no-graph", "smoke").hybrid_encoder());
   CHECK_FALSE(resolve_config("sg-nlf-no-graph", "smoke").confidence_graph());
+  // The ground-truth-pose control: SG-NLF's field on the true poses, which nothing moves.
+  CHECK(composed("sg-nlf-gt-poses") == V{"pose_free", "consistency", "spectral"});
+  for (const char* scale : {"smoke", "quick", "paper"}) {
+    const TrainConfig c = resolve_config("sg-nlf-gt-poses", scale);
+    CHECK(c.pose_free->poses.init == "gt");
+    CHECK_FALSE(c.pose_free->pose_optim.optimize);
+    CHECK_FALSE(c.pose_free->geometric.enabled);
+    CHECK_FALSE(c.confidence_graph());
+    CHECK(c.hybrid_encoder());
+    CHECK(c.consistency_term());
+  }
 }
 
 namespace {

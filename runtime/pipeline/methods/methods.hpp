@@ -14,5 +14,6 @@ Method sg_nlf_no_consistency();  // sg_nlf_no_consistency.cpp
 Method sg_nlf_no_hybrid();       // sg_nlf_no_hybrid.cpp
 Method sg_nlf_no_graph();        // sg_nlf_no_graph.cpp
 Method sg_nlf_baseline();        // sg_nlf_baseline.cpp
+Method sg_nlf_gt_poses();        // sg_nlf_gt_poses.cpp
 
 }  // namespace sgnlf::pipeline::methods

@@ -13,6 +13,8 @@ const std::vector<Method>& method_registry() {
       // The other one-switch ablations of method.md §5 (the ablation-nuscenes table).
       methods::sg_nlf_no_hybrid(), methods::sg_nlf_no_graph(),
       methods::sg_nlf_baseline(),
+      // The control beside SG-NLF: its field on the ground-truth poses.
+      methods::sg_nlf_gt_poses(),
   };
   return registry;
 }
