@@ -118,8 +118,9 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
           (graph->built_epoch < 0 || epoch - graph->built_epoch >= pg.graph.reevaluate_every)) {
         const auto cg = posegraph::build_confidence_graph(*clouds, T, features, pg.graph);
         graph->edges = cg.edges;
-        graph->loss = std::make_shared<const posegraph::GraphLoss>(clouds, cg.edges,
-                                                                   gc.min_distance, gc.threads, gc.direction());
+        graph->loss = std::make_shared<const posegraph::GraphLoss>(
+            clouds, cg.edges, gc.min_distance, gc.threads, gc.direction(),
+            pg.graph.edge_max_distance_m);
         graph->built_epoch = epoch;
         if (!run_dir.empty()) write_graph_files(run_dir, epoch, cg, T);
         graph_line = Json{{"built", true},
@@ -177,7 +178,7 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
                          {"pose_graph.edge_count", pack_doubles({double(graph->edges.size())})},
                          {"pose_graph.edges", pack_doubles(e)}};
     };
-    stage.load_state = [graph, clouds, gc](const Checkpoint& ck) {
+    stage.load_state = [graph, clouds, gc, pg](const Checkpoint& ck) {
       graph->built_epoch = long(unpack_doubles(ck.array("pose_graph.built_epoch", 2)).at(0));
       const size_t n = size_t(unpack_doubles(ck.array("pose_graph.edge_count", 2)).at(0));
       const auto e = unpack_doubles(ck.array("pose_graph.edges", n == 0 ? 0 : 6 * n));
@@ -186,8 +187,9 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
         graph->edges.push_back({int(e[3 * k]), int(e[3 * k + 1]), e[3 * k + 2]});
       graph->loss.reset();
       if (!graph->edges.empty())
-        graph->loss = std::make_shared<const posegraph::GraphLoss>(clouds, graph->edges,
-                                                                   gc.min_distance, gc.threads, gc.direction());
+        graph->loss = std::make_shared<const posegraph::GraphLoss>(
+            clouds, graph->edges, gc.min_distance, gc.threads, gc.direction(),
+            pg.graph.edge_max_distance_m);
     };
   }
   return stage;

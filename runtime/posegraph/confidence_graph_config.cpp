@@ -43,6 +43,8 @@ void ConfidenceGraphConfig::validate() const {
         "must be >= 1");
   check(reevaluate_every >= 1, "reevaluate_every", std::to_string(reevaluate_every),
         "must be >= 1");
+  check(std::isfinite(edge_max_distance_m) && edge_max_distance_m >= 0.0, "edge_max_distance_m",
+        std::to_string(edge_max_distance_m), "must be finite and >= 0 (0: off)");
   check(threads >= 1 && threads <= 256, "threads", std::to_string(threads),
         "must be in [1, 256]");
 }
@@ -65,6 +67,7 @@ ConfidenceGraphConfig ConfidenceGraphConfig::from_json(ConfigReader& r) {
       .get("max_alpha_pairs", c.max_alpha_pairs)
       .get("alpha_weights", c.alpha_weights)
       .get("reevaluate_every", c.reevaluate_every)
+      .get("edge_max_distance_m", c.edge_max_distance_m)
       .get("seed", c.seed)
       .get("threads", c.threads);
   try {
@@ -83,24 +86,26 @@ ConfidenceGraphConfig ConfidenceGraphConfig::from_json(const Json& j, const std:
 }
 
 Json ConfidenceGraphConfig::to_json() const {
-  return Json{{"sequential_offsets", sequential_offsets},
-              {"candidate_distance_m", candidate_distance_m},
-              {"min_index_gap", min_index_gap},
-              {"match_points", match_points},
-              {"coarse_voxel_m", coarse_voxel_m},
-              {"coarse_radius_m", coarse_radius_m},
-              {"fine_radius_m", fine_radius_m},
-              {"coarse_to_fine", coarse_to_fine},
-              {"min_matches", min_matches},
-              {"min_match_fraction", min_match_fraction},
-              {"kappa", kappa},
-              {"compatibility_test", compatibility_test},
-              {"sigma_d_m", sigma_d_m},
-              {"max_alpha_pairs", max_alpha_pairs},
-              {"alpha_weights", alpha_weights},
-              {"reevaluate_every", reevaluate_every},
-              {"seed", seed},
-              {"threads", threads}};
+  Json j{{"sequential_offsets", sequential_offsets},
+         {"candidate_distance_m", candidate_distance_m},
+         {"min_index_gap", min_index_gap},
+         {"match_points", match_points},
+         {"coarse_voxel_m", coarse_voxel_m},
+         {"coarse_radius_m", coarse_radius_m},
+         {"fine_radius_m", fine_radius_m},
+         {"coarse_to_fine", coarse_to_fine},
+         {"min_matches", min_matches},
+         {"min_match_fraction", min_match_fraction},
+         {"kappa", kappa},
+         {"compatibility_test", compatibility_test},
+         {"sigma_d_m", sigma_d_m},
+         {"max_alpha_pairs", max_alpha_pairs},
+         {"alpha_weights", alpha_weights},
+         {"reevaluate_every", reevaluate_every},
+         {"seed", seed},
+         {"threads", threads}};
+  if (edge_max_distance_m > 0.0) j["edge_max_distance_m"] = edge_max_distance_m;
+  return j;
 }
 
 }  // namespace sgnlf::posegraph

@@ -2,6 +2,7 @@
 #include "posegraph/graph_loss.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 #include <string>
 #include <thread>
@@ -12,13 +13,15 @@ namespace sgnlf::posegraph {
 
 GraphLoss::GraphLoss(std::shared_ptr<const std::vector<FrameCloud>> clouds,
                      std::vector<Edge> edges, double min_distance, int threads,
-                     DirectionFn direction)
+                     DirectionFn direction, double max_distance)
     : clouds_(std::move(clouds)), edges_(std::move(edges)), min_distance_(min_distance),
-      threads_(threads), direction_(std::move(direction)) {
+      threads_(threads), max_distance_(max_distance), direction_(std::move(direction)) {
   require(clouds_ != nullptr, "GraphLoss: no clouds");
   validate_edges(edges_, int(clouds_->size()));
   require(threads_ >= 1, "GraphLoss: threads must be >= 1, got " + std::to_string(threads_));
   require(bool(direction_), "GraphLoss: empty direction term");
+  require(std::isfinite(max_distance_) && max_distance_ >= 0.0,
+          "GraphLoss: max_distance must be finite and >= 0, got " + std::to_string(max_distance_));
 }
 
 double GraphLoss::operator()(const std::vector<Pose>& T, double tau,
@@ -27,7 +30,7 @@ double GraphLoss::operator()(const std::vector<Pose>& T, double tau,
   require(T.size() == clouds.size(), "GraphLoss: " + std::to_string(T.size()) +
                                          " poses for " + std::to_string(clouds.size()) +
                                          " frame clouds");
-  const RobustParams params{tau, min_distance_};
+  const RobustParams params{tau, min_distance_, max_distance_};
   // Slot 2e is edge e's i→j, slot 2e+1 its j→i.
   std::vector<DirectionTerm> terms(2 * edges_.size());
   std::vector<std::exception_ptr> failed(threads_);

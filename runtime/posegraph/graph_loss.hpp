@@ -1,6 +1,7 @@
 // The geometric pose-graph loss (method.md §3 GeoNLF; §4.2 SG-NLF's L_graph with weights α):
 //   L = Σ_edges weight · (D(i→j) + D(j→i)) / #edges,
-// D a direction term (robust Chamfer by default, see robust_chamfer.hpp). The optimiser only
+// D a direction term (robust Chamfer by default, see robust_chamfer.hpp), whose correspondences
+// may be trimmed at max_distance (RobustParams). The optimiser only
 // sees a PoseLoss, so a caller (or a test) can wrap the loss, and the direction term is itself a
 // policy (a point-to-plane term could replace it).
 // Parallelism: with threads > 1 the direction terms are shared out among threads, each written
@@ -33,7 +34,7 @@ class GraphLoss {
   // Throws sgnlf::Error for an invalid edge list (validate_edges) or threads < 1.
   GraphLoss(std::shared_ptr<const std::vector<FrameCloud>> clouds, std::vector<Edge> edges,
             double min_distance = 0.15, int threads = 1,
-            DirectionFn direction = robust_chamfer_direction);
+            DirectionFn direction = robust_chamfer_direction, double max_distance = 0.0);
 
   // Throws sgnlf::Error when T_world_lidar.size() differs from the number of clouds.
   double operator()(const std::vector<Pose>& T_world_lidar, double tau,
@@ -49,6 +50,7 @@ class GraphLoss {
   std::vector<Edge> edges_;
   double min_distance_;
   int threads_;
+  double max_distance_;  // RobustParams::max_distance (0: off)
   DirectionFn direction_;
 };
 

@@ -22,18 +22,26 @@ std::vector<Match> match_direction(const FrameCloud& src, const FrameCloud& dst,
 }
 
 std::vector<double> robust_weights(const std::vector<Match>& matches, const RobustParams& p) {
-  require(p.min_distance > 0.0 && std::isfinite(p.tau) && p.tau >= 0.0,
-          "robust_weights: need tau >= 0 and min_distance > 0 (tau " + std::to_string(p.tau) +
-              ", min_distance " + std::to_string(p.min_distance) + ")");
+  require(p.min_distance > 0.0 && std::isfinite(p.tau) && p.tau >= 0.0 &&
+              std::isfinite(p.max_distance) && p.max_distance >= 0.0,
+          "robust_weights: need tau >= 0, min_distance > 0 and max_distance >= 0 (tau " +
+              std::to_string(p.tau) + ", min_distance " + std::to_string(p.min_distance) +
+              ", max_distance " + std::to_string(p.max_distance) + ")");
+  const bool trimmed = p.max_distance > 0.0;
+  const double max_sq = p.max_distance * p.max_distance;
   std::vector<double> w(matches.size());
   double top = -1.0;
   for (size_t k = 0; k < w.size(); ++k) {
     w[k] = p.tau / std::max(std::sqrt(matches[k].sq_distance), p.min_distance);
-    top = std::max(top, w[k]);
+    if (!trimmed || matches[k].sq_distance <= max_sq) top = std::max(top, w[k]);
   }
   double sum = 0.0;
-  for (double& v : w) sum += (v = std::exp(v - top));  // shifted: every term ≤ 1, the top = 1
-  for (double& v : w) v /= sum;
+  for (size_t k = 0; k < w.size(); ++k) {
+    const bool kept = !trimmed || matches[k].sq_distance <= max_sq;
+    sum += (w[k] = kept ? std::exp(w[k] - top) : 0.0);  // shifted: every term ≤ 1, the top = 1
+  }
+  if (sum > 0.0)
+    for (double& v : w) v /= sum;
   return w;
 }
 

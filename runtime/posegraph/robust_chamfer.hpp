@@ -24,6 +24,11 @@ using PoseGrad = Vec6;  // (dL/dθ right-perturbation rotation, dL/dt world tran
 struct RobustParams {
   double tau = 0.0;            // softmax temperature numerator (tau_scale · progress)
   double min_distance = 0.15;  // m, clamp of d inside the weights
+  // m; > 0: a point whose nearest neighbour is farther has weight 0 (the softmax runs over the
+  // others; all weights 0 when no point is that close), the maximum correspondence distance of
+  // ICP. Two frames that overlap in part (a non-adjacent pair) otherwise pull together through
+  // the points that have no counterpart. 0: every point counts (GeoNLF's robust Chamfer).
+  double max_distance = 0.0;
 };
 
 struct Match {
@@ -65,7 +70,8 @@ class DirectionGradient {
 std::vector<Match> match_direction(const FrameCloud& src, const FrameCloud& dst,
                                    const Pose& T_dst_src);
 
-// softmax_k(τ / max(√sq_distance_k, min_distance)); sums to 1.
+// softmax_k(τ / max(√sq_distance_k, min_distance)) over the matches within max_distance (all
+// when it is 0); sums to 1, or to 0 when no match is within max_distance.
 std::vector<double> robust_weights(const std::vector<Match>& matches, const RobustParams& p);
 
 // Σ w·d² and its gradient with matches and weights held fixed.

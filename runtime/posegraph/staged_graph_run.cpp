@@ -38,7 +38,8 @@ StagedGraphResult run_staged_graph(
   auto rebuild = [&](int after_call) {
     GraphEvaluation e{after_call, build_confidence_graph(*clouds, T, features, gc)};
     *current = std::make_shared<const GraphLoss>(clouds, e.graph.edges, base.min_distance,
-                                                 base.threads, base.direction());
+                                                 base.threads, base.direction(),
+                                                 gc.edge_max_distance_m);
     if (on_graph) on_graph(e);
     out.graphs.push_back(std::move(e));
   };

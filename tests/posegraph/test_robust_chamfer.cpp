@@ -119,3 +119,55 @@ TEST_CASE("graph loss is bit-identical for any thread count", "[posegraph]") {
   CHECK(l1 == l2);
   CHECK(g1 == g2);
 }
+
+TEST_CASE("trimmed robust weights: points beyond max_distance weigh 0", "[posegraph]") {
+  std::vector<Match> m(4);
+  m[0].sq_distance = 0.0;
+  m[1].sq_distance = 0.25;  // 0.5
+  m[2].sq_distance = 1.0;   // 1.0: on the limit, kept
+  m[3].sq_distance = 4.0;   // 2.0: dropped
+  const auto w = robust_weights(m, {0.3, 0.15, 1.0});
+  const double e0 = std::exp(2.0), e1 = std::exp(0.6), e2 = std::exp(0.3);
+  const double z = e0 + e1 + e2;
+  CHECK(w[0] == Approx(e0 / z).epsilon(1e-14));
+  CHECK(w[1] == Approx(e1 / z).epsilon(1e-14));
+  CHECK(w[2] == Approx(e2 / z).epsilon(1e-14));
+  CHECK(w[3] == 0.0);
+  // Off (0) is the untrimmed softmax; nothing within reach gives all zeros, not NaN.
+  CHECK(robust_weights(m, {0.3, 0.15, 0.0}) == robust_weights(m, {0.3, 0.15}));
+  std::vector<Match> far(2);
+  far[0].sq_distance = 4.0;
+  far[1].sq_distance = 9.0;
+  for (double v : robust_weights(far, {0.3, 0.15, 1.0})) CHECK(v == 0.0);
+  CHECK_THROWS_AS(robust_weights(m, {0.3, 0.15, -1.0}), Error);
+}
+
+TEST_CASE("trimmed graph loss ignores the part of a frame the other does not see",
+          "[posegraph]") {
+  // Frame 1 sees the shared surfaces plus a far block that frame 0 lacks (a non-adjacent pair
+  // overlaps in part). Untrimmed, the block's points pull frame 1 towards frame 0's points; at
+  // 1 m the loss and gradient are those of the shared surfaces alone.
+  const auto world = smooth_world_points(3000, 5);
+  std::vector<Vec3> with_block = world;
+  for (int k = 0; k < 600; ++k)
+    with_block.push_back(Vec3(30.0 + 0.01 * (k % 30), -20.0 + 0.1 * (k / 30), 0.5 * (k % 7)));
+  auto shared = std::make_shared<std::vector<FrameCloud>>();
+  shared->push_back(cloud_seen_from(world, kBase0));
+  shared->push_back(cloud_seen_from(world, kBase1));
+  auto partial = std::make_shared<std::vector<FrameCloud>>();
+  partial->push_back(cloud_seen_from(world, kBase0));
+  partial->push_back(cloud_seen_from(with_block, kBase1));
+  const std::vector<Pose> T = {corrected_pose(kBase0, kXi0), corrected_pose(kBase1, kXi1)};
+  std::vector<PoseGrad> g_ref, g_trim, g_plain;
+  const double tau = 0.5;
+  const double ref = GraphLoss(shared, {Edge{0, 1, 1.0}}, 0.15, 1, robust_chamfer_direction, 1.0)(
+      T, tau, g_ref);
+  const double trim = GraphLoss(partial, {Edge{0, 1, 1.0}}, 0.15, 1, robust_chamfer_direction,
+                                1.0)(T, tau, g_trim);
+  const double plain = GraphLoss(partial, {Edge{0, 1, 1.0}})(T, tau, g_plain);
+  CHECK(trim == Approx(ref).epsilon(1e-12));
+  CHECK((g_trim[1] - g_ref[1]).norm() <= 1e-9 * (1.0 + g_ref[1].norm()));
+  CHECK(plain > 10.0 * ref);  // the block's points dominate the untrimmed loss
+  CHECK_THROWS_AS(GraphLoss(partial, {Edge{0, 1, 1.0}}, 0.15, 1, robust_chamfer_direction, -1.0),
+                  Error);
+}
