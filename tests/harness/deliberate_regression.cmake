@@ -3,8 +3,8 @@
 # `sgnlf compare --strict` exit with 4 (regression):
 #   worse     the first running row's mean Chamfer distance set to 1000 m² (CMake has no float math)
 #   improved  the same set to 0: better beyond the tight tolerance means a stale baseline
-#   device    another OpenCL device: a smoke table is compared only as a deterministic twin,
-#             with a message naming both devices (before: silently loose, CD ±25 %)
+#   device    another OpenCL device and a worse CD: a smoke table stays under the tight
+#             tolerances there, and the report names both devices (before: silently loose, CD ±25 %)
 #   config    another config hash in a sequence: not a twin either
 file(READ ${BASELINE} base)
 string(JSON n LENGTH "${base}" rows)
@@ -27,7 +27,8 @@ endif()
 
 string(JSON worse SET "${base}" rows ${row} mean cd "1000.0")
 string(JSON improved SET "${base}" rows ${row} mean cd "0.0")
-string(JSON device SET "${base}" context opencl device "\"another OpenCL device\"")
+string(JSON same_numbers SET "${base}" context opencl device "\"another OpenCL device\"")
+string(JSON device SET "${same_numbers}" rows ${row} mean cd "1000.0")
 string(JSON config SET "${base}" rows ${row} sequences 0 config_hash "\"0000000000000000\"")
 foreach(kind worse improved device config)
   file(WRITE ${OUT}/${kind}.json "${${kind}}")
@@ -40,6 +41,14 @@ foreach(kind worse improved device config)
 endforeach()
 # The device mismatch names both devices and says what to do.
 execute_process(COMMAND ${SGNLF} compare ${OUT}/device.json ${BASELINE} RESULT_VARIABLE rc OUTPUT_VARIABLE out)
-if(NOT rc EQUAL 4 OR NOT out MATCHES "another OpenCL device" OR NOT out MATCHES "regenerate it on this device")
+if(NOT rc EQUAL 4 OR NOT out MATCHES "another OpenCL device" OR NOT out MATCHES "regenerate the baseline")
   message(FATAL_ERROR "a device mismatch did not fail with a clear message (exit ${rc}):\n${out}")
+endif()
+# Another device that computes the same numbers (another PoCL CPU target) passes, tight, with a
+# note naming both devices.
+file(WRITE ${OUT}/same_numbers.json "${same_numbers}")
+execute_process(COMMAND ${SGNLF} compare --strict ${OUT}/same_numbers.json ${BASELINE}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "tight tolerances" OR NOT out MATCHES "another OpenCL device")
+  message(FATAL_ERROR "another device with the same numbers did not pass tight with a note (exit ${rc}):\n${out}")
 endif()
