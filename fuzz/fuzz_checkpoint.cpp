@@ -8,7 +8,7 @@
 #include "core/config.hpp"
 #include "core/error.hpp"
 #include "fuzz_input.hpp"
-#include "pipeline/checkpoint.hpp"
+#include "pipeline/train/checkpoint.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::string bytes(reinterpret_cast<const char*>(data), size);

@@ -1,4 +1,4 @@
-// The training config JSON (pipeline/train_config.hpp, presets.hpp): what `sgnlf train --config
+// The training config JSON (pipeline/config/train_config.hpp, presets.hpp): what `sgnlf train --config
 // overrides.json` merges onto a preset (resolve_config), and a whole config as a run's run.json
 // holds it (train_config_from_json, read back on resume). The first byte picks the reader and,
 // for overrides, the preset. A config that parses must survive its own round trip: written with
@@ -7,8 +7,8 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "fuzz_input.hpp"
-#include "pipeline/presets.hpp"
-#include "pipeline/train_config.hpp"
+#include "pipeline/config/presets.hpp"
+#include "pipeline/config/train_config.hpp"
 
 namespace {
 

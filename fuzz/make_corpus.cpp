@@ -15,9 +15,9 @@
 #include "io/range_array.hpp"
 #include "io/scan_io.hpp"
 #include "io/trajectory_io.hpp"
-#include "pipeline/checkpoint.hpp"
-#include "pipeline/presets.hpp"
-#include "pipeline/train_config.hpp"
+#include "pipeline/train/checkpoint.hpp"
+#include "pipeline/config/presets.hpp"
+#include "pipeline/config/train_config.hpp"
 
 using namespace sgnlf;
 namespace fs = std::filesystem;

@@ -12,10 +12,10 @@
 
 #include "support/bench_support.hpp"
 #include "bench_dataset.hpp"
-#include "pipeline/consistency_term.hpp"
-#include "pipeline/model.hpp"
-#include "pipeline/presets.hpp"
-#include "pipeline/ray_batch.hpp"
+#include "pipeline/train/consistency_term.hpp"
+#include "pipeline/model/model.hpp"
+#include "pipeline/config/presets.hpp"
+#include "pipeline/model/ray_batch.hpp"
 #include "spectral/hybrid_encoder.hpp"
 #include "spectral/surface.hpp"
 

@@ -13,9 +13,9 @@
 
 #include "support/bench_support.hpp"
 #include "bench_dataset.hpp"
-#include "pipeline/model.hpp"
-#include "pipeline/presets.hpp"
-#include "pipeline/ray_batch.hpp"
+#include "pipeline/model/model.hpp"
+#include "pipeline/config/presets.hpp"
+#include "pipeline/model/ray_batch.hpp"
 
 using namespace sgnlf;
 using namespace sgnlf::pipeline;

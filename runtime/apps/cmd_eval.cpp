@@ -6,7 +6,7 @@
 #include <iostream>
 
 #include "apps/command.hpp"
-#include "pipeline/session.hpp"
+#include "pipeline/run/session.hpp"
 
 namespace sgnlf::app {
 namespace {

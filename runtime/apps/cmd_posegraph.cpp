@@ -3,7 +3,7 @@
 // [--graph sequential|confidence] [--graph-config FILE] [--confidence-start X]`:
 // GeoNLF's geometric pose optimiser alone (no field; method.md §3) from the protocol's initial
 // poses, as the coarse alignment that starts a GeoNLF run (posegraph/annealed_run.hpp). Prints the ATE/RPE after each call; with --out writes
-// the trajectories (pipeline/trajectory_files.hpp) and a JSON log.
+// the trajectories (pipeline/run/trajectory_files.hpp) and a JSON log.
 // --graph confidence: SG-NLF's confidence-aware pose graph (method.md §4.2) with the STAND-IN
 // features (posegraph/standin_features.hpp, not the field's f_hyb) on the staged schedule of
 // posegraph/staged_graph_run.hpp; --out adds graphs/graph_after_call_<k>.{json,svg} for every
@@ -18,9 +18,9 @@
 #include "datasets/loader.hpp"
 #include "datasets/protocol.hpp"
 #include "metrics/pose_errors.hpp"
-#include "pipeline/geometric_stage.hpp"
-#include "pipeline/pose_init.hpp"
-#include "pipeline/trajectory_files.hpp"
+#include "pipeline/train/geometric_stage.hpp"
+#include "pipeline/train/pose_init.hpp"
+#include "pipeline/run/trajectory_files.hpp"
 #include "io/pose_graph_svg.hpp"
 #include "posegraph/annealed_run.hpp"
 #include "posegraph/staged_graph_run.hpp"

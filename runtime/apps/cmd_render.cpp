@@ -6,7 +6,7 @@
 
 #include "apps/command.hpp"
 #include "io/trajectory_io.hpp"
-#include "pipeline/session.hpp"
+#include "pipeline/run/session.hpp"
 
 namespace sgnlf::app {
 namespace {

@@ -7,8 +7,8 @@
 
 #include "apps/command.hpp"
 #include "pipeline/methods/registry.hpp"
-#include "pipeline/presets.hpp"
-#include "pipeline/session.hpp"
+#include "pipeline/config/presets.hpp"
+#include "pipeline/run/session.hpp"
 
 namespace sgnlf::app {
 namespace {

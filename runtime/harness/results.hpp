@@ -6,7 +6,7 @@
 
 #include "core/config.hpp"
 #include "harness/tables.hpp"
-#include "pipeline/method.hpp"
+#include "pipeline/run/method.hpp"
 
 namespace sgnlf::harness {
 

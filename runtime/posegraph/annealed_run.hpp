@@ -3,7 +3,7 @@
 // each call, on a clock c_k = k / calls (k = 1 … calls): τ = tau_scale · c_k sharpens the robust
 // weights as the poses converge, and the learning rates decay as
 // lr · lr_start · (lr_final / lr_start)^((k − 1) / calls). With hold_clock the clock stays at 1
-// (τ at its final value: a refinement run on a new graph, pipeline/geometric_stage.cpp).
+// (τ at its final value: a refinement run on a new graph, pipeline/train/geometric_stage.cpp).
 // Measured with `sgnlf posegraph` (README, "GeoNLF"): this recipe brings the noisy protocol
 // start (≈ 3.25 m ATE) to ≈ 0.27 m on kitti360-low-a and nuscenes-low-a with 200 steps.
 #pragma once

@@ -8,8 +8,8 @@
 
 #include <cmath>
 
-#include "pipeline/model.hpp"
-#include "pipeline/ray_batch.hpp"
+#include "pipeline/model/model.hpp"
+#include "pipeline/model/ray_batch.hpp"
 #include "render/pose_gradient.hpp"
 
 namespace sgnlf::test {

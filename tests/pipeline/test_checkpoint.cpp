@@ -7,7 +7,7 @@
 
 #include "core/config.hpp"
 #include "core/error.hpp"
-#include "pipeline/checkpoint.hpp"
+#include "pipeline/train/checkpoint.hpp"
 #include "support/test_device.hpp"
 
 using namespace sgnlf;

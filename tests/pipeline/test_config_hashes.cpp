@@ -8,9 +8,9 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "pipeline/method.hpp"
-#include "pipeline/presets.hpp"
-#include "pipeline/train_config.hpp"
+#include "pipeline/run/method.hpp"
+#include "pipeline/config/presets.hpp"
+#include "pipeline/config/train_config.hpp"
 
 using namespace sgnlf;
 using namespace sgnlf::pipeline;

@@ -11,12 +11,12 @@
 #include <filesystem>
 #include <fstream>
 
-#include "pipeline/consistency_schedule.hpp"
-#include "pipeline/presets.hpp"
-#include "pipeline/ray_batch.hpp"
-#include "pipeline/run_dir.hpp"
-#include "pipeline/session.hpp"
-#include "pipeline/trainer.hpp"
+#include "pipeline/train/consistency_schedule.hpp"
+#include "pipeline/config/presets.hpp"
+#include "pipeline/model/ray_batch.hpp"
+#include "pipeline/run/run_dir.hpp"
+#include "pipeline/run/session.hpp"
+#include "pipeline/train/trainer.hpp"
 #include "spectral/hybrid_encoder.hpp"
 #include "support/test_device.hpp"
 #include "tiny_scene.hpp"

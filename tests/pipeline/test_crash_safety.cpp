@@ -12,8 +12,8 @@
 
 #include "core/config.hpp"
 #include "core/error.hpp"
-#include "pipeline/checkpoint.hpp"
-#include "pipeline/trainer.hpp"
+#include "pipeline/train/checkpoint.hpp"
+#include "pipeline/train/trainer.hpp"
 #include "support/test_device.hpp"
 #include "tiny_scene.hpp"
 

@@ -2,7 +2,7 @@
 // step between checkpoints, half-way through writing a checkpoint, between the renames of a
 // checkpoint) and once at a random time, then resumed, ends with a checkpoint byte-identical to
 // an uninterrupted run of the same seed, and with the same train_log.jsonl steps. The kills at
-// fixed points use the SGNLF_FAULT_KILL hook (pipeline/checkpoint.hpp); the random one is a
+// fixed points use the SGNLF_FAULT_KILL hook (pipeline/train/checkpoint.hpp); the random one is a
 // real kill(2) from this process at a time drawn from the project's generator.
 #include <catch2/catch.hpp>
 
@@ -20,8 +20,8 @@
 
 #include "core/config.hpp"
 #include "core/rng.hpp"
-#include "pipeline/checkpoint.hpp"
-#include "pipeline/trainer.hpp"
+#include "pipeline/train/checkpoint.hpp"
+#include "pipeline/train/trainer.hpp"
 #include "support/test_device.hpp"
 #include "tiny_scene.hpp"
 

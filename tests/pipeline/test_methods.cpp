@@ -6,8 +6,8 @@
 #include <set>
 
 #include "pipeline/methods/registry.hpp"
-#include "pipeline/presets.hpp"
-#include "pipeline/step_policy.hpp"
+#include "pipeline/config/presets.hpp"
+#include "pipeline/train/step_policy.hpp"
 
 using namespace sgnlf;
 using namespace sgnlf::pipeline;

@@ -16,9 +16,9 @@
 #include "datasets/loader.hpp"
 #include "datasets/protocol.hpp"
 #include "metrics/pose_errors.hpp"
-#include "pipeline/geometric_stage.hpp"
-#include "pipeline/pose_check.hpp"
-#include "pipeline/pose_init.hpp"
+#include "pipeline/train/geometric_stage.hpp"
+#include "pipeline/train/pose_check.hpp"
+#include "pipeline/train/pose_init.hpp"
 #include "posegraph/annealed_run.hpp"
 #include "support/test_device.hpp"
 

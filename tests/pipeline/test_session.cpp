@@ -8,9 +8,9 @@
 
 #include "datasets/simulate.hpp"
 #include "io/range_array.hpp"
-#include "pipeline/evaluate.hpp"
-#include "pipeline/render_view.hpp"
-#include "pipeline/session.hpp"
+#include "pipeline/run/evaluate.hpp"
+#include "pipeline/model/render_view.hpp"
+#include "pipeline/run/session.hpp"
 #include "support/test_device.hpp"
 #include "tiny_scene.hpp"
 

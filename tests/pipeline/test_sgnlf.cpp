@@ -9,11 +9,11 @@
 #include <fstream>
 
 #include "pipeline/methods/registry.hpp"
-#include "pipeline/presets.hpp"
-#include "pipeline/ray_batch.hpp"
-#include "pipeline/run_dir.hpp"
-#include "pipeline/session.hpp"
-#include "pipeline/trainer.hpp"
+#include "pipeline/config/presets.hpp"
+#include "pipeline/model/ray_batch.hpp"
+#include "pipeline/run/run_dir.hpp"
+#include "pipeline/run/session.hpp"
+#include "pipeline/train/trainer.hpp"
 #include "render/pose_gradient.hpp"
 #include "spectral/hybrid_encoder.hpp"
 #include "support/test_device.hpp"

@@ -8,10 +8,10 @@
 #include <fstream>
 
 #include "field/mlp.hpp"
-#include "pipeline/checkpoint.hpp"
-#include "pipeline/ray_batch.hpp"
-#include "pipeline/render_view.hpp"
-#include "pipeline/trainer.hpp"
+#include "pipeline/train/checkpoint.hpp"
+#include "pipeline/model/ray_batch.hpp"
+#include "pipeline/model/render_view.hpp"
+#include "pipeline/train/trainer.hpp"
 #include "support/test_device.hpp"
 #include "tiny_scene.hpp"
 

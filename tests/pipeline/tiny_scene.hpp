@@ -4,9 +4,9 @@
 #pragma once
 #include "datasets/protocol.hpp"
 #include "datasets/simulate.hpp"
-#include "pipeline/presets.hpp"
-#include "pipeline/scene.hpp"
-#include "pipeline/session.hpp"
+#include "pipeline/config/presets.hpp"
+#include "pipeline/model/scene.hpp"
+#include "pipeline/run/session.hpp"
 
 namespace sgnlf::test {
 

@@ -4,7 +4,7 @@
 // parts (StepParts). One file per method in this folder (lidar_nerf.cpp, geonlf.cpp, sg_nlf.cpp,
 // and the control and ablation rows as small derivations of those), listed in registry.cpp.
 // Host-only: the config reader (train_config.cpp) builds without OpenCL and reads the sections
-// from here; the parts are built on the device by pipeline/step_parts.hpp.
+// from here; the parts are built on the device by pipeline/train/step_parts.hpp.
 #pragma once
 #include <string>
 

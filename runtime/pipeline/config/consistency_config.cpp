@@ -1,0 +1,63 @@
+// ConsistencyConfig (consistency_config.hpp).
+#include "pipeline/config/consistency_config.hpp"
+
+#include "core/error.hpp"
+
+namespace sgnlf::pipeline {
+namespace {
+
+const std::string kWhere = "config.consistency";
+
+void check_width(const Sensor& s, const std::string& what) {
+  if (s.width < kMinBoundaryWidth)
+    throw ConfigError(kWhere + ": the " + what + " is " + std::to_string(s.height) + " × " +
+                      std::to_string(s.width) + " pixels, narrower than the reprojection's " +
+                      std::to_string(kMinBoundaryWidth) + " columns");
+}
+
+}  // namespace
+
+void ConsistencyConfig::validate(const std::string& where) const {
+  const std::string w = where + ".consistency";
+  config::check_fields(*this, w);
+  if (offsets.empty()) throw ConfigError(w + ": 'offsets' is empty (expected e.g. [1])");
+  for (size_t k = 0; k < offsets.size(); ++k)
+    check_range(w, "offsets[" + std::to_string(k) + "]", offsets[k], 1, 1000);
+  discriminator.validate(w + ".discriminator");
+}
+
+ConsistencyConfig ConsistencyConfig::from_json(ConfigReader& r) {
+  ConsistencyConfig c;
+  if (r.has("consistency")) config::read_fields(r, "consistency", c);
+  return c;
+}
+
+void ConsistencyConfig::to_json(Json& j) const { j["consistency"] = config::write_fields(*this); }
+
+Sensor consistency_render_sensor(const ConsistencyConfig& c, const Sensor& s) {
+  Sensor r = s;
+  r.name = s.name + "-render-" + std::to_string(c.render_rows) + "x" + std::to_string(c.render_cols);
+  r.height = c.render_rows;
+  r.width = c.render_cols;
+  r.validate();
+  check_width(r, "render sub-sensor (render_rows × render_cols)");
+  return r;
+}
+
+Sensor consistency_image_sensor(const ConsistencyConfig& c, const Sensor& s) {
+  if (s.height % c.image_row_stride != 0)
+    throw ConfigError(kWhere + ": 'image_row_stride' = " + std::to_string(c.image_row_stride) +
+                      " does not divide the sensor's " + std::to_string(s.height) + " rows");
+  if (s.width % c.image_col_stride != 0)
+    throw ConfigError(kWhere + ": 'image_col_stride' = " + std::to_string(c.image_col_stride) +
+                      " does not divide the sensor's " + std::to_string(s.width) + " columns");
+  Sensor r = s;
+  r.height = s.height / c.image_row_stride;
+  r.width = s.width / c.image_col_stride;
+  r.name = s.name + "-image-" + std::to_string(r.height) + "x" + std::to_string(r.width);
+  r.validate();
+  check_width(r, "image sub-sensor (sensor / image strides)");
+  return r;
+}
+
+}  // namespace sgnlf::pipeline

@@ -1,0 +1,121 @@
+// Preset lookup over the table generated from presets/*.json (see CMakeLists.txt).
+#include "pipeline/config/presets.hpp"
+
+#include <string_view>
+#include <utility>
+
+#include "pipeline/methods/registry.hpp"
+
+namespace sgnlf::pipeline {
+
+// Defined in the generated presets_embedded.cpp: (name, JSON text) pairs.
+const PresetTexts& embedded_presets();
+
+std::vector<std::string> preset_names() {
+  std::vector<std::string> names;
+  for (const auto& [name, text] : embedded_presets()) names.emplace_back(name);
+  return names;
+}
+
+namespace {
+constexpr const char* kOdometrySection = "from_odometry";
+constexpr const char* kExtends = "extends";
+constexpr int kMaxExtends = 8;  // deeper chains are cycles
+
+std::string known_presets(const PresetTexts& texts) {
+  std::string known;
+  for (const auto& entry : texts) known += (known.empty() ? "" : ", ") + std::string(entry.first);
+  return known;
+}
+
+const std::string_view* text_of(const PresetTexts& texts, const std::string& key) {
+  for (const auto& entry : texts)
+    if (entry.first == key) return &entry.second;
+  return nullptr;
+}
+
+Json resolve(const std::string& key, const PresetTexts& texts, int depth) {
+  const std::string_view* text = text_of(texts, key);
+  if (!text) throw ConfigError("no preset '" + key + "' (known: " + known_presets(texts) + ")");
+  Json j;
+  try {
+    j = Json::parse(*text);
+  } catch (const Json::parse_error& e) {
+    throw ConfigError("embedded preset " + key + ": invalid JSON: " + e.what());
+  }
+  if (!j.is_object()) throw ConfigError("embedded preset " + key + ": not a JSON object");
+  if (!j.contains(kExtends)) return j;
+  const Json parent = j.at(kExtends);
+  j.erase(kExtends);
+  if (!parent.is_string())
+    throw ConfigError("embedded preset " + key + ": '" + kExtends + "' is not a preset name");
+  const std::string base = parent.get<std::string>();
+  if (depth >= kMaxExtends)
+    throw ConfigError("embedded preset " + key + ": '" + kExtends + "' chain deeper than " +
+                      std::to_string(kMaxExtends) + " (a cycle?)");
+  if (!text_of(texts, base))
+    throw ConfigError("embedded preset " + key + ": '" + kExtends + "' = \"" + base +
+                      "\" is not a preset (known: " + known_presets(texts) + ")");
+  return merge_config_json(resolve(base, texts, depth + 1), j);
+}
+
+}  // namespace
+
+Json resolve_preset(const std::string& name, const PresetTexts& texts) {
+  return resolve(name, texts, 0);
+}
+
+namespace {
+
+Json embedded_preset(const std::string& method, const std::string& preset) {
+  const std::string key = method + "-" + preset;
+  if (!text_of(embedded_presets(), key))
+    throw ConfigError("no preset '" + preset + "' for method '" + method + "' (known: " +
+                      known_presets(embedded_presets()) + ")");
+  return resolve_preset(key, embedded_presets());
+}
+}  // namespace
+
+Json preset_json(const std::string& method, const std::string& preset) {
+  Json j = embedded_preset(method, preset);
+  j.erase(kOdometrySection);
+  return j;
+}
+
+Json odometry_start_json(const std::string& method, const std::string& preset) {
+  const Json j = embedded_preset(method, preset);
+  if (!j.contains(kOdometrySection)) return Json::object();
+  const Json& s = j.at(kOdometrySection);
+  if (!s.is_object())
+    throw ConfigError("embedded preset " + method + "-" + preset + ": '" + kOdometrySection +
+                      "' is not an object");
+  return s;
+}
+
+TrainConfig resolve_config(const std::string& method, const std::string& preset,
+                           const Json& overrides) {
+  const Method& spec = find_method(method);
+  Json base = preset_json(spec.preset_family, preset);
+  // A method without the consistency section drops it from its family's presets, so that its
+  // config and hash stay those of a method that never had the term (ConfigSections).
+  if (!spec.sections.consistency) base.erase("consistency");
+  base = merge_config_json(std::move(base), spec.overrides);
+  Json merged = merge_config_json(base, overrides);
+  std::string where = "preset " + method + "-" + preset;
+  // A malformed poses.init is left to the strict reader below, which names it.
+  const Json* init = merged.contains("poses") && merged["poses"].is_object() &&
+                             merged["poses"].contains("init")
+                         ? &merged["poses"]["init"]
+                         : nullptr;
+  const bool from_odometry = init && init->is_string() && init->get<std::string>() == "odometry";
+  if (from_odometry) {
+    const Json start = odometry_start_json(spec.preset_family, preset);
+    if (!start.empty()) {
+      merged = merge_config_json(merge_config_json(std::move(base), start), overrides);
+      where += " + " + std::string(kOdometrySection);
+    }
+  }
+  return train_config_from_json(merged, where + " + overrides");
+}
+
+}  // namespace sgnlf::pipeline

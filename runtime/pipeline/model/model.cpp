@@ -1,0 +1,369 @@
+// LidarNerfModel: composition of the field and render launchers into one training step
+// (method.md §0–1). Sample-major buffers hold max_rays × (n_samples + n_importance) samples.
+#include "pipeline/model/model.hpp"
+
+#include "pipeline/model/model_constants.hpp"
+
+#include "core/error.hpp"
+#include "field/hash_grid_encoder.hpp"
+#include "spectral/hybrid_encoder.hpp"
+
+namespace sgnlf::pipeline {
+using namespace model_detail;
+namespace {
+
+field::HashGridConfig grid_config(const FieldSizes& f) {
+  field::HashGridConfig g;
+  g.levels = f.levels;
+  g.features = f.features_per_level;
+  g.log2_table_size = f.log2_table_size;
+  g.base_resolution = float(f.base_resolution);
+  g.per_level_scale = float(f.per_level_scale);
+  g.deterministic = true;
+  g.validate();
+  return g;
+}
+
+field::AdamConfig adam_config(const OptimConfig& o) {
+  field::AdamConfig a;
+  a.beta1 = float(o.beta1);
+  a.beta2 = float(o.beta2);
+  a.eps = float(o.eps);
+  a.validate();
+  return a;
+}
+
+// LiDAR head on [geo, dir_enc] (method.md §0) with the direction encoding as a grouped input:
+// the same function and parameter layout as an MLP on the 87-wide concatenation, but the
+// direction part of the first layer is computed once per ray; the 15 geometric features are
+// read in place from columns 1..15 of the density output.
+field::MlpSpec head_spec(const FieldSizes& f) {
+  field::MlpSpec s = field::make_mlp_spec(f.geo_features, f.head_hidden, f.head_layers, 2,
+                                          field::Activation::Relu);
+  s.n_in_group = 6 * f.dir_frequencies;
+  s.in_stride = kDensStride;
+  s.in_offset = 1;
+  return s;
+}
+
+// The position encoder of `c`; `hybrid` points at it when it is SG-NLF's hybrid one.
+std::unique_ptr<field::Encoder> make_encoder(cl::Runtime& rt, const TrainConfig& c,
+                                             spectral::HybridEncoder*& hybrid) {
+  if (c.hybrid_encoder()) {
+    auto e = std::make_unique<spectral::HybridEncoder>(rt, grid_config(c.field), c.spectral->psi,
+                                                       c.spectral->loss);
+    hybrid = e.get();
+    return e;
+  }
+  return std::make_unique<field::HashGridEncoder>(rt, grid_config(c.field));
+}
+
+cl::Buffer floats(cl::Runtime& rt, size_t n) { return cl::Buffer(rt, std::max<size_t>(n, 1) * 4); }
+
+}  // namespace
+
+LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scene_scale,
+                               int max_rays)
+    : rt_(rt),
+      cfg_(c),
+      max_rays_(max_rays),
+      encoder_(make_encoder(rt, c, hybrid_)),
+      density_(rt, field::make_mlp_spec(encoder_->width(),
+                                        c.field.density_hidden, 1, 1 + c.field.geo_features,
+                                        field::Activation::Relu)),
+      head_(rt, head_spec(c.field)),
+      dirs_(rt, c.field.dir_frequencies, c.field.geo_features, 1, 1 + c.field.geo_features),
+      sampler_(rt, c.render, scene_scale),
+      renderer_(rt, c.render, scene_scale),
+      loss_(rt, c.render, scene_scale),
+      ray_grad_(rt) {
+  if (1 + c.field.geo_features != kDensStride)
+    throw ConfigError("config.field: 'geo_features' must be 15 (density output 1 + 15 = 16)");
+  off_grid_ = layout_.add("hash_grid", encoder_->n_params()).offset;
+  off_density_ = layout_.add("density_mlp", density_.n_params()).offset;
+  off_head_ = layout_.add("head_mlp", head_.n_params()).offset;
+  adam_ = std::make_unique<field::Adam>(rt, layout_.total(), adam_config(c.optim));
+  col_get_ = rt.kernel("pipeline/glue.cl", "pipeline_column_get");
+  col_set_ = rt.kernel("pipeline/glue.cl", "pipeline_column_set");
+  clamp_ = rt.kernel("pipeline/glue.cl", "pipeline_clamp_fwd");
+  fine_points_ = rt.kernel("pipeline/glue.cl", "pipeline_fine_points");
+  merge_ = rt.kernel("pipeline/glue.cl", "pipeline_merge_encodings");
+  live_count_ = rt.kernel("pipeline/glue.cl", "pipeline_live_count");
+  compact_rows_ = rt.kernel("pipeline/glue.cl", "pipeline_compact_rows");
+  expand_ = rt.kernel("pipeline/glue.cl", "pipeline_expand_outputs");
+  row_ray_k_ = rt.kernel("pipeline/glue.cl", "pipeline_row_ray");
+  // Coarse waves and the head band only with early termination.
+  const auto& rc = c.render;
+  waves_ = rc.stop_transmittance > 0.0f ? std::max(1, std::min(rc.coarse_waves, rc.n_samples)) : 1;
+
+  const size_t R = size_t(max_rays), S = size_t(c.render.n_samples),
+               M = S + size_t(c.render.n_importance), N = R * M;
+  const size_t lf = size_t(encoder_->width());
+  const size_t enc_dim = size_t(dirs_.enc_dim());
+  params_ = floats(rt, layout_.total());
+  grad_ = floats(rt, layout_.total());
+  grad_.fill_zero();
+  o_ = floats(rt, R * 3), d_ = floats(rt, R * 3), target_ = floats(rt, R * 3);
+  t_c_ = floats(rt, R * S), x_c_ = floats(rt, R * S * 3), w_c_ = floats(rt, R * S);
+  enc_c_ = floats(rt, R * S * lf), src_ = floats(rt, N);  // src_: int32 per merged sample
+  x_f_ = floats(rt, R * (M - S) * 3), enc_f_ = floats(rt, R * (M - S) * lf);
+  t_ = floats(rt, N), x_ = floats(rt, N * 3), enc_ = floats(rt, N * lf);
+  dens_ = floats(rt, N * kDensStride), h0_ = floats(rt, N);
+  dir_enc_ = floats(rt, R * enc_dim), head_out_ = floats(rt, N * 2);
+  out_ = floats(rt, R * 3), weights_ = floats(rt, N), grad_out_ = floats(rt, R * 3);
+  terms_ = floats(rt, R * 3), loss_buf_ = floats(rt, render::kLossFloats);
+  g_h0_ = floats(rt, N), g_head_ = floats(rt, N * 2);
+  g_dens_ = floats(rt, N * kDensStride), g_enc_ = floats(rt, N * lf);
+  g_dir_enc_ = floats(rt, R * enc_dim);
+  if (c.render.stop_transmittance > 0.0f) {
+    count_ = floats(rt, R), offset_ = floats(rt, R + 1), row_ray_ = floats(rt, N);
+    x_l_ = floats(rt, N * 3), enc_l_ = floats(rt, N * lf), head_l_ = floats(rt, N * 2);
+    g_h0_l_ = floats(rt, N), g_head_l_ = floats(rt, N * 2);
+  }
+  band_thr_ = rc.stop_transmittance > 0.0f ? rc.head_weight_threshold : 0.0f;
+  if (band_thr_ > 0.0f) {
+    band_begin_ = floats(rt, R), band_count_ = floats(rt, R), band_offset_ = floats(rt, R + 1);
+    band_row_ray_ = floats(rt, N), dens_b_ = floats(rt, N * kDensStride);
+    head_b_ = floats(rt, N * 2), g_head_b_ = floats(rt, N * 2), g_dens_b_ = floats(rt, N * kDensStride);
+    band_k_ = rt.kernel("pipeline/glue.cl", "pipeline_head_band");
+    band_gather_ = rt.kernel("pipeline/glue.cl", "pipeline_band_gather");
+    band_scatter_ = rt.kernel("pipeline/glue.cl", "pipeline_band_scatter_live");
+    band_expand_ = rt.kernel("pipeline/glue.cl", "pipeline_band_expand_head");
+  }
+  if (waves_ > 1) {
+    const size_t wmax = (S + size_t(waves_) - 1) / size_t(waves_);  // the widest wave
+    alive_ = floats(rt, R), done_ = floats(rt, R);
+    x_w_ = floats(rt, R * wmax * 3), enc_w_ = floats(rt, R * wmax * lf);
+    fill_ = rt.kernel("pipeline/glue.cl", "pipeline_fill");
+    wave_gather_ = rt.kernel("pipeline/glue.cl", "pipeline_wave_gather");
+    wave_scatter_ = rt.kernel("pipeline/glue.cl", "pipeline_wave_scatter");
+    wave_done_ = rt.kernel("pipeline/glue.cl", "pipeline_wave_done");
+  }
+  loss_buf_.fill_zero();
+}
+
+void LidarNerfModel::init_params(uint64_t seed) {
+  std::vector<float> p(layout_.total(), 0.0f);
+  encoder_->init_params(p, off_grid_, seed ^ 0x1111);
+  density_.init_params(p, off_density_, seed ^ 0x2222);
+  head_.init_params(p, off_head_, seed ^ 0x3333);
+  params_.write_vec(p);
+  adam_->reset();
+}
+
+void LidarNerfModel::field_forward(int n_rays, int samples) {
+  const int n = n_rays * samples;
+  ray_count_ = n_rays;
+  // With early termination the field runs on the live rows only (enc_l_); the renderer always
+  // sees the full layout, dead samples at zero density.
+  const int rows = compacted_ ? int(n_live_) : n;
+  if (!encoded_ && !compacted_) encoder_->forward(params_, off_grid_, x_, n, enc_);
+  density_.forward(params_, off_density_, compacted_ ? enc_l_ : enc_, rows, dens_, density_ctx_);
+  dirs_.forward(d_, n_rays, dir_enc_);
+  banded_ = false;
+  if (compacted_ && band_thr_ > 0.0f) {
+    head_band(n_rays, samples);
+  } else if (compacted_) {
+    const field::GroupIndex index{&row_ray_, &offset_, n_rays};
+    head_.forward(params_, off_head_, dens_, rows, head_l_, head_ctx_, &dir_enc_, 1, &index);
+    expand_.set_args(n_rays, samples, kDensStride, kDeadLogit, offset_, dens_, head_l_, h0_,
+                     head_out_);
+    expand_.launch({cl::round_up(size_t(n), 64)}, {64});
+  } else {
+    col_get_.set_args(n, kDensStride, 0, dens_, h0_);
+    col_get_.launch({cl::round_up(size_t(n), 64)}, {64});
+    head_.forward(params_, off_head_, dens_, n, head_out_, head_ctx_, &dir_enc_, samples);
+  }
+  renderer_.forward(t_, h0_, head_out_, n_rays, samples, out_, weights_);
+}
+
+void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long step,
+                                      bool ray_grads) {
+  const int R = b.n_rays;
+  require(R > 0 && R <= max_rays_, "LidarNerfModel::forward_backward: batch of " +
+                                       std::to_string(R) + " rays, capacity " +
+                                       std::to_string(max_rays_));
+  std::vector<float> target(size_t(R) * 3);
+  for (int i = 0; i < R; ++i) {
+    target[3 * size_t(i)] = b.range[size_t(i)];
+    target[3 * size_t(i) + 1] = b.intensity[size_t(i)];
+    target[3 * size_t(i) + 2] = b.label[size_t(i)];
+  }
+  o_.write_vec(b.origins);
+  d_.write_vec(b.directions);
+  target_.write_vec(target);
+  const int M = sample(R, cfg_.render.jitter, seed, uint32_t(step));
+  field_forward(R, M);
+  // Loss (method.md §0) and its gradient; patch gradient loss on patch batches (§1).
+  loss_buf_.fill_zero();
+  loss_.range(out_, target_, R, grad_out_, terms_, loss_buf_);
+  if (b.patches) {
+    const int per_patch = cfg_.render.patch_rows * cfg_.render.patch_cols;
+    loss_.patch_gradient(out_, target_, R / per_patch, grad_out_, terms_, loss_buf_);
+  }
+  backward_chain(R, M, grad_, ray_grads);
+}
+
+void LidarNerfModel::backward_chain(int R, int M, cl::Buffer& grad, bool ray_grads) {
+  const int n = R * M;
+  // Backward chain: renderer → head MLP (into columns 1..15 of g_dens_, and per ray into
+  // g_dir_enc_) → density MLP → hash grid.
+  renderer_.backward(t_, h0_, head_out_, weights_, grad_out_, R, M, g_h0_, g_head_);
+  // With early termination the chain runs on the live rows: the dead samples' gradients are
+  // dropped (they do not exist in the truncated field).
+  int rows = n;
+  const cl::Buffer *head_y = &head_out_, *g_head = &g_head_, *g_h0 = &g_h0_, *x = &x_;
+  if (compacted_) {
+    rows = int(n_live_);
+    const size_t global = cl::round_up(size_t(n), 64);
+    compact_rows_.set_args(R, M, 1, offset_, g_h0_, g_h0_l_);
+    compact_rows_.launch({global}, {64});
+    if (!banded_) {
+      compact_rows_.set_args(R, M, 2, offset_, g_head_, g_head_l_);
+      compact_rows_.launch({global}, {64});
+    }
+    head_y = &head_l_, g_head = &g_head_l_, g_h0 = &g_h0_l_, x = &x_l_;
+  }
+  if (banded_) {
+    // The head ran on the band rows: its gradient goes into the band layout, then into the
+    // live rows (zeros outside the band: the head outputs there are constants).
+    const size_t global = cl::round_up(size_t(n), 64);
+    band_gather_.set_args(R, M, 2, offset_, band_begin_, band_offset_, g_head_, g_head_b_, 0);
+    band_gather_.launch({global}, {64});
+    head_.backward(params_, off_head_, head_ctx_, head_b_, g_head_b_, grad, off_head_, &g_dens_b_,
+                   &g_dir_enc_);
+    band_scatter_.set_args(R, M, kDensStride, offset_, band_begin_, band_offset_, g_dens_b_, g_dens_);
+    band_scatter_.launch({global}, {64});
+  } else {
+    head_.backward(params_, off_head_, head_ctx_, *head_y, *g_head, grad, off_head_, &g_dens_,
+                   &g_dir_enc_);
+  }
+  col_set_.set_args(rows, kDensStride, 0, *g_h0, g_dens_);
+  col_set_.launch({cl::round_up(size_t(rows), 64)}, {64});
+  density_.backward(params_, off_density_, density_ctx_, dens_, g_dens_, grad, off_density_,
+                    &g_enc_);
+  if (!ray_grads) {
+    encoder_->backward(params_, off_grid_, *x, rows, g_enc_, grad, off_grid_, nullptr);
+    return;
+  }
+  if (!g_x_) {  // allocated on the first pose-free step only
+    const size_t N = size_t(max_rays_) * size_t(cfg_.render.n_samples + cfg_.render.n_importance);
+    g_x_ = floats(rt_, N * 3);
+    g_o_ = floats(rt_, size_t(max_rays_) * 3), g_d_ = floats(rt_, size_t(max_rays_) * 3);
+    g_dir_ = floats(rt_, size_t(max_rays_) * 3);
+  }
+  encoder_->backward(params_, off_grid_, *x, rows, g_enc_, grad, off_grid_, &g_x_);
+  ray_grad_.reduce_rows(compacted_ ? &offset_ : nullptr, t_, o_, d_, g_x_, R, M, kSceneBound,
+                        g_o_, g_d_);
+  dirs_.backward(d_, R, g_dir_enc_, g_dir_);
+  grad_rays_ = R;
+}
+
+std::vector<float> LidarNerfModel::forward_rays(const std::vector<float>& origins,
+                                                const std::vector<float>& directions, int n,
+                                                uint64_t seed, long step) {
+  require(n > 0 && n <= max_rays_, "LidarNerfModel::forward_rays: " + std::to_string(n) +
+                                       " rays, capacity " + std::to_string(max_rays_));
+  require(origins.size() == size_t(n) * 3 && directions.size() == size_t(n) * 3,
+          "LidarNerfModel::forward_rays: origins/directions must hold n × 3 floats");
+  o_.write_vec(origins);
+  d_.write_vec(directions);
+  const int M = sample(n, cfg_.render.jitter, seed, uint32_t(step));
+  field_forward(n, M);
+  fwd_rays_ = n, fwd_samples_ = M;
+  return out_.read_vec<float>(size_t(n) * 3);
+}
+
+void LidarNerfModel::backward_external(const std::vector<float>& grad_out, bool ray_grads) {
+  if (fwd_rays_ == 0)
+    throw Error("LidarNerfModel::backward_external: no forward_rays() to differentiate");
+  require(grad_out.size() == size_t(fwd_rays_) * 3,
+          "LidarNerfModel::backward_external: " + std::to_string(grad_out.size()) +
+              " floats for " + std::to_string(fwd_rays_) + " rays × 3");
+  if (!grad_ext_) {
+    grad_ext_ = floats(rt_, layout_.total());
+    grad_ext_.fill_zero();  // alignment gaps between the slices stay zero
+    add_k_ = rt_.kernel("pipeline/glue.cl", "pipeline_add_inplace");
+  }
+  grad_out_.write_vec(grad_out);
+  backward_chain(fwd_rays_, fwd_samples_, grad_ext_, ray_grads);
+  fwd_rays_ = 0;  // the activations belong to this forward only
+  ext_pending_ = true;
+}
+
+void LidarNerfModel::update(float lr) {
+  if (ext_pending_) {  // the external term joins this step's gradient (see model.hpp)
+    const int n = int(layout_.total());
+    add_k_.set_args(n, grad_ext_, grad_);
+    add_k_.launch({cl::round_up(size_t(n), 64)}, {64});
+    ext_pending_ = false;
+  }
+  adam_->begin_step();
+  adam_->update(params_, grad_, 0, layout_.total(), lr);
+}
+
+LidarNerfModel::RayGrads LidarNerfModel::read_ray_grads() const {
+  if (grad_rays_ == 0) throw Error("LidarNerfModel::read_ray_grads: no step computed ray gradients");
+  RayGrads g;
+  const size_t n = size_t(grad_rays_) * 3;
+  g.origin = g_o_.read_vec<float>(n);
+  g.direction = g_d_.read_vec<float>(n);
+  const auto dir_enc = g_dir_.read_vec<float>(n);
+  for (size_t i = 0; i < n; ++i) g.direction[i] += dir_enc[i];
+  return g;
+}
+
+render::LossValues LidarNerfModel::read_loss() const { return render::RangeLoss::read_losses(loss_buf_); }
+
+std::vector<float> LidarNerfModel::render_rays(const std::vector<float>& origins,
+                                               const std::vector<float>& directions, int n) {
+  require(n > 0 && n <= max_rays_, "LidarNerfModel::render_rays: " + std::to_string(n) +
+                                       " rays, capacity " + std::to_string(max_rays_));
+  o_.write_vec(origins);
+  d_.write_vec(directions);
+  const int M = sample(n, false, 0, 0);
+  field_forward(n, M);
+  if (cfg_.render.eval_depth == "median") renderer_.median_depth(t_, weights_, n, M, out_);
+  return out_.read_vec<float>(size_t(n) * 3);
+}
+
+std::vector<float> LidarNerfModel::encode_points(const std::vector<float>& x, int n) {
+  require(n >= 0 && x.size() == size_t(n) * 3,
+          "LidarNerfModel::encode_points: " + std::to_string(x.size()) + " floats for " +
+              std::to_string(n) + " points");
+  const int w = encoder_->width();
+  fwd_rays_ = 0;  // x_ and enc_ are overwritten: forward_rays()'s activations are gone
+  std::vector<float> out(size_t(n) * size_t(w));
+  // x_ and enc_ hold max_rays × samples rows.
+  const int chunk = max_rays_ * cfg_.render.n_samples;
+  for (int b = 0; b < n; b += chunk) {
+    const int m = std::min(chunk, n - b);
+    x_.write(x.data() + size_t(b) * 3, size_t(m) * 3 * sizeof(float));
+    encoder_->forward(params_, off_grid_, x_, m, enc_);
+    enc_.read(out.data() + size_t(b) * size_t(w), size_t(m) * size_t(w) * sizeof(float));
+  }
+  return out;
+}
+
+ModelState LidarNerfModel::state() const {
+  ModelState s;
+  s.params = params_.read_vec<float>(layout_.total());
+  s.adam_m = adam_->m().read_vec<float>(layout_.total());
+  s.adam_v = adam_->v().read_vec<float>(layout_.total());
+  s.adam_step = adam_->step();
+  return s;
+}
+
+void LidarNerfModel::set_state(const ModelState& s) {
+  const size_t n = layout_.total();
+  if (s.params.size() != n || s.adam_m.size() != n || s.adam_v.size() != n)
+    throw IoError("model state has " + std::to_string(s.params.size()) +
+                  " parameters, the model " + std::to_string(n));
+  params_.write_vec(s.params);
+  adam_->reset();
+  adam_->m().write_vec(s.adam_m);
+  adam_->v().write_vec(s.adam_v);
+  for (int64_t i = 0; i < s.adam_step; ++i) adam_->begin_step();  // Adam exposes no setter
+}
+
+}  // namespace sgnlf::pipeline

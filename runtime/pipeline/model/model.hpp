@@ -1,0 +1,201 @@
+// The LiDAR-NeRF model on the device (method.md §0–1): position encoder (field::Encoder: the
+// hash grid, or SG-NLF's hybrid [f_geo, λ·Ψ]) → density MLP (σ logit + 15 geometric features) → [geo, direction encoding] → LiDAR head → volume rendering, with
+// importance sampling from a density-only coarse pass, the range loss (+ the patch gradient
+// loss on patch batches), the backward chain and Adam over one flat parameter buffer.
+// A training step is enqueued as a whole; the only host sync is the caller's loss read-back.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "cl/runtime.hpp"
+#include "field/adam.hpp"
+#include "field/dir_encoding.hpp"
+#include "field/encoder.hpp"
+#include "field/mlp.hpp"
+#include "field/param_layout.hpp"
+#include "pipeline/model/ray_batch.hpp"
+#include "pipeline/config/train_config.hpp"
+#include "render/range_loss.hpp"
+#include "render/ray_gradient.hpp"
+#include "render/ray_sampler.hpp"
+#include "render/volume_renderer.hpp"
+
+namespace sgnlf::spectral {
+class HybridEncoder;
+}
+
+namespace sgnlf::pipeline {
+
+// Device-side state that checkpoints hold (host copies).
+struct ModelState {
+  std::vector<float> params, adam_m, adam_v;
+  int64_t adam_step = 0;
+};
+
+class LidarNerfModel {
+ public:
+  // `max_rays`: the largest ray count of one call (training batch or render chunk).
+  LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scene_scale, int max_rays);
+
+  size_t n_params() const { return layout_.total(); }
+  const field::ParamLayout& layout() const { return layout_; }
+  // Deterministic initialisation from `seed` (hash grid ±1e-4, MLP fan-in uniform).
+  void init_params(uint64_t seed);
+
+  // One training step in two parts, composed by the trainer: forward_backward enqueues the
+  // sampling, forward, loss and backward of one batch into the gradient buffer (and, with
+  // `ray_grads`, dL/d(origin) and dL/d(direction) of every ray for the pose-free methods, read
+  // with read_ray_grads()); update() enqueues the Adam step of every parameter group. No wait.
+  void forward_backward(const RayBatch& b, uint64_t seed, long step, bool ray_grads = false);
+  void update(float lr);
+  // Both parts (the ground-truth-pose methods' step).
+  void train_step(const RayBatch& b, uint64_t seed, long step, float lr) {
+    forward_backward(b, seed, step);
+    update(lr);
+  }
+  // Per ray (n_rays × 3 each, normalised frame) of the last forward_backward(..., true):
+  // gradients of the loss with respect to the ray origins and directions, through every
+  // evaluated sample position (early-terminated samples carry none: they are not in the
+  // truncated field) and the direction encoding. Importance-sample depths are held fixed, as
+  // in the peers' code (they come from a no-gradient coarse pass). Blocking.
+  struct RayGrads {
+    std::vector<float> origin, direction;
+  };
+  RayGrads read_ray_grads() const;
+
+  // An externally given per-ray output gradient through the same backward chain (SG-NLF's
+  // adversarial consistency term, method.md §4.3–4.4): forward_rays() is the training-mode
+  // forward of forward_backward (same sampling, jitter per the config from (seed, step)) that
+  // keeps the activations and returns n × 3 (depth normalised, return probability, intensity);
+  // backward_external() takes dL/d(depth, return probability, intensity) per ray (n × 3, the
+  // caller's weight already applied) through renderer → head → density → encoder into a
+  // gradient buffer of its own, and, with `ray_grads`, the ray gradients read_ray_grads() returns.
+  //
+  // Combination: the external gradient is ACCUMULATED into the range-loss gradient of the next
+  // update(), which adds it to the gradient forward_backward() wrote before the one Adam step.
+  // method.md §4.4 defines one total loss L = L_range + … + λ_con·L_con: one Adam step on the
+  // sum of the gradients is that loss's step, and λ_con keeps its meaning as a relative weight.
+  // Its own Adam step would not: Adam divides by the running RMS, so a separate step moves the
+  // parameters by ≈ lr whatever λ_con is, and it would advance Adam's step count (bias
+  // correction, lr schedule) twice per iteration. Call order within one training step:
+  // forward_rays → backward_external → forward_backward → update. Without a pending external
+  // gradient update() is exactly what it was (forward_backward is untouched).
+  std::vector<float> forward_rays(const std::vector<float>& origins,
+                                  const std::vector<float>& directions, int n, uint64_t seed,
+                                  long step);
+  void backward_external(const std::vector<float>& grad_out, bool ray_grads);
+  bool external_gradient_pending() const { return ext_pending_; }
+  // The parameter gradient of the last update() (range loss + any external term), or of the
+  // last forward_backward() before its update. Blocking; for tests.
+  std::vector<float> read_gradient() const { return grad_.read_vec<float>(layout_.total()); }
+
+  // Coarse-to-fine mask of the hash-grid levels (field::barf_level_weights); all ones by default.
+  void set_level_weights(const std::vector<float>& w) { encoder_->set_level_weights(w); }
+  int levels() const { return encoder_->levels(); }
+  // The position encoder (the hash grid, or spectral::HybridEncoder when the config's
+  // hybrid_encoder() is on: the spectral schedule reaches Ψ through it).
+  field::Encoder& encoder() { return *encoder_; }
+  // The same encoder as SG-NLF's hybrid one when the config's hybrid_encoder() is on, else null.
+  spectral::HybridEncoder* hybrid_encoder() { return hybrid_; }
+  // Encodings f (N × encoder().width()) at n points (N × 3, normalised box): the per-point
+  // features of the pose graph's matching (method.md §4.2). Blocking; chunks of max_rays.
+  std::vector<float> encode_points(const std::vector<float>& x, int n);
+  // The four loss terms of the last train_step (blocks until it finished).
+  render::LossValues read_loss() const;
+
+  // Renders rays (n ≤ max_rays; origins/directions n × 3, normalised frame) without jitter:
+  // returns n × 3 (depth normalised, return probability, intensity). Blocking. The depth is the
+  // expected depth, or the median depth when the config's render.eval_depth is "median".
+  std::vector<float> render_rays(const std::vector<float>& origins,
+                                 const std::vector<float>& directions, int n);
+
+  // With importance sampling the coarse samples' hash encodings are reused in the merged pass
+  // (default, exact). Off: the merged pass encodes every sample again (the reference path,
+  // for tests and benchmarks); the results are bit-identical.
+  void set_reuse_coarse_encodings(bool on) { reuse_coarse_ = on; }
+
+  // Early ray termination (render.stop_transmittance > 0 with importance sampling): merged
+  // samples behind the point where the coarse pass's transmittance fell below the threshold
+  // are not evaluated (zero density). Live samples of the last sample()/train_step/render call:
+  std::vector<int> live_counts() const;  // per ray (blocking read)
+  long live_samples() const { return n_live_; }
+  // Coarse samples evaluated by the last sample()/train_step/render call (importance sampling
+  // only; 0 without): n_rays × n_samples in one pass, fewer with render.coarse_waves > 1.
+  long coarse_evaluated() const { return n_coarse_; }
+  // Samples the LiDAR head ran on in the last call with render.head_weight_threshold > 0.
+  long head_rows() const { return n_band_; }
+
+  ModelState state() const;
+  void set_state(const ModelState& s);
+
+ private:
+  // Forward up to the head outputs on `samples` (rays × S samples at t_/x_); fills h0_, head_.
+  void field_forward(int n_rays, int samples);
+  // Samples (uniform + importance) for n_rays rays from o_/d_; returns samples per ray.
+  int sample(int n_rays, bool jitter, uint64_t seed, uint32_t step);
+  // Early termination: counts the live merged samples per ray (one blocking read of n_rays
+  // ints), then gathers their positions and encodings into x_l_/enc_l_.
+  void compact(int n_rays, int M);
+  // The coarse pass in render.coarse_waves waves (see render_config.hpp): fills enc_c_, h0_
+  // (σ logits, dead where not evaluated) and w_c_ for the n_rays × n_samples coarse samples.
+  void coarse_waves(int n_rays);
+  // The head on the band of samples with weight above render.head_weight_threshold (after the
+  // density on the live rows): fills h0_, weights_, head_out_ (full layout) and head_b_.
+  void head_band(int n_rays, int M);
+  // The backward chain of the last forward (R rays, M samples per ray) from grad_out_ into
+  // `grad` (every slice overwritten), and the ray gradients when `ray_grads`.
+  void backward_chain(int R, int M, cl::Buffer& grad, bool ray_grads);
+
+  cl::Runtime& rt_;
+  TrainConfig cfg_;
+  int max_rays_;
+  field::ParamLayout layout_;
+  spectral::HybridEncoder* hybrid_ = nullptr;  // encoder_ when it is the hybrid one (set first)
+  std::unique_ptr<field::Encoder> encoder_;
+  field::Mlp density_, head_;
+  field::DirEncoding dirs_;
+  std::unique_ptr<field::Adam> adam_;
+  render::RaySampler sampler_;
+  render::VolumeRenderer renderer_;
+  render::RangeLoss loss_;
+  render::RayGradReducer ray_grad_;
+  cl::Kernel col_get_, col_set_, clamp_, fine_points_, merge_, live_count_, compact_rows_,
+      expand_, row_ray_k_;
+  bool reuse_coarse_ = true, encoded_ = false, compacted_ = false;
+  long n_live_ = 0, n_coarse_ = 0;
+  int waves_ = 1;
+  float band_thr_ = 0.0f;
+  bool banded_ = false;  // the last field_forward ran the head on the band
+  long n_band_ = 0;
+  int ray_count_ = 0;
+  size_t off_grid_, off_density_, off_head_;
+  field::MlpContext density_ctx_, head_ctx_;
+  cl::Buffer params_, grad_;
+  cl::Buffer o_, d_, target_, t_c_, x_c_, w_c_, enc_c_, src_, x_f_, enc_f_, t_, x_, enc_, dens_, h0_, dir_enc_,
+      head_out_, out_, weights_, grad_out_, terms_, loss_buf_, g_h0_, g_head_, g_dens_,
+      g_enc_, g_dir_enc_;
+  // Pose-free methods: dL/dx per evaluated sample, per-ray dL/do, dL/dd, and the direction
+  // encoding's share of dL/dd.
+  cl::Buffer g_x_, g_o_, g_d_, g_dir_;
+  int grad_rays_ = 0;
+  // External gradient (backward_external): its parameter gradient, pending until update().
+  cl::Buffer grad_ext_;
+  cl::Kernel add_k_;
+  bool ext_pending_ = false;
+  int fwd_rays_ = 0, fwd_samples_ = 0;  // the last forward_rays()
+  // Early termination: per-ray live counts and offsets (int32), each live row's ray, and the
+  // compact (live rows only) positions, encodings, head outputs and their gradients.
+  cl::Buffer count_, offset_, row_ray_, x_l_, enc_l_, head_l_, g_h0_l_, g_head_l_;
+  // Coarse waves: the alive rays of a wave, per-ray done flags (int32), the wave's positions
+  // and encodings.
+  cl::Buffer alive_, done_, x_w_, enc_w_;
+  cl::Kernel fill_, wave_gather_, wave_scatter_, wave_done_;
+  // Head band: per-ray begin / count / offsets (int32), each band row's ray, the band's
+  // density rows (head input), head outputs and their gradients.
+  cl::Buffer band_begin_, band_count_, band_offset_, band_row_ray_, dens_b_, head_b_, g_head_b_,
+      g_dens_b_;
+  cl::Kernel band_k_, band_gather_, band_scatter_, band_expand_;
+};
+
+}  // namespace sgnlf::pipeline

@@ -1,0 +1,42 @@
+// render_view: chunked full-image rendering (see render_view.hpp).
+#include "pipeline/model/render_view.hpp"
+
+#include <algorithm>
+
+#include "pipeline/model/ray_batch.hpp"
+
+namespace sgnlf::pipeline {
+
+RangeImage render_view(LidarNerfModel& model, const Scene& scene, const Pose& T_world_lidar,
+                       int chunk_rays) {
+  const int H = scene.sensor.height, W = scene.sensor.width;
+  RangeImage img(H, W);
+  const Pose T = normalize_pose(T_world_lidar, scene.norm);
+  const size_t n = img.size();
+  std::vector<float> o, d;
+  for (size_t begin = 0; begin < n; begin += size_t(chunk_rays)) {
+    const size_t end = std::min(n, begin + size_t(chunk_rays));
+    image_rays(scene, T, begin, end, o, d);
+    const auto out = model.render_rays(o, d, int(end - begin));
+    for (size_t p = begin; p < end; ++p) {
+      const float* v = &out[3 * (p - begin)];
+      img.range[p] = float(double(v[0]) / scene.norm.scale);
+      img.intensity[p] = v[2];
+      img.ray_drop[p] = v[1];
+    }
+  }
+  return img;
+}
+
+RangeImage masked_prediction(const RangeImage& pred) {
+  RangeImage m = pred;
+  for (size_t p = 0; p < m.size(); ++p) {
+    const float mask = pred.ray_drop[p] > 0.5f ? 1.0f : 0.0f;
+    m.range[p] *= mask;
+    m.intensity[p] *= mask;
+    m.ray_drop[p] = mask;
+  }
+  return m;
+}
+
+}  // namespace sgnlf::pipeline

@@ -1,0 +1,27 @@
+// Evaluation of a trained model and of the naive baseline on a dataset's test frames
+// (protocol §4 via metrics::evaluate_view): per-frame metrics and their mean.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/config.hpp"
+#include "pipeline/model/model.hpp"
+#include "pipeline/model/scene.hpp"
+
+namespace sgnlf::pipeline {
+
+struct ViewSet {
+  Json per_frame = Json::array();  // [{frame: id, metrics...}, ...]
+  Json mean;                       // mean over test frames
+  std::vector<RangeImage> images;  // the predictions, in test-frame order (metres)
+};
+
+// Renders every test frame at T_world_lidar[frame] (metres: the ground truth for the GT-pose
+// methods, the optimised pose for the pose-free ones, protocol §3) and scores it against the
+// frame's observed range image.
+ViewSet evaluate_model(LidarNerfModel& model, const Dataset& d, const Scene& scene,
+                       int chunk_rays, const std::vector<Pose>& T_world_lidar);
+// The naive baseline (nearest training scan moved with GT poses, metrics/naive_baseline.hpp).
+ViewSet evaluate_naive(const Dataset& d);
+
+}  // namespace sgnlf::pipeline

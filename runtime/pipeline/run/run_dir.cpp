@@ -1,0 +1,106 @@
+// Run folder manifest and loading (see run_dir.hpp).
+#include "pipeline/run/run_dir.hpp"
+#include "pipeline/train/spectral_schedule.hpp"
+
+#include <filesystem>
+
+#include "datasets/loader.hpp"
+#include "datasets/protocol.hpp"
+#include "pipeline/train/checkpoint.hpp"
+#include "pipeline/train/pose_init.hpp"
+#include "pipeline/train/pose_set.hpp"
+#include "pipeline/train/trainer.hpp"
+
+namespace sgnlf::pipeline {
+namespace fs = std::filesystem;
+
+void write_manifest(const std::string& run_dir, const RunManifest& m) {
+  fs::create_directories(run_dir);
+  Json j{{"method", m.method},   {"preset", m.preset}, {"dataset", m.dataset},
+         {"device", m.device},   {"seed", m.seed},     {"config_hash", hex64(m.config.hash())},
+         {"config", train_config_to_json(m.config)}};
+  if (!m.data_options.is_default()) j["dataset_options"] = m.data_options.to_json();
+  write_json_file((fs::path(run_dir) / "run.json").string(), j);
+}
+
+RunManifest read_manifest(const std::string& run_dir) {
+  const std::string path = (fs::path(run_dir) / "run.json").string();
+  if (!fs::exists(path)) throw IoError(path + ": not a run folder (no run.json)");
+  const Json j = load_json_file(path);
+  RunManifest m;
+  ConfigReader r(j, path);
+  std::string hash;
+  Json cfg, data_options = Json::object();
+  r.require("method", m.method).require("preset", m.preset).require("dataset", m.dataset);
+  r.get("device", m.device).require("seed", m.seed).get("config_hash", hash).require("config", cfg);
+  r.get("dataset_options", data_options);
+  r.finish();
+  m.data_options = LoadOptions::from_json(data_options, path + ": dataset_options");
+  m.config = train_config_from_json(cfg, path + ": config");
+  return m;
+}
+
+RunScene make_run_scene(const Dataset& d, const TrainConfig& c) {
+  if (!c.is_pose_free()) return RunScene{make_scene(d), gt_poses(d)};
+  if (d.split.test.empty())
+    throw ConfigError("dataset " + d.name + ": " + std::to_string(d.frames.size()) +
+                      " frames hold none of the protocol's test frames (4, 12, 20 of a 36-frame "
+                      "low-frequency window); a pose-free run needs at least one test view");
+  std::vector<Pose> init = initial_poses(d, c.pose_free->poses);
+  return RunScene{make_pose_free_scene(d, init), std::move(init)};
+}
+
+int model_capacity(const TrainConfig& c) {
+  return std::max(c.schedule.rays_per_batch, c.schedule.render_chunk_rays);
+}
+
+LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
+                   const std::string& dataset_override, const RenderSampling& requested) {
+  LoadedRun run;
+  run.manifest = read_manifest(run_dir);
+  const uint64_t trained_hash = run.manifest.config.hash();
+  // The config's eval sampling applies unless the caller overrides it.
+  RenderSampling sampling = requested;
+  const render::RenderConfig& rc = run.manifest.config.render;
+  if (sampling.n_samples == 0) sampling.n_samples = rc.eval_samples;
+  if (sampling.n_importance == -1) sampling.n_importance = rc.eval_importance;
+  if (sampling.n_samples < 0 || sampling.n_importance < -1)
+    throw ConfigError("render sampling override: samples " + std::to_string(sampling.n_samples) +
+                      ", importance " + std::to_string(sampling.n_importance) +
+                      " (samples >= 1, importance >= 0)");
+  if (sampling.n_samples > 0) run.manifest.config.render.n_samples = sampling.n_samples;
+  if (sampling.n_importance >= 0) run.manifest.config.render.n_importance = sampling.n_importance;
+  if (!sampling.depth.empty()) {
+    run.manifest.config.render.eval_depth = sampling.depth;
+    run.manifest.config.render.validate("render depth override");
+  }
+  const std::string data = dataset_override.empty() ? run.manifest.dataset : dataset_override;
+  run.dataset = std::make_unique<Dataset>(load_dataset(data, run.manifest.data_options));
+  RunScene rs = make_run_scene(*run.dataset, run.manifest.config);
+  run.scene = std::make_unique<Scene>(std::move(rs.scene));
+  run.T_world_lidar_init = rs.T_world_lidar_init;
+  const TrainConfig& c = run.manifest.config;
+  run.model = std::make_unique<LidarNerfModel>(rt, c, float(run.scene->norm.scale),
+                                               model_capacity(c));
+  const Checkpoint ck =
+      load_latest_checkpoint(checkpoint_path(run_dir), trained_hash, run.manifest.seed);
+  ModelState st;
+  st.params = ck.array("params", run.model->n_params());
+  st.adam_m = ck.array("adam_m", run.model->n_params());
+  st.adam_v = ck.array("adam_v", run.model->n_params());
+  st.adam_step = ck.step;
+  run.model->set_state(st);
+  restore_hybrid_encoder(*run.model, c, ck);
+  run.step = ck.step;
+  run.pose_free = c.is_pose_free();
+  run.T_world_lidar = run.T_world_lidar_init;
+  if (run.pose_free) {
+    PoseSet poses(run.scene->T_world_lidar, c.pose_free->pose_optim);
+    poses.load_state([&](const std::string& name, size_t n) { return ck.array(name, n); });
+    for (size_t i = 0; i < poses.size(); ++i)
+      run.T_world_lidar[i] = denormalize_pose(poses.pose(i), run.scene->norm);
+  }
+  return run;
+}
+
+}  // namespace sgnlf::pipeline

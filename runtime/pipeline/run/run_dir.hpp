@@ -1,0 +1,72 @@
+// The run folder of `sgnlf train/render/eval` (issue item 6):
+//   <run>/run.json           method, preset, seed, dataset path, device, resolved config, hash
+//   <run>/checkpoints/latest.ckpt, <run>/train_log.jsonl, <run>/eval_log.jsonl (trainer.hpp)
+//   <run>/summary.json       training summary (steps, seconds, samples/s, losses)
+//   <run>/metrics.json       `sgnlf eval`: per-frame and mean metrics, model and naive baseline
+//   <run>/renders/           `sgnlf render` default output
+#pragma once
+#include <memory>
+#include <string>
+
+#include "cl/runtime.hpp"
+#include "core/config.hpp"
+#include "datasets/loader.hpp"
+#include "pipeline/model/model.hpp"
+#include "pipeline/model/scene.hpp"
+#include "pipeline/config/train_config.hpp"
+
+namespace sgnlf::pipeline {
+
+struct RunManifest {
+  std::string method = "lidar-nerf", preset, dataset, device;
+  uint64_t seed = 1;
+  TrainConfig config;
+  // How `dataset` is loaded (window, sensor, test frames); in run.json as "dataset_options" only
+  // when set, so run folders written before it existed still load. eval/render reuse it.
+  LoadOptions data_options;
+};
+
+void write_manifest(const std::string& run_dir, const RunManifest& m);
+RunManifest read_manifest(const std::string& run_dir);  // ConfigError/IoError naming the file
+
+// The scene a run trains on: ground-truth poses, or for the pose-free methods the initial poses
+// its config asks for (pose_init.hpp), which also set the normalisation (protocol §2).
+struct RunScene {
+  Scene scene;
+  std::vector<Pose> T_world_lidar_init;  // per frame, metres (= ground truth for GT methods)
+};
+RunScene make_run_scene(const Dataset& d, const TrainConfig& c);
+
+// A run loaded for rendering or evaluation: dataset, scene, the model from the checkpoint and
+// the poses it was trained with (the pose provider of evaluation and rendering).
+struct LoadedRun {
+  RunManifest manifest;
+  std::unique_ptr<Dataset> dataset;
+  std::unique_ptr<Scene> scene;
+  std::unique_ptr<LidarNerfModel> model;
+  long step = 0;
+  bool pose_free = false;
+  std::vector<Pose> T_world_lidar;       // per frame, metres: ground truth, or the optimised poses
+  std::vector<Pose> T_world_lidar_init;  // per frame, metres: the initial poses
+};
+
+// Sampling used when rendering a loaded run (a finer sampling than training's is allowed: the
+// checkpoint does not depend on it). 0 keeps the trained value; n_importance 0 is itself a valid
+// override, so "keep" is -1 there.
+struct RenderSampling {
+  int n_samples = 0;
+  int n_importance = -1;
+  std::string depth;  // "expected" or "median" (render.eval_depth); empty keeps the config's
+};
+
+// `dataset_override` replaces the manifest's dataset path when not empty. The checkpoint is
+// checked against the run's config as trained; `sampling`, else the config's eval_samples /
+// eval_importance (and `sampling.depth`, else eval_depth), then changes the model's render sampling (LoadedRun::manifest.config shows
+// the sampling in use).
+LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
+                   const std::string& dataset_override = "", const RenderSampling& sampling = {});
+
+// Capacity (rays) a model needs for training and chunked rendering under `c`.
+int model_capacity(const TrainConfig& c);
+
+}  // namespace sgnlf::pipeline

@@ -1,0 +1,223 @@
+// train_run / render_run / eval_run (see session.hpp).
+#include "pipeline/run/session.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "core/log.hpp"
+#include "datasets/loader.hpp"
+#include "io/png_writer.hpp"
+#include "io/range_array.hpp"
+#include "pipeline/run/evaluate.hpp"
+#include "pipeline/model/render_view.hpp"
+#include "datasets/protocol.hpp"
+#include "metrics/pose_errors.hpp"
+#include "pipeline/methods/registry.hpp"
+#include "pipeline/train/pose_check.hpp"
+#include "pipeline/train/step_parts.hpp"
+#include "pipeline/run/trajectory_files.hpp"
+
+namespace sgnlf::pipeline {
+namespace fs = std::filesystem;
+
+namespace {
+
+Json loss_json(const render::LossValues& l) {
+  return Json{{"total", l.total()}, {"depth", l.depth}, {"return", l.ret},
+              {"intensity", l.intensity}, {"grad", l.grad}};
+}
+
+// Two pictures stacked with a gap of black rows.
+io::RgbImage stack(const io::RgbImage& a, const io::RgbImage& b, int gap) {
+  io::RgbImage out;
+  out.width = std::max(a.width, b.width);
+  out.height = a.height + gap + b.height;
+  out.rgb.assign(size_t(out.width) * out.height * 3, 0);
+  auto blit = [&](const io::RgbImage& img, int row0) {
+    for (int r = 0; r < img.height; ++r)
+      std::copy_n(&img.rgb[size_t(r) * img.width * 3], size_t(img.width) * 3,
+                  &out.rgb[(size_t(row0 + r) * out.width) * 3]);
+  };
+  blit(a, 0);
+  blit(b, a.height + gap);
+  return out;
+}
+
+}  // namespace
+
+Json pose_metrics_json(const std::vector<Pose>& est, const std::vector<Pose>& gt) {
+  const metrics::PoseErrors e = metrics::compute_pose_errors(est, gt);
+  return Json{{"ate_m", e.ate_m}, {"rpe_t_cm", e.rpe_t_cm}, {"rpe_r_deg", e.rpe_r_deg},
+              {"frames", est.size()}};
+}
+
+Json train_run(cl::Runtime& rt, const TrainRequest& req) {
+  const auto t_load = std::chrono::steady_clock::now();
+  const fs::path run(req.run_dir);
+  if (fs::exists(run / "run.json")) {
+    const RunManifest old = read_manifest(req.run_dir);
+    if (old.config.hash() != req.manifest.config.hash() || old.seed != req.manifest.seed ||
+        !(old.data_options == req.manifest.data_options))
+      throw ConfigError((run / "run.json").string() +
+                        ": the folder holds a run with another config, seed or dataset options; use a new --out");
+  }
+  // The dataset first: a bad path or option leaves no run folder behind.
+  const Dataset d = load_dataset(req.manifest.dataset, req.manifest.data_options);
+  write_manifest(req.run_dir, req.manifest);
+  const TrainConfig& c = req.manifest.config;
+  const RunScene rs = make_run_scene(d, c);
+  const Scene& scene = rs.scene;
+  LidarNerfModel model(rt, c, float(scene.norm.scale), model_capacity(c));
+  TrainOptions opt;
+  opt.run_dir = req.run_dir;
+  opt.seed = req.manifest.seed;
+  opt.resume = req.resume;
+  opt.stop_at = req.stop_at;
+  opt.show_progress = req.show_progress;
+  // The method composes its step from the parts (methods/); a part whose feature the config
+  // turns off is not built.
+  RunStepParts parts(rt, d, scene, c, model, req.run_dir, req.manifest.seed);
+  opt.policy = &find_method(c.method).compose(parts);
+  PoseFreeStep* pose_step = parts.pose_step();
+  ConsistencySchedule* consistency_step = parts.consistency_step();
+  SpectralSchedule* spectral_step = parts.spectral_step();
+  auto current_poses = [&] { return pose_step ? pose_step->poses_world() : rs.T_world_lidar_init; };
+  const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_load).count();
+  opt.evaluate = [&](long) {
+    Json m = evaluate_model(model, d, scene, c.schedule.render_chunk_rays, current_poses()).mean;
+    if (pose_step) m["pose"] = pose_metrics_json(current_poses(), gt_poses(d));
+    return m;
+  };
+  log::info("training ", c.method, "-", c.preset, " on ", d.name, " (", d.split.train.size(),
+            " train / ", d.split.test.size(), " test frames, ", model.n_params(), " parameters, ",
+            "device ", rt.device().describe(), ")");
+  const TrainSummary s = train(model, scene, c, opt);
+  Json j{{"dataset", d.name},
+         {"train_frames", d.split.train.size()},
+         {"test_frames", d.split.test.size()},
+         {"parameters", model.n_params()},
+         {"scene_scale", scene.norm.scale},
+         {"start_step", s.start_step},
+         {"end_step", s.end_step},
+         {"finished", s.finished},
+         {"train_seconds", s.seconds},
+         {"load_seconds", load_s},
+         {"steps_per_s", s.steps_per_s},
+         {"samples_per_s", s.samples_per_s},
+         {"live_fraction", s.live_fraction},
+         {"first_loss", loss_json(s.first_loss)},
+         {"last_loss", loss_json(s.last_loss)},
+         {"device", rt.device().describe()}};
+  if (pose_step) {
+    j["pose_metrics"] = pose_metrics_json(current_poses(), gt_poses(d));
+    j["initial_pose_metrics"] = pose_metrics_json(rs.T_world_lidar_init, gt_poses(d));
+    j["geometric_seconds"] = pose_step->geometric_seconds();
+    if (spectral_step) j["spectral_seconds"] = spectral_step->seconds();
+    if (consistency_step) {
+      j["consistency_seconds"] = consistency_step->seconds();
+      j["consistency_steps"] = consistency_step->steps_taken();
+    }
+    j["trajectories"] = write_run_trajectories(req.run_dir, d, rs.T_world_lidar_init, current_poses());
+    const posegraph::TrajectoryCheck chk = check_run_poses(d, current_poses());
+    j["trajectory_check"] = chk.to_json();
+    if (!chk.converged)
+      log::warn(d.name, ": the poses did NOT converge (", chk.reason,
+                "); the run's metrics describe a broken trajectory (summary.json trajectory_check)");
+  }
+  write_json_file((run / "summary.json").string(), j);
+  return j;
+}
+
+Json render_run(LoadedRun& run, const std::string& out_dir) {
+  fs::create_directories(out_dir);
+  const Dataset& d = *run.dataset;
+  Json files = Json::array();
+  const ViewSet naive = evaluate_naive(d);  // one image per test frame, in split order
+  for (size_t k = 0; k < d.split.test.size(); ++k) {
+    const Frame& fr = d.frames[size_t(d.split.test[k])];
+    const RangeImage pred = render_view(*run.model, *run.scene, run.T_world_lidar[size_t(d.split.test[k])],
+                                        run.manifest.config.schedule.render_chunk_rays);
+    const std::string stem = (fs::path(out_dir) / std::to_string(fr.id)).string();
+    io::write_range_npy(stem + "_pred.npy", pred);
+    io::write_range_npy(stem + "_gt.npy", fr.image);
+    io::write_range_npy(stem + "_naive.npy", naive.images[k]);
+    io::RangePictureOptions po;
+    po.max_range_m = d.sensor.max_range_m;
+    io::write_png(stem + ".png", stack(io::range_image_picture(masked_prediction(pred), po),
+                                       io::range_image_picture(fr.image, po), 12));
+    files.push_back(Json{{"frame", fr.id}, {"png", stem + ".png"}, {"pred", stem + "_pred.npy"},
+                         {"gt", stem + "_gt.npy"}, {"naive", stem + "_naive.npy"}});
+  }
+  return files;
+}
+
+Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
+                  const std::string& out_dir) {
+  if (T_world_lidar.empty()) throw ConfigError("render_poses: no poses to render");
+  fs::create_directories(out_dir);
+  io::RangePictureOptions po;
+  po.max_range_m = run.dataset->sensor.max_range_m;
+  Json files = Json::array();
+  for (size_t k = 0; k < T_world_lidar.size(); ++k) {
+    const Eigen::Vector3d o = normalize_pose(T_world_lidar[k], run.scene->norm).translation();
+    if (o.cwiseAbs().maxCoeff() > 1.0)
+      log::warn("render_poses: pose ", k, " has its origin at (", o.x(), ", ", o.y(), ", ", o.z(),
+                ") in the normalised scene, outside the trained box [-1, 1]^3");
+    const RangeImage pred = render_view(*run.model, *run.scene, T_world_lidar[k],
+                                        run.manifest.config.schedule.render_chunk_rays);
+    char name[32];
+    std::snprintf(name, sizeof name, "pose_%04zu", k);
+    const std::string stem = (fs::path(out_dir) / name).string();
+    io::write_range_npy(stem + ".npy", pred);
+    io::write_png(stem + ".png", io::range_image_picture(masked_prediction(pred), po));
+    files.push_back(Json{{"pose", k}, {"npy", stem + ".npy"}, {"png", stem + ".png"},
+                         {"origin_normalised", {o.x(), o.y(), o.z()}}});
+  }
+  return files;
+}
+
+Json eval_run(LoadedRun& run, const std::string& run_dir) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const ViewSet model = evaluate_model(*run.model, *run.dataset, *run.scene,
+                                       run.manifest.config.schedule.render_chunk_rays,
+                                       run.T_world_lidar);
+  const double render_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const ViewSet naive = evaluate_naive(*run.dataset);
+  Json j{{"method", run.manifest.method},
+         {"preset", run.manifest.preset},
+         {"dataset", run.dataset->name},
+         {"dataset_path", run.manifest.dataset},
+         {"seed", run.manifest.seed},
+         {"step", run.step},
+         {"render_eval_seconds", render_s},
+         {"render_sampling", {{"n_samples", run.manifest.config.render.n_samples},
+                              {"n_importance", run.manifest.config.render.n_importance},
+                              {"depth", run.manifest.config.render.eval_depth}}},
+         {"metrics", model.mean},
+         {"per_frame", model.per_frame},
+         {"naive_baseline", {{"metrics", naive.mean}, {"per_frame", naive.per_frame}}}};
+  if (run.pose_free) {
+    const auto gt = gt_poses(*run.dataset);
+    j["pose_metrics"] = pose_metrics_json(run.T_world_lidar, gt);
+    j["initial_pose_metrics"] = pose_metrics_json(run.T_world_lidar_init, gt);
+    j["pose_init"] = run.manifest.config.pose_free->poses.init;
+    const fs::path summary = fs::path(run_dir) / "summary.json";  // the training's own check
+    if (fs::exists(summary)) {
+      const Json sj = load_json_file(summary.string());
+      if (sj.contains("trajectory_check")) j["trajectory_check"] = sj.at("trajectory_check");
+    }
+    // SG-NLF: the confidence-aware pose graph in force at the end of training.
+    const fs::path graph = fs::path(run_dir) / "pose_graph" / "latest.json";
+    if (fs::exists(graph)) {
+      const Json gj = load_json_file(graph.string());
+      j["pose_graph"] = Json{{"epoch", gj.value("epoch", -1)},
+                             {"non_adjacent_edges", gj.value("non_adjacent_edges", 0)},
+                             {"file", graph.string()}};
+    }
+  }
+  write_json_file((fs::path(run_dir) / "metrics.json").string(), j);
+  return j;
+}
+
+}  // namespace sgnlf::pipeline

@@ -1,0 +1,45 @@
+// The three run-level operations behind `sgnlf train/render/eval` and run_method(): train a run
+// folder (new or resumed), render its test frames beside the ground truth, and evaluate it
+// (with the naive baseline alongside).
+#pragma once
+#include <string>
+
+#include "cl/runtime.hpp"
+#include "core/config.hpp"
+#include "pipeline/run/run_dir.hpp"
+#include "pipeline/train/trainer.hpp"
+
+namespace sgnlf::pipeline {
+
+struct TrainRequest {
+  RunManifest manifest;       // method, preset, dataset, seed, device, resolved config
+  std::string run_dir;
+  bool resume = true;
+  long stop_at = -1;
+  bool show_progress = true;
+};
+
+// Writes run.json (or checks that an existing one has the same config and seed), trains, and
+// writes summary.json. Returns the summary as JSON.
+Json train_run(cl::Runtime& rt, const TrainRequest& req);
+
+// Renders every test frame: <out>/<frame>_pred.npy, <frame>_gt.npy, <frame>_naive.npy (the naive
+// baseline's view; H×W×3, io/range_array.hpp) and <frame>.png (rendered above ground truth: depth, intensity, mask). Returns the files.
+Json render_run(LoadedRun& run, const std::string& out_dir);
+
+// Renders novel views at the given poses (T_world_lidar in the dataset's world frame, metres):
+// <out>/pose_<k>.npy (H×W×3: range, return probability, intensity) and pose_<k>.png (the
+// prediction masked at probability 0.5: depth, intensity, mask). ConfigError for an empty list;
+// a pose whose origin lies outside the scene's normalised box is rendered with a warning (the
+// field is only trained inside it). Returns the files with each pose's normalised origin.
+Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
+                  const std::string& out_dir);
+
+// ATE, RPE_t, RPE_r (protocol §4, SE(3) Umeyama alignment) of `est` against `gt`, as JSON.
+Json pose_metrics_json(const std::vector<Pose>& est, const std::vector<Pose>& gt);
+
+// Per-frame and mean metrics of the model and of the naive baseline (pose-free runs: with the
+// pose metrics of the optimised and the initial poses over all frames); writes <run>/metrics.json.
+Json eval_run(LoadedRun& run, const std::string& run_dir);
+
+}  // namespace sgnlf::pipeline

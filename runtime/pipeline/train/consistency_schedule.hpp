@@ -1,0 +1,61 @@
+// SG-NLF's adversarial cross-frame consistency in pose-free training (method.md §4.3–4.4), as a
+// StepPolicy that wraps another (the pose-free step; SpectralSchedule wraps this one). At the
+// steps the config's "consistency" section selects (every `every` steps from `warmup_steps`),
+// BEFORE the wrapped step runs:
+//  - the pair: i = the step's batch frame (ray_batch.hpp's batch_frame(seed, step)), j = i ± one
+//    of the configured offsets, drawn from (seed, step); both trainable (not pose-only), else
+//    the step has no consistency term;
+//  - ConsistencyTerm::run: render i at its current pose, reproject into j, one discriminator
+//    step, L_con's gradient λ_con·dL_con into the field (pending in the model: it joins the
+//    range loss's gradient of this same step's Adam update, model.hpp) and into ξ_i, ξ_j;
+//  - the pose gradients go to PoseSet's pending gradients (pose_set.hpp): ξ_i's joins frame i's
+//    range-loss pose gradient in this step's pose Adam step; frame j's translation gradient
+//    (its rotation gets none) waits, summed, for frame j's next own step (at most an epoch
+//    later): every frame keeps one Adam step per visit, so λ_con stays a relative weight for the
+//    poses as for the field. It is computed at frame j's pose of that moment.
+// Logs (train_log.jsonl "consistency"): L_D, L_con, mean D(real) / D(fake), mask coverage,
+// the pair, of the last consistency step. Checkpoints carry the discriminator's parameters and
+// Adam state, the pending pose gradients and the last values, so a resumed run is bit-identical.
+#pragma once
+#include <vector>
+
+#include "pipeline/train/consistency_term.hpp"
+#include "pipeline/train/pose_set.hpp"
+#include "pipeline/train/step_policy.hpp"
+
+namespace sgnlf::pipeline {
+
+class ConsistencySchedule : public StepPolicy {
+ public:
+  ConsistencySchedule(StepPolicy& inner, cl::Runtime& rt, const Scene& scene,
+                      const TrainConfig& cfg, PoseSet& poses, int max_rays, uint64_t seed);
+
+  void on_epoch(long epoch, long step) override { inner_.on_epoch(epoch, step); }
+  void step(LidarNerfModel& model, uint64_t seed, long step, float lr) override;
+  Json log_fields() override;
+  std::string progress_text() override;
+  NamedArrays state() const override;
+  void load_state(const Checkpoint& ck, LidarNerfModel& model) override;
+
+  // The pair of `step` (i = batch frame), or {-1, -1} when the step has none.
+  std::pair<int, int> pair_at(uint64_t seed, long step) const;
+  ConsistencyTerm& term() { return term_; }
+  long steps_taken() const { return steps_; }
+  double seconds() const { return seconds_; }  // consistency steps of this process
+
+ private:
+  bool trainable(int f) const;
+
+  StepPolicy& inner_;
+  const Scene& scene_;
+  const TrainConfig& cfg_;
+  PoseSet& poses_;
+  uint64_t seed_;
+  ConsistencyTerm term_;
+  ConsistencyResult last_;
+  int last_i_ = -1, last_j_ = -1;
+  long last_step_ = -1, steps_ = 0;
+  double seconds_ = 0.0;
+};
+
+}  // namespace sgnlf::pipeline

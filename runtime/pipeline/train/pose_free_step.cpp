@@ -1,0 +1,149 @@
+// PoseFreeStep (see pose_free_step.hpp).
+#include "pipeline/train/pose_free_step.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.hpp"
+#include "field/hash_grid.hpp"
+#include "metrics/pose_errors.hpp"
+#include "pipeline/model/ray_batch.hpp"
+#include "render/pose_gradient.hpp"
+
+namespace sgnlf::pipeline {
+namespace fs = std::filesystem;
+
+PoseFreeStep::PoseFreeStep(const Scene& scene, const TrainConfig& cfg, PoseSet& poses,
+                           std::vector<Pose> gt, std::string run_dir, GeometricStage geometric)
+    : scene_(scene),
+      cfg_(cfg),
+      poses_(poses),
+      gt_(std::move(gt)),
+      run_dir_(std::move(run_dir)),
+      geometric_(std::move(geometric)),
+      ema_(scene.T_world_lidar.size(), 0.0),
+      seen_(scene.T_world_lidar.size(), 0.0) {
+  require(poses.size() == scene.T_world_lidar.size(),
+          "PoseFreeStep: " + std::to_string(poses.size()) + " poses for " +
+              std::to_string(scene.T_world_lidar.size()) + " frames");
+}
+
+std::vector<Pose> PoseFreeStep::poses_world() const {
+  std::vector<Pose> out;
+  for (size_t i = 0; i < poses_.size(); ++i) out.push_back(denormalize_pose(poses_.pose(i), scene_.norm));
+  return out;
+}
+
+Json PoseFreeStep::pose_errors() const {
+  if (gt_.size() < 2) return Json::object();
+  const auto e = metrics::compute_pose_errors(poses_world(), gt_);
+  return Json{{"ate_m", e.ate_m}, {"rpe_t_cm", e.rpe_t_cm}, {"rpe_r_deg", e.rpe_r_deg}};
+}
+
+void PoseFreeStep::on_epoch(long epoch, long step) {
+  if (!geometric_) return;
+  const double progress = double(step) / double(cfg_.schedule.iterations);
+  const Json before = pose_errors();
+  const auto t0 = std::chrono::steady_clock::now();
+  Json line = geometric_.run(poses_, epoch, progress);
+  if (line.is_null()) return;  // the stage did nothing this epoch
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  geometric_seconds_ += secs;
+  line["seconds"] = secs;
+  line["epoch"] = epoch;
+  line["step"] = step;
+  line["progress"] = progress;
+  line["before"] = before;
+  line["after"] = pose_errors();
+  if (!run_dir_.empty()) {
+    const std::string path = (fs::path(run_dir_) / "geometric_log.jsonl").string();
+    std::ofstream out(path, std::ios::app);
+    if (!out) throw IoError(path + ": cannot open for appending");
+    out << line.dump() << "\n";
+  }
+}
+
+double PoseFreeStep::reweight(int frame) const {
+  const ReweightConfig& rc = cfg_.pose_free->reweight;
+  if (!rc.enabled || rc.fraction <= 0.0) return 1.0;
+  std::vector<double> losses;
+  for (int f : scene_.train) {
+    if (seen_[size_t(f)] == 0.0) return 1.0;  // every frame seen once before ranking
+    losses.push_back(ema_[size_t(f)]);
+  }
+  const size_t k = size_t(double(losses.size()) * rc.fraction);
+  if (k == 0) return 1.0;
+  std::nth_element(losses.begin(), losses.begin() + long(k - 1), losses.end(), std::greater<>());
+  return ema_[size_t(frame)] >= losses[k - 1] ? rc.factor : 1.0;
+}
+
+void PoseFreeStep::step(LidarNerfModel& model, uint64_t seed, long step, float lr) {
+  const PoseFreeConfig& pc = *cfg_.pose_free;
+  const double progress = double(step) / double(cfg_.schedule.iterations);
+  if (pc.coarse_to_fine) {
+    auto w = field::barf_level_weights(progress, model.levels());
+    if (w != level_w_) model.set_level_weights(level_w_ = std::move(w));
+  }
+  const RayBatch b = draw_ray_batch(scene_, cfg_, seed, step, [&](int f) { return poses_.pose(size_t(f)); });
+  const bool optimize = pc.pose_optim.optimize && step >= pc.pose_optim.start_step;
+  if (!optimize) poses_.drop_pending(size_t(b.frame));  // no pose step: a pending term is void
+  model.forward_backward(b, seed, step, optimize);
+  const bool pose_only =
+      std::find(scene_.pose_only.begin(), scene_.pose_only.end(), b.frame) != scene_.pose_only.end();
+  model.update(pose_only ? 0.0f : float(lr * reweight(b.frame)));
+  if (pc.reweight.enabled) {
+    const double l = model.read_loss().total();
+    double& e = ema_[size_t(b.frame)];
+    e = seen_[size_t(b.frame)] == 0.0 ? l : pc.reweight.ema * e + (1.0 - pc.reweight.ema) * l;
+    seen_[size_t(b.frame)] = 1.0;
+  }
+  if (!optimize) return;
+  const auto g = model.read_ray_grads();
+  std::vector<float> dirs_lidar(size_t(b.n_rays) * 3);
+  for (int i = 0; i < b.n_rays; ++i)
+    for (int a = 0; a < 3; ++a)
+      dirs_lidar[3 * size_t(i) + a] = scene_.directions[3 * size_t(b.pixels[size_t(i)]) + a];
+  const size_t f = size_t(b.frame);
+  const Vec6 grad = render::pose_gradient(poses_.initial(f), poses_.correction(f), {}, dirs_lidar,
+                                          g.origin, g.direction);
+  poses_.step(f, grad, progress);
+}
+
+Json PoseFreeStep::log_fields() {
+  Json j = pose_errors();
+  return j.empty() ? Json::object() : Json{{"pose", j}};
+}
+
+std::string PoseFreeStep::progress_text() {
+  const Json e = pose_errors();
+  if (e.empty()) return "";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "  ATE %.3f m", e.at("ate_m").get<double>());
+  return buf;
+}
+
+NamedArrays PoseFreeStep::state() const {
+  NamedArrays a = poses_.state_arrays();
+  a.push_back({"reweight.ema", pack_doubles(ema_)});
+  a.push_back({"reweight.seen", pack_doubles(seen_)});
+  if (geometric_.state)
+    for (auto& x : geometric_.state()) a.push_back(std::move(x));
+  return a;
+}
+
+void PoseFreeStep::load_state(const Checkpoint& ck, LidarNerfModel& model) {
+  if (cfg_.pose_free->coarse_to_fine && ck.step > 0) {  // the mask of the last step (step_policy.hpp)
+    level_w_ = field::barf_level_weights(
+        double(ck.step - 1) / double(cfg_.schedule.iterations), model.levels());
+    model.set_level_weights(level_w_);
+  }
+  poses_.load_state([&](const std::string& name, size_t n) { return ck.array(name, n); });
+  ema_ = unpack_doubles(ck.array("reweight.ema", 2 * ema_.size()));
+  seen_ = unpack_doubles(ck.array("reweight.seen", 2 * seen_.size()));
+  if (geometric_.load_state) geometric_.load_state(ck);
+}
+
+}  // namespace sgnlf::pipeline

@@ -1,0 +1,65 @@
+// The pose-free training step (method.md §0 "Poses", §3): rays of a frame start from its
+// current pose estimate; the backward pass reaches the frame's correction ξ through the ray
+// origins and directions (render::pose_gradient) and the frame's own Adam moves it; test frames
+// (scene.pose_only) train their pose only (network lr 0); GeoNLF's selective reweighting lowers
+// the network lr of the frames with the highest recent loss; the coarse-to-fine level mask
+// follows training progress; before each epoch a geometric stage (the GeoNLF graph optimiser,
+// geometric_stage.hpp) may move the poses. Pose errors against ground truth (metres, protocol §4)
+// go into train_log.jsonl and the progress line; each geometric stage's before/after ATE into
+// <run>/geometric_log.jsonl.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "pipeline/train/pose_set.hpp"
+#include "pipeline/train/step_policy.hpp"
+
+namespace sgnlf::pipeline {
+
+// A geometric stage: `run` moves `poses` (normalised frame) before epoch `epoch` at `progress`
+// and returns a JSON summary (steps, losses) for the log, or null when it did nothing. A stage
+// with state of its own (SG-NLF's current pose graph) saves it with the step's checkpoint arrays.
+struct GeometricStage {
+  std::function<Json(PoseSet& poses, long epoch, double progress)> run;
+  std::function<NamedArrays()> state;                  // optional
+  std::function<void(const Checkpoint&)> load_state;  // optional
+  explicit operator bool() const { return bool(run); }
+};
+
+class PoseFreeStep : public StepPolicy {
+ public:
+  // `T_world_lidar_gt` (metres, one per frame) for pose errors; may be empty (none reported).
+  PoseFreeStep(const Scene& scene, const TrainConfig& cfg, PoseSet& poses,
+               std::vector<Pose> T_world_lidar_gt, std::string run_dir,
+               GeometricStage geometric = {});
+
+  void on_epoch(long epoch, long step) override;
+  void step(LidarNerfModel& model, uint64_t seed, long step, float lr) override;
+  Json log_fields() override;
+  std::string progress_text() override;
+  NamedArrays state() const override;
+  void load_state(const Checkpoint& ck, LidarNerfModel& model) override;
+
+  // Current poses in the dataset's world frame (metres).
+  std::vector<Pose> poses_world() const;
+  // Wall time spent in the geometric stage by this process (not across a resume).
+  double geometric_seconds() const { return geometric_seconds_; }
+  // Network lr multiplier of `frame` under selective reweighting (1 when off or not yet known).
+  double reweight(int frame) const;
+
+ private:
+  Json pose_errors() const;
+  const Scene& scene_;
+  const TrainConfig& cfg_;
+  PoseSet& poses_;
+  std::vector<Pose> gt_;
+  std::string run_dir_;
+  GeometricStage geometric_;
+  std::vector<double> ema_;   // per frame: moving average of the range loss
+  std::vector<double> seen_;  // per frame: 1 once a step came from it
+  std::vector<float> level_w_;
+  double geometric_seconds_ = 0.0;
+};
+
+}  // namespace sgnlf::pipeline

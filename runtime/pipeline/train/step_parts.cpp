@@ -1,0 +1,55 @@
+// RunStepParts (see step_parts.hpp).
+#include "pipeline/train/step_parts.hpp"
+
+#include "datasets/protocol.hpp"
+#include "pipeline/train/geometric_stage.hpp"
+#include "pipeline/run/run_dir.hpp"
+
+namespace sgnlf::pipeline {
+
+RunStepParts::RunStepParts(cl::Runtime& rt, const Dataset& d, const Scene& scene,
+                           const TrainConfig& c, LidarNerfModel& model, std::string run_dir,
+                           uint64_t seed)
+    : rt_(rt), d_(d), scene_(scene), c_(c), model_(model), run_dir_(std::move(run_dir)),
+      seed_(seed) {}
+
+StepPolicy& RunStepParts::ground_truth_poses() {
+  gt_step_ = std::make_unique<GroundTruthPoseStep>(scene_, c_);
+  return *gt_step_;
+}
+
+// The poses are parameters, and a geometric stage may run before epochs.
+StepPolicy& RunStepParts::pose_free() {
+  require(c_.is_pose_free(), "the pose-free step needs the config's pose-free sections");
+  const PoseFreeConfig& pf = *c_.pose_free;
+  poses_ = std::make_unique<PoseSet>(scene_.T_world_lidar, pf.pose_optim,
+                                     pf.pose_optim.lr_scale(pf.poses.init));
+  pose_step_ = std::make_unique<PoseFreeStep>(
+      scene_, c_, *poses_, gt_poses(d_), run_dir_,
+      c_.confidence_graph()
+          ? make_geometric_stage(d_, scene_, c_, field_features(model_, scene_.norm), run_dir_)
+          : make_geometric_stage(d_, scene_, c_));
+  return *pose_step_;
+}
+
+StepPolicy& RunStepParts::consistency(StepPolicy& inner) {
+  if (!c_.consistency_term()) return inner;
+  require(poses_ != nullptr, "the cross-frame consistency needs a pose-free method");
+  consistency_step_ = std::make_unique<ConsistencySchedule>(inner, rt_, scene_, c_, *poses_,
+                                                            model_capacity(c_), seed_);
+  return *consistency_step_;
+}
+
+// Ψ trains on the current surface around `inner` (it sets λ(t) before `inner` renders).
+StepPolicy& RunStepParts::spectral(StepPolicy& inner) {
+  if (!c_.hybrid_encoder()) return inner;
+  require(poses_ != nullptr, "the hybrid spectral field needs a pose-free method");
+  const PoseSet& ps = *poses_;
+  spectral_step_ = std::make_unique<SpectralSchedule>(
+      inner, *model_.hybrid_encoder(), c_,
+      make_surface_pool_source(d_, scene_, c_.spectral->points_per_frame, seed_),
+      [&ps](int frame) { return ps.pose(size_t(frame)); }, seed_);
+  return *spectral_step_;
+}
+
+}  // namespace sgnlf::pipeline

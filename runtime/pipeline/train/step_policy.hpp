@@ -1,0 +1,52 @@
+// What one training iteration does, as the trainer's per-step and per-epoch hooks: the trainer
+// (trainer.hpp) owns the loop, learning-rate schedule, logging, divergence checks and
+// checkpoints; a StepPolicy draws the batch and runs the step, and may keep state of its own
+// (poses, per-frame statistics) that checkpoints carry as named arrays.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/config.hpp"
+#include "pipeline/train/checkpoint.hpp"
+#include "pipeline/model/model.hpp"
+#include "pipeline/model/scene.hpp"
+#include "pipeline/config/train_config.hpp"
+
+namespace sgnlf::pipeline {
+
+using NamedArrays = std::vector<std::pair<std::string, std::vector<float>>>;
+
+class StepPolicy {
+ public:
+  virtual ~StepPolicy() = default;
+  // Before the first step of every epoch (one pass over scene.train); `step` is its first step.
+  virtual void on_epoch(long epoch, long step) { (void)epoch, (void)step; }
+  // One training step with the network learning rate `lr` (may only enqueue).
+  virtual void step(LidarNerfModel& model, uint64_t seed, long step, float lr) = 0;
+  // Extra fields for train_log.jsonl at logged steps, and a short progress text.
+  virtual Json log_fields() { return Json::object(); }
+  virtual std::string progress_text() { return ""; }
+  // Named arrays saved beside the model's in checkpoints, and their restoration. load_state
+  // also puts back what the policy sets on the model at every step (the coarse-to-fine level
+  // weights, the fusion λ) as the checkpoint's last step left it: an epoch that starts right
+  // at the checkpoint uses the model (pose-graph features) before the next step sets them.
+  virtual NamedArrays state() const { return {}; }
+  virtual void load_state(const Checkpoint& ck, LidarNerfModel& model) { (void)ck, (void)model; }
+};
+
+// The ground-truth-pose methods (LiDAR-NeRF): batches from scene.T_world_lidar, one fused step.
+class GroundTruthPoseStep : public StepPolicy {
+ public:
+  GroundTruthPoseStep(const Scene& scene, const TrainConfig& cfg) : scene_(scene), cfg_(cfg) {}
+  void step(LidarNerfModel& model, uint64_t seed, long step, float lr) override {
+    model.train_step(draw_ray_batch(scene_, cfg_, seed, step), seed, step, lr);
+  }
+
+ private:
+  const Scene& scene_;
+  const TrainConfig& cfg_;
+};
+
+}  // namespace sgnlf::pipeline
