@@ -13,6 +13,7 @@
 #include "harness/runner.hpp"
 #include "harness/tables.hpp"
 #include "harness/wiring.hpp"
+#include "pipeline/run/method.hpp"
 
 namespace sgnlf::app {
 namespace {
@@ -27,7 +28,9 @@ int list_tables() {
   for (const auto& name : harness::table_names()) {
     const auto t = harness::table_def(name);
     std::cout << name << ": " << t.title << "\n  rows:";
-    for (const auto& r : t.rows) std::cout << " " << r.method;
+    for (const auto& r : t.rows)
+      std::cout << " " << r.method
+                << (pipeline::method_implemented(r.method) ? "" : " (not implemented)");
     std::cout << "\n";
     for (const auto& [scale, seqs] : t.scales) {
       std::cout << "  " << scale << ":";

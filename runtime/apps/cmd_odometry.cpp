@@ -54,7 +54,7 @@ const Registrar reg("odometry", "Estimate poses from raw scans with the built-in
     a->load.validate();
     odometry::OdometryConfig cfg;
     if (!a->config.empty()) {
-      const Json j = load_json_file(a->config);
+      const Json j = load_config_file(a->config);
       ConfigReader r(j, a->config);
       cfg = odometry::OdometryConfig::from_json(r);
     }

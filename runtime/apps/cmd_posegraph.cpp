@@ -115,7 +115,7 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
       gc.sequential_offsets = a->cfg.edge_offsets;
       gc.threads = a->cfg.threads;
       if (!a->graph_config.empty()) {
-        Json j = load_json_file(a->graph_config);
+        Json j = load_config_file(a->graph_config);
         if (!j.contains("sequential_offsets")) j["sequential_offsets"] = gc.sequential_offsets;
         if (!j.contains("threads")) j["threads"] = gc.threads;
         gc = posegraph::ConfidenceGraphConfig::from_json(j, a->graph_config);

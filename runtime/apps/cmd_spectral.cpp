@@ -26,7 +26,7 @@ struct Options {
 int run(const Options& o) {
   using namespace sgnlf::spectral;
   SpectralTrainConfig cfg;
-  if (!o.config.empty()) cfg = SpectralTrainConfig::from_json(load_json_file(o.config), o.config);
+  if (!o.config.empty()) cfg = SpectralTrainConfig::from_json(load_config_file(o.config), o.config);
   cfg.psi.k = o.k;
   cfg.psi.activation = field::activation_from_string(o.activation);
   cfg.loss.form = o.form == "per_mode" ? SpectralLossForm::per_mode : SpectralLossForm::ky_fan;

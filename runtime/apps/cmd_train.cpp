@@ -1,4 +1,4 @@
-// `sgnlf train --method lidar-nerf|geonlf|geonlf-frozen [--pose-init gt|noisy|identity|odometry] --preset <name> --data <dataset> --out <run dir> [--seed N]
+// `sgnlf train --method M (sgnlf train --help lists them) [--pose-init gt|noisy|identity|odometry] --preset <name> --data <dataset> --out <run dir> [--seed N]
 // [--config overrides.json] [--device SPEC] [--no-resume] [--stop-at STEP] [--sequence S]
 // [--start ID] [--frames N] [--test-frames P,...]`: trains a run folder (resumes an interrupted
 // one by default) and writes run.json (with the dataset options, which eval and render reuse),
@@ -13,6 +13,14 @@
 namespace sgnlf::app {
 namespace {
 
+// "lidar-nerf, geonlf, ...": the registry's methods that train (the others are table rows).
+std::string trainable_methods() {
+  std::string s;
+  for (const auto& m : pipeline::method_registry())
+    if (m.implemented) s += (s.empty() ? "" : ", ") + m.name;
+  return s;
+}
+
 struct TrainArgs {
   std::string method = "lidar-nerf", preset = "quick", data, out, config, device, pose_init;
   uint64_t seed = 1;
@@ -23,7 +31,7 @@ struct TrainArgs {
 
 const Registrar reg("train", "Train a method on a dataset into a run folder", [](CLI::App& sub) {
   auto a = std::make_shared<TrainArgs>();
-  sub.add_option("--method", a->method, "Method (lidar-nerf, geonlf, geonlf-frozen)");
+  sub.add_option("--method", a->method, "Method: " + trainable_methods());
   sub.add_option("--pose-init", a->pose_init,
                  "Pose-free methods: initial poses gt, noisy (protocol §3, the presets' default), "
                  "identity or odometry (the built-in LiDAR odometry on the scans; config key "
@@ -51,13 +59,16 @@ const Registrar reg("train", "Train a method on a dataset into a run folder", []
     req.manifest.device = a->device;
     req.manifest.seed = a->seed;
     req.manifest.data_options = a->load;
-    Json overrides = a->config.empty() ? Json::object() : load_json_file(a->config);
+    Json overrides = a->config.empty() ? Json::object() : load_config_file(a->config);
+    std::string overrides_name = a->config.empty() ? "" : "--config " + a->config;
     if (!a->pose_init.empty()) {
       if (!pipeline::find_method(a->method).sections.pose_free)
         throw ConfigError("--pose-init: method '" + a->method + "' uses ground-truth poses");
       overrides = pipeline::merge_config_json(overrides, Json{{"poses", {{"init", a->pose_init}}}});
+      overrides_name += (overrides_name.empty() ? "" : " + ") + std::string("--pose-init");
     }
-    req.manifest.config = pipeline::resolve_config(a->method, a->preset, overrides);
+    req.manifest.config = pipeline::resolve_config(
+        a->method, a->preset, overrides, overrides_name.empty() ? "overrides" : overrides_name);
     req.run_dir = a->out;
     req.resume = !a->no_resume;
     req.stop_at = a->stop_at;

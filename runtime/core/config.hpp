@@ -23,6 +23,7 @@ class ConfigReader {
   // Reads `key` into `out` when present (keeps the default otherwise).
   template <typename T>
   ConfigReader& get(const std::string& key, T& out) {
+    asked_.insert(key);
     if (!j_.contains(key)) return *this;
     used_.insert(key);
     convert(key, j_.at(key), out);
@@ -36,8 +37,12 @@ class ConfigReader {
   }
   // A nested object: returns a reader for it (marked used); the caller must finish() it.
   ConfigReader child(const std::string& key);
-  bool has(const std::string& key) const { return j_.contains(key); }
-  // Throws ConfigError listing every key that was not read.
+  bool has(const std::string& key) const {
+    asked_.insert(key);
+    return j_.contains(key);
+  }
+  // Throws ConfigError listing every key that was not read, each with the nearest key that
+  // would have been read here when one is close (a misspelling).
   void finish() const;
   const std::string& where() const { return where_; }
 
@@ -83,10 +88,17 @@ class ConfigReader {
   const Json& j_;
   std::string where_;
   std::set<std::string> used_;
+  mutable std::set<std::string> asked_;  // every key read or looked for: the valid keys here
 };
+
+// The valid key nearest to `key` (edit distance at most max(2, |key| / 3)), or "" when none is.
+std::string nearest_key(const std::string& key, const std::set<std::string>& valid);
 
 // Loads a JSON file; errors name the file and the parser's byte position.
 Json load_json_file(const std::string& path);
+// A config file the user names (--config): like load_json_file, but a missing file or a syntax
+// error is a ConfigError (exit 2 in apps/), naming the file and the line and column.
+Json load_config_file(const std::string& path);
 // Writes JSON atomically (temporary file + rename) with 2-space indentation.
 void write_json_file(const std::string& path, const Json& j);
 // Writes any text atomically (temporary file + rename).

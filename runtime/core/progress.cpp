@@ -18,9 +18,10 @@ std::string format_duration(double s) {
   return buf;
 }
 
-Progress::Progress(std::string label, long total, double plain_every_s)
+Progress::Progress(std::string label, long total, double plain_every_s, long first)
     : label_(std::move(label)),
       total_(total),
+      first_(first),
       plain_every_s_(plain_every_s),
       tty_(isatty(STDERR_FILENO) != 0),
       start_(std::chrono::steady_clock::now()) {}
@@ -33,17 +34,29 @@ double Progress::elapsed_s() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
+void Progress::restart_clock(long done) {
+  start_ = std::chrono::steady_clock::now();
+  first_ = done;
+  last_print_ = -1e9;
+}
+
+std::string Progress::line(const std::string& label, long first, long done, long total,
+                           double t) {
+  const double rate = t > 0 ? double(done - first) / t : 0.0;
+  const double eta = rate > 0 ? double(total - done) / rate : -1.0;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%s %ld/%ld (%.0f%%) %.2f it/s ETA %s", label.c_str(), done,
+                total, total > 0 ? 100.0 * double(done) / double(total) : 100.0, rate,
+                format_duration(eta).c_str());
+  return buf;
+}
+
 void Progress::update(long done, const std::string& extra) {
   const double t = elapsed_s();
   if (!tty_ && t - last_print_ < plain_every_s_ && done < total_) return;
   if (tty_ && t - last_print_ < 0.2 && done < total_) return;
   last_print_ = t;
-  const double rate = t > 0 ? done / t : 0.0;
-  const double eta = rate > 0 ? (total_ - done) / rate : -1.0;
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "%s %ld/%ld (%.0f%%) %.2f it/s ETA %s", label_.c_str(), done,
-                total_, total_ > 0 ? 100.0 * done / total_ : 100.0, rate,
-                format_duration(eta).c_str());
+  const std::string buf = line(label_, first_, done, total_, t);
   if (tty_)
     std::cerr << "\r\033[K" << buf << (extra.empty() ? "" : " | ") << extra << std::flush;
   else
@@ -54,7 +67,7 @@ void Progress::finish(const std::string& extra) {
   if (finished_) return;
   finished_ = true;
   char buf[160];
-  std::snprintf(buf, sizeof buf, "%s done: %ld steps in %s", label_.c_str(), total_,
+  std::snprintf(buf, sizeof buf, "%s done: %ld steps in %s", label_.c_str(), total_ - first_,
                 format_duration(elapsed_s()).c_str());
   std::cerr << (tty_ ? "\r\033[K" : "") << buf << (extra.empty() ? "" : " | ") << extra << "\n";
 }

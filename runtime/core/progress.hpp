@@ -8,17 +8,25 @@ namespace sgnlf {
 
 class Progress {
  public:
-  // `total` steps of `label`; plain-mode lines at most every `plain_every_s` seconds.
-  Progress(std::string label, long total, double plain_every_s = 10.0);
+  // Steps `first` (a resumed run's step, else 0) to `total` of `label`; plain-mode lines at
+  // most every `plain_every_s` seconds. The rate counts only the steps this process ran.
+  Progress(std::string label, long total, double plain_every_s = 10.0, long first = 0);
   ~Progress();
   // Reports that `done` steps are complete; `extra` is appended (e.g. "loss 0.0123").
   void update(long done, const std::string& extra = "");
   void finish(const std::string& extra = "");
+  // Restarts the rate's clock at `done` steps: work before the first step (a geometric stage)
+  // does not count as the steps' time.
+  void restart_clock(long done);
   double elapsed_s() const;
+
+  // The line update() prints (without `extra`): rate = (done - first) / elapsed_s.
+  static std::string line(const std::string& label, long first, long done, long total,
+                          double elapsed_s);
 
  private:
   std::string label_;
-  long total_;
+  long total_, first_;
   double plain_every_s_;
   bool tty_;
   bool finished_ = false;

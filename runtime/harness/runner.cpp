@@ -278,6 +278,7 @@ Json run_table(const BenchOptions& opt, const BenchHooks& hooks, Json context) {
   r["context"] = context;
   r["columns"] = t.columns;
   r["extra_columns"] = t.extra_columns;
+  r["metric_definitions"] = hooks.metric_definitions ? hooks.metric_definitions() : Json();
   r["sequences"] = seq_list;
   r["skipped_sequences"] = skipped;
   if (any_real_dir) r["real_root"] = opt.resolved_real_root();

@@ -62,6 +62,8 @@ struct BenchHooks {
   // data_root is the resolved folder, so the hook loads it like a --data-root window.
   std::function<PreparedSequence(const SequenceDef&, const BenchOptions&,
                                  const std::string& dir)> prepare;
+  // What the metrics mean (metrics::definitions()), recorded as "metric_definitions".
+  std::function<Json()> metric_definitions;
 };
 
 // Runs the table; `context` is the context block (context_block() + roofline), copied into

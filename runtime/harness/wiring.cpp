@@ -4,6 +4,7 @@
 
 #ifdef SGNLF_HARNESS_WIRED
 #include "harness/prepare.hpp"
+#include "metrics/evaluate.hpp"
 #endif
 
 namespace sgnlf::harness {
@@ -18,6 +19,7 @@ BenchHooks default_hooks() {
   h.prepare = [](const SequenceDef& s, const BenchOptions& o, const std::string& dir) {
     return prepare_sequence(s, o, dir);
   };
+  h.metric_definitions = [] { return metrics::definitions(); };
   return h;
 }
 #else

@@ -135,4 +135,24 @@ Json pose_metrics(const std::vector<Pose>& est, const std::vector<Pose>& gt) {
               {"rpe_r_deg", number_or_null(e.rpe_r_deg)}};
 }
 
+Json definitions() {
+  return Json{
+      {"version", 1},
+      {"pose", {{"alignment", "Umeyama SE(3) on the positions, scale fixed to 1, applied to every estimated pose"},
+                {"ate_m", "sqrt(mean |p_gt - p_aligned|^2), metres, 3D"},
+                {"rpe", "consecutive pairs of aligned poses; rpe_t_cm mean translation error in cm, rpe_r_deg mean rotation angle in degrees"}}},
+      {"raydrop_mask", "predicted: return probability > 0.5 multiplies the predicted range and intensity; the ground-truth return label multiplies the ground truth (LiDAR4D's eval_step)"},
+      {"depth", {{"units", "metres"}, {"clip_m", {1e-6, 80.0}},
+                 {"psnr", "10 log10(80^2 / MSE)"},
+                 {"ssim_data_range", "max(gt) - min(gt) after clipping"},
+                 {"delta1", "fraction with max(gt/pred, pred/gt) < 1.25"},
+                 {"medae", "median |gt - pred|"}}},
+      {"intensity", {{"scale", "reflectance in [0, 1]: KITTI remission as stored, nuScenes intensity / 255, the twins' simulated reflectance"},
+                     {"clip", {1e-6, 1.0}}, {"psnr", "10 log10(1 / MSE)"}}},
+      {"raydrop", "rmse of the return probability against the label; acc and f1 of probability > 0.5"},
+      {"point_cloud", {{"cd", "mean nearest squared distance both ways, summed, m^2, of the masked prediction and the masked ground truth unprojected"},
+                       {"fscore_threshold_sq_m2", kFscoreThresholdSq}}},
+      {"per_frame", "every mean is over the per-frame values recorded beside it; an undefined value (null) in any frame makes the mean null"}};
+}
+
 }  // namespace sgnlf::metrics

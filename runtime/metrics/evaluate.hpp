@@ -32,4 +32,8 @@ Json mean_metrics(const std::vector<Json>& views);
 // ATE / RPE after Umeyama SE(3) alignment: {ate_m, rpe_t_cm, rpe_r_deg}.
 Json pose_metrics(const std::vector<Pose>& est, const std::vector<Pose>& gt);
 
+// What the numbers above mean, as the results record it beside them ("metric_definitions" in
+// metrics.json and results.json): alignment, masks, clipping and scaling, units, thresholds.
+Json definitions();
+
 }  // namespace sgnlf::metrics

@@ -39,6 +39,13 @@ TEST_CASE("unknown keys are rejected by name", "[config]") {
     CHECK_THAT(e.what(), Catch::Contains("itertions"));
     CHECK_THAT(e.what(), Catch::Contains("test.json"));
   }
+  // A misspelling names the key that was meant; a key far from every valid one names none.
+  CHECK_THROWS_WITH(parse(Json::parse(R"({"itertions": 6})")),
+                    Catch::Contains("'itertions' (did you mean 'iterations'?)"));
+  CHECK_THROWS_WITH(parse(Json::parse(R"({"temperature": 6})")),
+                    Catch::Contains("'temperature'") && !Catch::Contains("did you mean"));
+  CHECK(nearest_key("n_sample", {"n_samples", "n_importance"}) == "n_samples");
+  CHECK(nearest_key("lr", {"n_samples", "seed"}).empty());
 }
 
 TEST_CASE("wrong types name the key and the value", "[config]") {
@@ -54,8 +61,19 @@ TEST_CASE("json files: missing and invalid files name the file and offset", "[co
   const std::string p = "test_config_bad.json";
   std::ofstream(p) << "{\"a\": 1,,}";
   CHECK_THROWS_WITH(load_json_file(p), Catch::Contains("test_config_bad.json") && Catch::Contains("byte"));
+  // A config file the user names: a syntax error is a config error (exit 2), with line and column.
+  std::ofstream(p) << "{\n  \"a\": 1,\n  \"b\": ]\n}";
+  try {
+    load_config_file(p);
+    FAIL("expected ConfigError");
+  } catch (const ConfigError& e) {
+    CHECK_THAT(e.what(), Catch::Contains("test_config_bad.json") && Catch::Contains("line 3") &&
+                             Catch::Contains("column 8"));
+  }
+  CHECK_THROWS_AS(load_config_file("/nonexistent/cfg.json"), ConfigError);
   write_json_file(p, Json{{"a", 1}});
   CHECK(load_json_file(p)["a"] == 1);
+  CHECK(load_config_file(p)["a"] == 1);
 }
 
 TEST_CASE("integers out of the field's range are refused, not narrowed", "[config]") {

@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/rng.hpp"
+#include "metrics/chamfer.hpp"
 #include "metrics/evaluate.hpp"
 #include "metrics/naive_baseline.hpp"
 
@@ -182,4 +183,30 @@ TEST_CASE("naive baseline moves points with the GT poses (by hand)", "[metrics][
   CHECK(out.ray_drop == ref.ray_drop);
   CHECK_THROWS_AS(naive_baseline_view(s, {Pose::Identity()}, {}, T_test), Error);
   CHECK_THROWS_AS(naive_baseline_view(s, {Pose::Identity()}, {nullptr}, T_test), Error);
+}
+
+TEST_CASE("the recorded metric definitions match the constants the metrics use", "[metrics]") {
+  const Json d = metrics::definitions();
+  CHECK(d.at("point_cloud").at("fscore_threshold_sq_m2").get<double>() == metrics::kFscoreThresholdSq);
+  CHECK_THAT(d.at("pose").at("alignment").get<std::string>(), Catch::Contains("scale fixed to 1"));
+  CHECK_THAT(d.at("raydrop_mask").get<std::string>(), Catch::Contains("predicted"));
+  CHECK(d.at("depth").at("clip_m").at(1).get<double>() == 80.0);
+  // The ATE the definitions describe is the one pose_metrics computes: an SE(3) copy of the
+  // ground truth scores 0, a scaled one does not (no scale in the alignment).
+  std::vector<Pose> gt, moved, scaled;
+  for (int i = 0; i < 6; ++i) {
+    Pose p = Pose::Identity();
+    p.translation() = Eigen::Vector3d(2.0 * i, 0.3 * i * i, 0.1 * i);
+    gt.push_back(p);
+    Pose q = p;
+    q.translation() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()) * p.translation() +
+                      Eigen::Vector3d(5, -2, 1);
+    q.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    moved.push_back(q);
+    Pose s = p;
+    s.translation() *= 1.5;
+    scaled.push_back(s);
+  }
+  CHECK(metrics::pose_metrics(moved, gt).at("ate_m").get<double>() < 1e-6);
+  CHECK(metrics::pose_metrics(scaled, gt).at("ate_m").get<double>() > 0.5);
 }

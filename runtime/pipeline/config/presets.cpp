@@ -93,7 +93,7 @@ Json odometry_start_json(const std::string& method, const std::string& preset) {
 }
 
 TrainConfig resolve_config(const std::string& method, const std::string& preset,
-                           const Json& overrides) {
+                           const Json& overrides, const std::string& overrides_name) {
   const Method& spec = find_method(method);
   Json base = preset_json(spec.preset_family, preset);
   // A method without the consistency section drops it from its family's presets, so that its
@@ -115,7 +115,7 @@ TrainConfig resolve_config(const std::string& method, const std::string& preset,
       where += " + " + std::string(kOdometrySection);
     }
   }
-  return train_config_from_json(merged, where + " + overrides");
+  return train_config_from_json(merged, where + " + " + overrides_name);
 }
 
 }  // namespace sgnlf::pipeline

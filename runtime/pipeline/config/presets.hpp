@@ -34,8 +34,10 @@ Json preset_json(const std::string& method, const std::string& preset);
 Json odometry_start_json(const std::string& method, const std::string& preset);
 // Preset merged with `overrides`, read strictly and validated. When the merged poses.init is
 // "odometry", the preset's from_odometry section is applied between the preset and `overrides`
-// (the user's keys still win).
+// (the user's keys still win). `overrides_name` names where the overrides came from in errors
+// (e.g. "--config my.json").
 TrainConfig resolve_config(const std::string& method, const std::string& preset,
-                           const Json& overrides = Json::object());
+                           const Json& overrides = Json::object(),
+                           const std::string& overrides_name = "overrides");
 
 }  // namespace sgnlf::pipeline

@@ -12,6 +12,7 @@
 #include "pipeline/run/evaluate.hpp"
 #include "pipeline/model/render_view.hpp"
 #include "datasets/protocol.hpp"
+#include "metrics/evaluate.hpp"
 #include "metrics/pose_errors.hpp"
 #include "pipeline/methods/registry.hpp"
 #include "pipeline/train/pose_check.hpp"
@@ -196,7 +197,8 @@ Json eval_run(LoadedRun& run, const std::string& run_dir) {
                               {"depth", run.manifest.config.render.eval_depth}}},
          {"metrics", model.mean},
          {"per_frame", model.per_frame},
-         {"naive_baseline", {{"metrics", naive.mean}, {"per_frame", naive.per_frame}}}};
+         {"naive_baseline", {{"metrics", naive.mean}, {"per_frame", naive.per_frame}}},
+         {"metric_definitions", metrics::definitions()}};
   if (run.pose_free) {
     const auto gt = gt_poses(*run.dataset);
     j["pose_metrics"] = pose_metrics_json(run.T_world_lidar, gt);

@@ -106,6 +106,8 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
     posegraph::GeometricResult r;
     Json graph_line;
     if (epoch == 0) {  // the coarse alignment (sequential graph)
+      log::info("coarse geometric alignment: ", steps, " steps over ", poses.size(),
+                " scans before the first training step");
       posegraph::AnnealConfig a;
       a.steps = steps;
       a.lr_final = g.lr_final;

@@ -132,7 +132,12 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
   const long end = opt.stop_at >= 0 ? std::min(opt.stop_at, total) : total;
   const long samples_per_step =
       long(cfg.schedule.rays_per_batch) * (cfg.render.n_samples + cfg.render.n_importance);
-  Progress progress("train " + cfg.method + "-" + cfg.preset, total);
+  // The line counts to the step this process stops at (--stop-at), and its rate only the steps
+  // this process ran (a resumed run starts at its checkpoint's step).
+  Progress progress("train " + cfg.method + "-" + cfg.preset, end, 10.0, sum.start_step);
+  if (opt.show_progress && end < total)
+    log::info("training steps ", sum.start_step, " to ", end, " of ", total, " (stop at step ",
+              end, "; resumable)");
   const auto t0 = std::chrono::steady_clock::now();
   // The first step of a fresh run is logged; a resumed run logs exactly the steps the
   // uninterrupted run logs, so that its train_log.jsonl reads the same.
@@ -141,7 +146,12 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
   double live_sum = 0.0, eval_s = 0.0;
   const long epoch_len = long(scene.train.size());
   for (long step = sum.start_step; step < end; ++step) {
-    if (step % epoch_len == 0) policy.on_epoch(step / epoch_len, step);
+    if (step % epoch_len == 0) {
+      policy.on_epoch(step / epoch_len, step);
+      // The first epoch's start (the coarse geometric alignment of the pose-free methods) is
+      // not the steps' time: the ETA starts with the first step.
+      if (step == sum.start_step) progress.restart_clock(step);
+    }
     const float lr = float(cfg.optim.lr_at(step, total));
     policy.step(model, opt.seed, step, lr);
     const double live = double(model.live_samples()) / double(samples_per_step);
