@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 
 namespace sgnlf::adversarial {
 
@@ -32,11 +33,30 @@ struct PatchDiscriminatorConfig {
   float init_std = 0.02f;  // weights N(0, init_std²) (pix2pix), biases 0
   uint64_t seed = 1;
 
+  // The keys and ranges (core/config_fields.hpp); the layer lists' sizes and entries and
+  // padding's range [0, kernel − 1] are validate()'s.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("scales", s.scales, 1, 3);
+    v("channels", s.channels);
+    v("strides", s.strides);
+    v("kernel", s.kernel, 2, 5);
+    v("padding", s.padding);
+    v("slope", s.slope, 0.0f, 1.0f);
+    v("lr", s.lr, 0.0f, 1.0f);
+    v("beta1", s.beta1, 0.0f, 0.999999f);
+    v("beta2", s.beta2, 0.0f, 0.999999f);
+    v("eps", s.eps, 0.0f, 1.0f);
+    v("depth_scale_m", s.depth_scale_m, 1e-3f, 1e4f);
+    v("init_std", s.init_std, 1e-6f, 10.0f);
+    v("seed", s.seed);
+  }
+
   void validate(const std::string& where = "discriminator") const;  // throws ConfigError
   // Reads a "discriminator" section object; `where` names it in errors.
   static PatchDiscriminatorConfig from_json(const Json& section,
                                             const std::string& where = "discriminator");
-  Json to_json() const;
+  Json to_json() const { return config::write_fields(*this); }
 };
 
 }  // namespace sgnlf::adversarial

@@ -8,12 +8,21 @@
 #include <set>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "core/error.hpp"
 
 namespace sgnlf {
 
 using Json = nlohmann::json;
+
+namespace detail {
+template <typename T>
+struct IsScalarList : std::false_type {};
+template <typename E, typename A>
+struct IsScalarList<std::vector<E, A>>
+    : std::bool_constant<std::is_arithmetic_v<E> || std::is_same_v<E, std::string>> {};
+}  // namespace detail
 
 class ConfigReader {
  public:
@@ -77,6 +86,17 @@ class ConfigReader {
         if (!v.is_number()) throw ConfigError("");
         out = v.get<T>();
         if (!std::isfinite(out)) throw ConfigError("");
+      } else if constexpr (detail::IsScalarList<T>::value) {
+        // A list of numbers, booleans or strings: each entry as strictly as a single value
+        // (nlohmann's own conversion would turn 64.5 or true into an int).
+        if (!v.is_array()) throw ConfigError("");
+        T list;
+        for (const Json& e : v) {
+          typename T::value_type x{};
+          convert(key, e, x);
+          list.push_back(x);
+        }
+        out = std::move(list);
       } else {
         out = v.get<T>();
       }

@@ -4,6 +4,8 @@
 //     v("levels", s.levels, 1, 32);          // key, member, allowed range [lo, hi]
 //     v("jitter", s.jitter);                 // key, member (no range: bools, strings, lists)
 //     v("start_step", s.start_step, 0L, 9L, omit_when(0L));  // written only when not 0
+//     v("form", s.form, choices(kForms));    // an enum, written as its name (kForms: its
+//                                            // {value, "name"} pairs)
 //     v.section("geometric", s.geometric);   // a nested struct with its own fields() list
 //     v.object("psi", s.psi);                // a nested config with its own from_json/to_json
 //   }
@@ -15,10 +17,13 @@
 // (T::from_json(json, where), t.to_json()) is read and written by its own functions; its
 // checks stay with the parent's validate(), which calls the nested one's. omit_when(x) marks a
 // key added after results were committed: it is written only when not x, so their configs and
-// hashes stay as they were.
+// hashes stay as they were. A nested config that has its own field list is described in the
+// schema with its keys ("fields") as well.
 #pragma once
+#include <cstddef>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 #include "core/config.hpp"
 
@@ -32,6 +37,39 @@ template <typename T>
 OmitWhen<T> omit_when(T value) {
   return {value};
 }
+
+// The names of an enum member's values: in the JSON the member is its value's name; any other
+// string is refused, naming the key and the names.
+template <typename E>
+struct Choices {
+  const std::pair<E, const char*>* list;
+  std::size_t n;
+  const std::pair<E, const char*>* begin() const { return list; }
+  const std::pair<E, const char*>* end() const { return list + n; }
+  std::string names() const {
+    std::string s;
+    for (const auto& c : *this) s += (s.empty() ? "" : ", ") + std::string(c.second);
+    return s;
+  }
+  const char* name_of(E value) const {
+    for (const auto& c : *this)
+      if (c.first == value) return c.second;
+    throw ConfigError("config: an enum value without a name (" +
+                      std::to_string(static_cast<long long>(value)) + "; names: " + names() + ")");
+  }
+};
+template <typename E, std::size_t N>
+Choices<E> choices(const std::pair<E, const char*> (&list)[N]) {
+  return {list, N};
+}
+
+namespace detail {
+template <typename T, typename V, typename = void>
+struct HasFields : std::false_type {};
+template <typename T, typename V>
+struct HasFields<T, V, std::void_t<decltype(T::fields(std::declval<const T&>(), std::declval<V&>()))>>
+    : std::true_type {};
+}  // namespace detail
 
 // Reads each listed key present in the reader's object into its member.
 class FieldReader {
@@ -52,6 +90,19 @@ class FieldReader {
   template <typename T>
   void operator()(const char* key, T& member, OmitWhen<T>) {
     r_.get(key, member);
+  }
+  template <typename E>
+  void operator()(const char* key, E& member, Choices<E> choices) {
+    if (!r_.has(key)) return;
+    std::string name;
+    r_.get(key, name);
+    for (const auto& c : choices)
+      if (name == c.second) {
+        member = c.first;
+        return;
+      }
+    throw ConfigError(r_.where() + ": key '" + key + "' has invalid value \"" + name + "\" (" +
+                      choices.names() + ")");
   }
   template <typename S>
   void section(const char* key, S& member) {
@@ -92,6 +143,10 @@ class FieldWriter {
   void operator()(const char* key, const T& member, OmitWhen<T> omit) {
     if (!(member == omit.value)) j_[key] = member;
   }
+  template <typename E>
+  void operator()(const char* key, const E& member, Choices<E> choices) {
+    j_[key] = choices.name_of(member);
+  }
   template <typename S>
   void section(const char* key, const S& member) {
     Json sub = Json::object();
@@ -124,6 +179,8 @@ class FieldChecker {
   }
   template <typename T>
   void operator()(const char*, const T&, OmitWhen<T>) {}
+  template <typename E>
+  void operator()(const char*, const E&, Choices<E>) {}  // the reader takes only the names
   template <typename S>
   void section(const char* key, const S& member) {
     FieldChecker v(where_ + "." + key);
@@ -158,6 +215,12 @@ class FieldDescriber {
     (*this)(key, member);
     j_[key]["written"] = "only when not the default";
   }
+  template <typename E>
+  void operator()(const char* key, const E& member, Choices<E> choices) {
+    Json names = Json::array();
+    for (const auto& c : choices) names.push_back(c.second);
+    j_[key] = Json{{"type", "string"}, {"default", choices.name_of(member)}, {"one_of", names}};
+  }
   template <typename S>
   void section(const char* key, const S& member) {
     Json sub = Json::object();
@@ -165,9 +228,16 @@ class FieldDescriber {
     S::fields(member, v);
     j_[key] = sub;
   }
+  // A nested config: its default object, and its keys when it has a field list.
   template <typename T>
   void object(const char* key, const T& member) {
     j_[key] = Json{{"type", "object"}, {"default", member.to_json()}};
+    if constexpr (detail::HasFields<T, FieldDescriber>::value) {
+      Json sub = Json::object();
+      FieldDescriber v(sub);
+      T::fields(member, v);
+      j_[key]["fields"] = sub;
+    }
   }
 
  private:
@@ -212,7 +282,7 @@ void check_fields(const S& s, const std::string& where) {
   S::fields(s, v);
 }
 
-// The schema of S at its defaults: {key: {type, default[, min, max]}}.
+// The schema of S at its defaults: {key: {type, default[, min, max][, one_of][, fields]}}.
 template <typename S>
 Json describe_fields() {
   const S s{};

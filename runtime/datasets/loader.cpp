@@ -32,33 +32,13 @@ void LoadOptions::validate() const {
 
 bool LoadOptions::is_default() const { return to_json().empty(); }
 
-Json LoadOptions::to_json() const {
-  Json j = Json::object();
-  if (!sequence.empty()) j["sequence"] = sequence;
-  if (!frequency.empty()) j["frequency"] = frequency;
-  if (start != -1) j["start"] = start;
-  if (frames != -1) j["frames"] = frames;
-  if (stride != -1) j["stride"] = stride;
-  if (!sensor.empty()) j["sensor"] = sensor;
-  if (!test_frames.empty()) j["test_frames"] = test_frames;
-  return j;
-}
+Json LoadOptions::to_json() const { return config::write_fields(*this); }
 
 LoadOptions LoadOptions::from_json(const Json& j, const std::string& where) {
   LoadOptions o;
   ConfigReader r(j, where);
-  r.get("sequence", o.sequence).get("frequency", o.frequency).get("start", o.start);
-  r.get("frames", o.frames).get("stride", o.stride).get("sensor", o.sensor);
-  Json tf = Json::array();
-  r.get("test_frames", tf);
+  config::read_fields_here(r, o);
   r.finish();
-  if (!tf.is_array())
-    throw ConfigError(where + ": key 'test_frames' has invalid value " + tf.dump() + " (a list of frame positions)");
-  for (const auto& v : tf) {
-    if (!v.is_number_integer())
-      throw ConfigError(where + ": key 'test_frames' has invalid element " + v.dump() + " (integers)");
-    o.test_frames.push_back(v.get<int>());
-  }
   try {
     o.validate();
   } catch (const ConfigError& e) {

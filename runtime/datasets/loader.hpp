@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 #include "datasets/dataset.hpp"
 
 namespace sgnlf {
@@ -23,6 +24,19 @@ struct LoadOptions {
   // split (protocol §3), e.g. for a short real slice that holds none of frames 13, 26, 39, 52.
   // Empty = the protocol split. At least one frame must stay for training.
   std::vector<int> test_frames;
+
+  // The keys (core/config_fields.hpp), each written only when set away from its default;
+  // the rules on their values are validate()'s.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("sequence", s.sequence, config::omit_when<std::string>(""));
+    v("frequency", s.frequency, config::omit_when<std::string>(""));
+    v("start", s.start, config::omit_when(-1));
+    v("frames", s.frames, config::omit_when(-1));
+    v("stride", s.stride, config::omit_when(-1));
+    v("sensor", s.sensor, config::omit_when<std::string>(""));
+    v("test_frames", s.test_frames, config::omit_when(std::vector<int>{}));  // integers
+  }
 
   void validate() const;
   bool is_default() const;

@@ -6,22 +6,14 @@
 namespace sgnlf::field {
 
 Activation activation_from_string(const std::string& s) {
-  if (s == "none") return Activation::None;
-  if (s == "relu") return Activation::Relu;
-  if (s == "tanh") return Activation::Tanh;
-  if (s == "softplus") return Activation::Softplus;
-  if (s == "sine") return Activation::Sine;
+  for (const auto& [a, name] : kActivationNames)
+    if (s == name) return a;
   throw ConfigError("activation '" + s + "' is not one of none, relu, tanh, softplus, sine");
 }
 
 std::string to_string(Activation a) {
-  switch (a) {
-    case Activation::None: return "none";
-    case Activation::Relu: return "relu";
-    case Activation::Tanh: return "tanh";
-    case Activation::Softplus: return "softplus";
-    case Activation::Sine: return "sine";
-  }
+  for (const auto& [value, name] : kActivationNames)
+    if (value == a) return name;
   return "?";
 }
 

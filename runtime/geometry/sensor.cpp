@@ -4,8 +4,7 @@ namespace sgnlf {
 
 void Sensor::validate() const {
   const std::string w = "sensor '" + name + "'";
-  check_range(w, "height", height, 1, 4096);
-  check_range(w, "width", width, 1, 65536);
+  config::check_fields(*this, w);
   // Every frame holds range, intensity and mask images of height × width floats, and training
   // keeps all frames: 4096 × 65536 was 3 GB per frame. 2^20 pixels (12 MB a frame) is over
   // three times the densest spinning LiDAR made (128 beams × 2048 columns).
@@ -13,11 +12,7 @@ void Sensor::validate() const {
     throw ConfigError(w + ": height × width = " + std::to_string(long(height) * long(width)) +
                       " pixels per range image, more than " + std::to_string(kMaxSensorPixels) +
                       " (height " + std::to_string(height) + ", width " + std::to_string(width) + ")");
-  check_range(w, "fov_deg", fov_deg, 1e-3, 180.0);
-  check_range(w, "fov_up_deg", fov_up_deg, -90.0, 90.0);
-  check_range(w, "max_range_m", max_range_m, 1e-3, 1e4);
   check_range(w, "min_range_m", min_range_m, 0.0, max_range_m);
-  check_range(w, "rate_hz", rate_hz, 1e-3, 1e4);
   sweep.validate(w + ": sweep");
 }
 
@@ -57,14 +52,7 @@ Sensor sensor_from_json(const Json& j, const std::string& where) {
     r.get("preset", preset);
     s = sensor_preset(preset);
   }
-  r.get("name", s.name)
-      .get("height", s.height)
-      .get("width", s.width)
-      .get("fov_up_deg", s.fov_up_deg)
-      .get("fov_deg", s.fov_deg)
-      .get("max_range_m", s.max_range_m)
-      .get("min_range_m", s.min_range_m)
-      .get("rate_hz", s.rate_hz);
+  config::read_fields_here(r, s);
   if (r.has("sweep")) {
     ConfigReader rs = r.child("sweep");
     s.sweep = sweep_timing_from_json(rs);
@@ -77,10 +65,7 @@ Sensor sensor_from_json(const Json& j, const std::string& where) {
 }
 
 Json sensor_to_json(const Sensor& s) {
-  Json j{{"name", s.name},           {"height", s.height},
-         {"width", s.width},         {"fov_up_deg", s.fov_up_deg},
-         {"fov_deg", s.fov_deg},     {"max_range_m", s.max_range_m},
-         {"min_range_m", s.min_range_m}, {"rate_hz", s.rate_hz}};
+  Json j = config::write_fields(s);
   if (s.sweep != preset_sweep_timing(s.name)) j["sweep"] = sweep_timing_to_json(s.sweep);
   return j;
 }

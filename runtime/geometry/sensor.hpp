@@ -29,6 +29,20 @@ struct Sensor {
     return range > min_range_m && range > 0.0 && range < max_range_m;
   }
   double sweep_duration_s() const { return 1.0 / rate_hz; }
+  // The keys and ranges (core/config_fields.hpp); min_range_m's range [0, max_range_m] and the
+  // pixel count are validate()'s. "sweep" is read and written by sensor_from_json /
+  // sensor_to_json: its default and whether it is written depend on the name.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("name", s.name);
+    v("height", s.height, 1, 4096);
+    v("width", s.width, 1, 65536);
+    v("fov_deg", s.fov_deg, 1e-3, 180.0);
+    v("fov_up_deg", s.fov_up_deg, -90.0, 90.0);
+    v("max_range_m", s.max_range_m, 1e-3, 1e4);
+    v("min_range_m", s.min_range_m);
+    v("rate_hz", s.rate_hz, 1e-3, 1e4);
+  }
   void validate() const;
 };
 

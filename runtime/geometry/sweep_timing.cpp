@@ -8,8 +8,7 @@ namespace sgnlf {
 void SweepTiming::validate(const std::string& w) const {
   if (direction != -1 && direction != 1)
     throw ConfigError(w + ": 'direction' = " + std::to_string(direction) + " (expected -1 clockwise or 1 counter-clockwise)");
-  check_range(w, "start_azimuth_deg", start_azimuth_deg, -360.0, 360.0);
-  check_range(w, "reference", reference, 0.0, 1.0);
+  config::check_fields(*this, w);
 }
 
 double sweep_fraction(const SweepTiming& t, const Vec3& p) {
@@ -25,14 +24,12 @@ double sweep_time_offset(const SweepTiming& t, double duration_s, const Vec3& p)
 
 SweepTiming sweep_timing_from_json(ConfigReader& r) {
   SweepTiming t;
-  r.get("direction", t.direction).get("start_azimuth_deg", t.start_azimuth_deg).get("reference", t.reference);
+  config::read_fields_here(r, t);
   r.finish();
   t.validate(r.where());
   return t;
 }
 
-Json sweep_timing_to_json(const SweepTiming& t) {
-  return Json{{"direction", t.direction}, {"start_azimuth_deg", t.start_azimuth_deg}, {"reference", t.reference}};
-}
+Json sweep_timing_to_json(const SweepTiming& t) { return config::write_fields(t); }
 
 }  // namespace sgnlf

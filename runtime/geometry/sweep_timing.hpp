@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 #include "geometry/se3.hpp"
 
 namespace sgnlf {
@@ -21,6 +22,14 @@ struct SweepTiming {
   double start_azimuth_deg = 180.0;
   // Fraction of the sweep at which the frame's timestamp and pose hold.
   double reference = 0.5;
+
+  // The keys and ranges (core/config_fields.hpp); direction's two values are validate()'s.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("direction", s.direction);
+    v("start_azimuth_deg", s.start_azimuth_deg, -360.0, 360.0);
+    v("reference", s.reference, 0.0, 1.0);
+  }
 
   void validate(const std::string& where) const;
   bool operator==(const SweepTiming& o) const {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 
 namespace sgnlf::odometry {
 
@@ -53,10 +54,37 @@ struct OdometryConfig {
   bool deskew = false;
   int deskew_passes = 2;
 
+  // The keys and ranges (core/config_fields.hpp); min_range's range [0, max_range] and the
+  // ranges that apply only when a key is on (voxel_size > 0, initial_search > 0) are
+  // validate()'s.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("max_range", s.max_range, 1.0, 1e4);
+    v("min_range", s.min_range);
+    v("voxel_size", s.voxel_size);
+    v("max_points_per_voxel", s.max_points_per_voxel, 1, 10000);
+    v("initial_threshold", s.initial_threshold, 0.01, 100.0);
+    v("min_motion", s.min_motion, 0.0, 100.0);
+    v("max_iterations", s.max_iterations, 1, 100000);
+    v("convergence", s.convergence, 1e-12, 1.0);
+    v("coarse_stage", s.coarse_stage);
+    v("coarse_threshold", s.coarse_threshold, 0.01, 1000.0);
+    v("coarse_voxel_factor", s.coarse_voxel_factor, 1.0, 100.0);
+    v("initial_search", s.initial_search, 0.0, 100.0);
+    v("initial_search_step", s.initial_search_step);
+    v("inlier_distance", s.inlier_distance, 0.01, 100.0);
+    v("initial_search_iterations", s.initial_search_iterations, 0, 100000);
+    v("min_points", s.min_points, 3, 1 << 24);
+    v("min_fitness", s.min_fitness, 0.0, 1.0);
+    v("threads", s.threads, 1, 256);
+    v("deskew", s.deskew);
+    v("deskew_passes", s.deskew_passes, 1, 10);
+  }
+
   double resolved_voxel_size() const { return voxel_size > 0 ? voxel_size : max_range / 100.0; }
   void validate(const std::string& where) const;
   static OdometryConfig from_json(ConfigReader& r);  // reads its keys; errors name r.where()
-  Json to_json() const;
+  Json to_json() const { return config::write_fields(*this); }
 };
 
 }  // namespace sgnlf::odometry

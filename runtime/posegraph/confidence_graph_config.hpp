@@ -3,10 +3,12 @@
 // the poses given to the builder.
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 
 namespace sgnlf::posegraph {
 
@@ -53,13 +55,39 @@ struct ConfidenceGraphConfig {
   uint64_t seed = 1;               // match-point subsample and α pair draws
   int threads = 1;                 // pairs matched in parallel; results identical for any value
 
+  // The keys (core/config_fields.hpp) and the ranges that are closed intervals; the other rules
+  // (offsets ≥ 1 and distinct, distances finite and > 0 or ≥ 0, κ finite) are validate()'s.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    constexpr int kInt = std::numeric_limits<int>::max();
+    v("sequential_offsets", s.sequential_offsets);
+    v("candidate_distance_m", s.candidate_distance_m);
+    v("min_index_gap", s.min_index_gap, 0, kInt);
+    v("match_points", s.match_points);  // 0: all
+    v("coarse_voxel_m", s.coarse_voxel_m);
+    v("coarse_radius_m", s.coarse_radius_m);
+    v("fine_radius_m", s.fine_radius_m);
+    v("coarse_to_fine", s.coarse_to_fine);
+    v("min_matches", s.min_matches, 2, kInt);  // α needs a pair of matches
+    v("min_match_fraction", s.min_match_fraction, 0.0, 1.0);
+    v("kappa", s.kappa);
+    v("compatibility_test", s.compatibility_test);
+    v("sigma_d_m", s.sigma_d_m);
+    v("max_alpha_pairs", s.max_alpha_pairs, size_t(1), std::numeric_limits<size_t>::max());
+    v("alpha_weights", s.alpha_weights);
+    v("reevaluate_every", s.reevaluate_every, 1, kInt);
+    v("edge_max_distance_m", s.edge_max_distance_m, config::omit_when(0.0));  // ≥ 0; 0: off
+    v("seed", s.seed);
+    v("threads", s.threads, 1, 256);
+  }
+
   // Throws sgnlf::ConfigError naming the key and its value.
   void validate() const;
   // Reads the keys present (defaults otherwise) and validates; the caller calls r.finish().
   static ConfidenceGraphConfig from_json(ConfigReader& r);
   // The whole object `j` (unknown keys rejected; errors name `where`).
   static ConfidenceGraphConfig from_json(const Json& j, const std::string& where);
-  Json to_json() const;
+  Json to_json() const { return config::write_fields(*this); }
 };
 
 }  // namespace sgnlf::posegraph

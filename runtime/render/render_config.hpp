@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 
 namespace sgnlf::render {
 
@@ -14,6 +15,14 @@ struct RangeLossWeights {
   float ret = 1.0f;         // α_r: MSE of return probability vs the GT label
   float intensity = 10.0f;  // α_i: MSE of intensity, masked
   float grad = 100.0f;      // range-image gradient loss on patches (LiDAR-NeRF)
+  // The keys and ranges (core/config_fields.hpp); errors name "<render>.weights".
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("depth", s.depth, 0.0f, 1e9f);
+    v("ret", s.ret, 0.0f, 1e9f);
+    v("intensity", s.intensity, 0.0f, 1e9f);
+    v("grad", s.grad, 0.0f, 1e9f);
+  }
 };
 
 struct RenderConfig {
@@ -60,6 +69,30 @@ struct RenderConfig {
   bool grad_l1 = true;        // L1 of the difference error; false: squared error
   float grad_clip_m = 0.01f;  // pairs whose GT depth step is ≥ this are ignored
 
+  // The keys and ranges (core/config_fields.hpp), in the order validate() names the first
+  // value outside its range. Keys added after results were committed are written only when
+  // not their old value, so configs without them keep their JSON and hash. coarse_waves'
+  // range [1, n_samples] and the rules between keys are validate()'s.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("near_m", s.near_m, 0.0f, 1e4f);
+    v("far_m", s.far_m, 0.0f, 1e5f);
+    v("n_samples", s.n_samples, 1, 1 << 16);
+    v("n_importance", s.n_importance, 0, 1 << 16);
+    v("jitter", s.jitter);
+    v("eval_samples", s.eval_samples, 0, 1 << 16, config::omit_when(0));
+    v("eval_importance", s.eval_importance, -1, 1 << 16, config::omit_when(-1));
+    v("eval_depth", s.eval_depth, config::omit_when<std::string>("expected"));
+    v("stop_transmittance", s.stop_transmittance, 0.0f, 0.5f, config::omit_when(0.0f));
+    v("coarse_waves", s.coarse_waves, config::omit_when(1));
+    v("head_weight_threshold", s.head_weight_threshold, 0.0f, 0.1f, config::omit_when(0.0f));
+    v.section("weights", s.weights);
+    v("patch_rows", s.patch_rows, 1, 256);
+    v("patch_cols", s.patch_cols, 1, 256);
+    v("grad_l1", s.grad_l1);
+    v("grad_clip_m", s.grad_clip_m, 0.0f, 1e5f);
+  }
+
   // Dataset presets of the loss weights: "kitti360" (1000, 1, 10), "nuscenes" (1000, 4.5, 100).
   static RenderConfig preset(const std::string& dataset);
   void validate(const std::string& where = "render") const;
@@ -69,7 +102,7 @@ struct RenderConfig {
   // eval_samples / eval_importance / eval_depth / stop_transmittance / coarse_waves /
   // head_weight_threshold appear only when set, so configs without them keep their
   // JSON and hash (run folders and baselines written before they existed still load).
-  Json to_json() const;
+  Json to_json() const { return config::write_fields(*this); }
   // Uniform bin width in normalised units: also the last sample's δ (see kernels/render/volume.cl).
   float bin_width(float scene_scale) const {
     return (far_m - near_m) * scene_scale / float(n_samples);

@@ -12,19 +12,17 @@ double FusionRamp::lambda(int iteration) const {
 }
 
 void FusionRamp::validate() const {
-  check_range("spectral fusion", "start", start, 0, 100000000);
+  config::check_fields(*this, "spectral fusion");
   check_range("spectral fusion", "end", end, start, 100000000);
 }
 
 FusionRamp FusionRamp::from_json(const Json& j, const std::string& where) {
   FusionRamp f;
   ConfigReader r(j, where);
-  r.get("start", f.start).get("end", f.end);
+  config::read_fields_here(r, f);
   r.finish();
   f.validate();
   return f;
 }
-
-Json FusionRamp::to_json() const { return Json{{"start", start}, {"end", end}}; }
 
 }  // namespace sgnlf::spectral

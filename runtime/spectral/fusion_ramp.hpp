@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 
 namespace sgnlf::spectral {
 
@@ -12,9 +13,15 @@ struct FusionRamp {
   int start = 0;     // iteration where λ starts to grow from 0
   int end = 2000;    // iteration where λ reaches 1 (end == start: a step)
   double lambda(int iteration) const;
+  // The keys and ranges (core/config_fields.hpp); end's range [start, 1e8] is validate()'s.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("start", s.start, 0, 100000000);
+    v("end", s.end);
+  }
   void validate() const;
   static FusionRamp from_json(const Json& j, const std::string& where);
-  Json to_json() const;
+  Json to_json() const { return config::write_fields(*this); }
 };
 
 }  // namespace sgnlf::spectral

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 #include "field/activation.hpp"
 
 namespace sgnlf::spectral {
@@ -18,9 +19,19 @@ struct PsiSpec {
   // (the frequency content of the first features, SIREN's ω0).
   double bias_init = 1.0;
   double first_layer_scale = 1.0;
+  // The keys and ranges (core/config_fields.hpp); that the activation is smooth is validate()'s.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("k", s.k, 1, 128);
+    v("width", s.width, 1, 128);
+    v("hidden", s.hidden, 1, 8);
+    v("activation", s.activation, config::choices(field::kActivationNames));
+    v("bias_init", s.bias_init, 0.0, 100.0);
+    v("first_layer_scale", s.first_layer_scale, 1e-3, 1e3);
+  }
   void validate() const;
   static PsiSpec from_json(const Json& j, const std::string& where);
-  Json to_json() const;
+  Json to_json() const { return config::write_fields(*this); }
 };
 
 }  // namespace sgnlf::spectral

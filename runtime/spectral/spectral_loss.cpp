@@ -8,31 +8,15 @@
 
 namespace sgnlf::spectral {
 
-void SpectralLossConfig::validate() const {
-  const std::string w = "spectral loss";
-  check_range(w, "beta", beta, 0.0, 1e6);
-  check_range(w, "lambda_norm", lambda_norm, 0.0, 1e6);
-  check_range(w, "lambda_ortho", lambda_ortho, 0.0, 1e6);
-  check_range(w, "h", h, 1e-5, 0.1);
-}
+void SpectralLossConfig::validate() const { config::check_fields(*this, "spectral loss"); }
 
 SpectralLossConfig SpectralLossConfig::from_json(const Json& j, const std::string& where) {
   SpectralLossConfig c;
   ConfigReader r(j, where);
-  std::string form = "ky_fan";
-  r.get("form", form).get("beta", c.beta).get("lambda_norm", c.lambda_norm);
-  r.get("lambda_ortho", c.lambda_ortho).get("h", c.h);
+  config::read_fields_here(r, c);  // form: ky_fan or per_mode
   r.finish();
-  if (form == "ky_fan") c.form = SpectralLossForm::ky_fan;
-  else if (form == "per_mode") c.form = SpectralLossForm::per_mode;
-  else throw ConfigError(where + ": key 'form' has invalid value \"" + form + "\" (ky_fan, per_mode)");
   c.validate();
   return c;
-}
-
-Json SpectralLossConfig::to_json() const {
-  return Json{{"form", form == SpectralLossForm::ky_fan ? "ky_fan" : "per_mode"},
-              {"beta", beta}, {"lambda_norm", lambda_norm}, {"lambda_ortho", lambda_ortho}, {"h", h}};
 }
 
 namespace {

@@ -16,10 +16,13 @@
 #include <vector>
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 
 namespace sgnlf::spectral {
 
 enum class SpectralLossForm { ky_fan, per_mode };
+inline constexpr std::pair<SpectralLossForm, const char*> kSpectralLossForms[] = {
+    {SpectralLossForm::ky_fan, "ky_fan"}, {SpectralLossForm::per_mode, "per_mode"}};
 
 struct SpectralLossConfig {
   SpectralLossForm form = SpectralLossForm::ky_fan;
@@ -27,9 +30,18 @@ struct SpectralLossConfig {
   double lambda_norm = 1.0;    // per_mode normalisation weight
   double lambda_ortho = 1.0;   // per_mode orthogonality weight
   double h = 5e-3;             // tangential central-difference step (unit-box coordinates)
+  // The keys and ranges (core/config_fields.hpp).
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("form", s.form, config::choices(kSpectralLossForms));
+    v("beta", s.beta, 0.0, 1e6);
+    v("lambda_norm", s.lambda_norm, 0.0, 1e6);
+    v("lambda_ortho", s.lambda_ortho, 0.0, 1e6);
+    v("h", s.h, 1e-5, 0.1);
+  }
   void validate() const;
   static SpectralLossConfig from_json(const Json& j, const std::string& where);
-  Json to_json() const;
+  Json to_json() const { return config::write_fields(*this); }
 };
 
 // The five evaluation blocks, each n rows of the batched Ψ input/output.

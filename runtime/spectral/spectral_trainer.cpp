@@ -7,39 +7,6 @@
 
 namespace sgnlf::spectral {
 
-void SpectralTrainConfig::validate() const {
-  psi.validate();
-  loss.validate();
-  check_range("spectral train", "steps", steps, 0, 10000000);
-  check_range("spectral train", "batch", batch, 16, 1 << 22);
-  check_range("spectral train", "lr", lr, 0.0, 1.0);
-  check_range("spectral train", "lr_final", lr_final, 0.0, 1.0);
-}
-
-SpectralTrainConfig SpectralTrainConfig::from_json(const Json& j, const std::string& where) {
-  SpectralTrainConfig c;
-  ConfigReader r(j, where);
-  if (r.has("psi")) {
-    Json sub;
-    r.get("psi", sub);
-    c.psi = PsiSpec::from_json(sub, where + ".psi");
-  }
-  if (r.has("loss")) {
-    Json sub;
-    r.get("loss", sub);
-    c.loss = SpectralLossConfig::from_json(sub, where + ".loss");
-  }
-  r.get("steps", c.steps).get("batch", c.batch).get("lr", c.lr).get("lr_final", c.lr_final).get("seed", c.seed);
-  r.finish();
-  c.validate();
-  return c;
-}
-
-Json SpectralTrainConfig::to_json() const {
-  return Json{{"psi", psi.to_json()}, {"loss", loss.to_json()}, {"steps", steps}, {"batch", batch},
-              {"lr", lr}, {"lr_final", lr_final}, {"seed", seed}};
-}
-
 SpectralTrainer::SpectralTrainer(cl::Runtime& rt, const SpectralTrainConfig& cfg)
     : rt_(rt),
       cfg_((cfg.validate(), cfg)),

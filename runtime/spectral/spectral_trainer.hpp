@@ -9,21 +9,9 @@
 #include "field/adam.hpp"
 #include "spectral/psi.hpp"
 #include "spectral/spectral_objective.hpp"
+#include "spectral/spectral_train_config.hpp"
 
 namespace sgnlf::spectral {
-
-struct SpectralTrainConfig {
-  PsiSpec psi;
-  SpectralLossConfig loss;
-  int steps = 1500;
-  int batch = 2048;        // surface samples per step (×5 evaluations)
-  double lr = 1e-2;
-  double lr_final = 1e-2;  // final lr as a fraction of lr (cosine decay)
-  uint64_t seed = 1;
-  void validate() const;
-  static SpectralTrainConfig from_json(const Json& j, const std::string& where);
-  Json to_json() const;
-};
 
 // Draws `n` surface samples (weights summing to 1).
 using SurfaceSampler = std::function<std::vector<SurfacePoint>(Rng& rng, size_t n)>;

@@ -3,8 +3,12 @@
 #include <cstdint>
 #include <fstream>
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 
 using namespace sgnlf;
 
@@ -102,4 +106,81 @@ TEST_CASE("integers out of the field's range are refused, not narrowed", "[confi
   CHECK_THROWS_AS(read(Json(1.5), sz), ConfigError);
   read(Json(300), sz);  // a signed JSON integer into an unsigned field
   CHECK(sz == 300);
+}
+
+TEST_CASE("lists are read entry by entry as strictly as single values", "[config]") {
+  auto read = [](const Json& j, auto& out) {
+    const Json doc{{"v", j}};
+    ConfigReader r(doc, "list.json");
+    r.get("v", out);
+  };
+  std::vector<int> ints;
+  read(Json{1, 2, -3}, ints);
+  CHECK(ints == std::vector<int>{1, 2, -3});
+  CHECK_THROWS_WITH(read(Json{32, 64.5, 128}, ints), Catch::Contains("'v'") && Catch::Contains("64.5"));
+  CHECK_THROWS_AS(read(Json{1, true}, ints), ConfigError);
+  CHECK_THROWS_AS(read(Json{1, "2"}, ints), ConfigError);
+  CHECK_THROWS_AS(read(Json{4294967296LL}, ints), ConfigError);
+  CHECK_THROWS_AS(read(Json(3), ints), ConfigError);
+  CHECK(ints == std::vector<int>{1, 2, -3});  // a refused list leaves the field as it was
+  std::vector<double> reals;
+  read(Json{1, 2.5}, reals);
+  CHECK(reals == std::vector<double>{1.0, 2.5});
+  std::vector<std::string> names;
+  CHECK_THROWS_AS(read(Json{"a", 1}, names), ConfigError);
+}
+
+namespace {
+enum class Shape { round, square };
+constexpr std::pair<Shape, const char*> kShapes[] = {{Shape::round, "round"}, {Shape::square, "square"}};
+struct Inner {
+  int n = 2;
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("n", s.n, 1, 9);
+  }
+  static Inner from_json(const Json& j, const std::string& where) {
+    Inner c;
+    ConfigReader r(j, where);
+    config::read_fields_here(r, c);
+    r.finish();
+    return c;
+  }
+  Json to_json() const { return config::write_fields(*this); }
+};
+struct Outer {
+  Shape shape = Shape::round;
+  Inner inner;
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("shape", s.shape, config::choices(kShapes));
+    v.object("inner", s.inner);
+  }
+};
+}  // namespace
+
+TEST_CASE("field lists: an enum is its value's name; a nested config's keys are described",
+          "[config]") {
+  const Json j{{"shape", "square"}, {"inner", {{"n", 3}}}};
+  ConfigReader r(j, "shapes.json");
+  Outer o;
+  config::read_fields_here(r, o);
+  r.finish();
+  CHECK(o.shape == Shape::square);
+  CHECK(o.inner.n == 3);
+  CHECK(config::write_fields(o) == j);
+  const Json bad{{"shape", "oval"}};
+  ConfigReader rb(bad, "shapes.json");
+  CHECK_THROWS_WITH(config::read_fields_here(rb, o),
+                    Catch::Contains("shapes.json") && Catch::Contains("'shape'") &&
+                        Catch::Contains("oval") && Catch::Contains("round, square"));
+  const Json wrong{{"shape", 1}};
+  ConfigReader rw(wrong, "shapes.json");
+  CHECK_THROWS_WITH(config::read_fields_here(rw, o), Catch::Contains("'shape'"));
+  const Json schema = config::describe_fields<Outer>();
+  CHECK(schema["shape"]["type"] == "string");
+  CHECK(schema["shape"]["default"] == "round");
+  CHECK(schema["shape"]["one_of"] == Json{"round", "square"});
+  CHECK(schema["inner"]["type"] == "object");
+  CHECK(schema["inner"]["fields"]["n"]["max"] == 9);
 }

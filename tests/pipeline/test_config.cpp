@@ -212,3 +212,28 @@ TEST_CASE("learning rate decays exponentially to final_factor", "[pipeline][conf
   CHECK(o.lr_at(500, 1000) == Approx(0.01 * std::sqrt(0.1)));
   CHECK(o.lr_at(1000, 1000) == Approx(0.001));
 }
+
+TEST_CASE("the schema describes render, the confidence graph and the nested configs",
+          "[pipeline][config]") {
+  const Json schema = train_config_schema();
+  const Json written = train_config_to_json(resolve_config("sg-nlf", "smoke"));
+  CHECK(schema["render"]["n_samples"]["min"] == 1);
+  CHECK(schema["render"]["eval_depth"]["written"] == "only when not the default");
+  CHECK(schema["render"]["weights"]["grad"]["type"] == "number");
+  CHECK(schema["pose_graph"]["kappa"]["default"] == posegraph::ConfidenceGraphConfig{}.kappa);
+  CHECK(schema["pose_graph"]["threads"]["max"] == 256);
+  CHECK(schema["pose_graph"]["start_epoch"]["min"] == 1);
+  CHECK(schema["spectral"]["psi"]["fields"]["activation"]["one_of"].size() == 5);
+  CHECK(schema["spectral"]["loss"]["fields"]["form"]["default"] == "ky_fan");
+  CHECK(schema["consistency"]["discriminator"]["fields"]["scales"]["max"] == 3);
+  // Every key written in these sections is described.
+  for (const char* section : {"render", "pose_graph"})
+    for (const auto& field : written[section].items()) {
+      CAPTURE(section, field.key());
+      CHECK(schema[section].contains(field.key()));
+    }
+  for (const auto& field : written["render"]["weights"].items()) {
+    CAPTURE(field.key());
+    CHECK(schema["render"]["weights"].contains(field.key()));
+  }
+}

@@ -97,11 +97,14 @@ Json train_config_to_json(const TrainConfig& c) {
 }
 
 Json train_config_schema() {
+  Json pose_graph = config::describe_fields<posegraph::ConfidenceGraphConfig>();
+  pose_graph.update(config::describe_fields<PoseGraphConfig>());  // one object, as written
   Json j{{"field", config::describe_fields<FieldSizes>()},
+         {"render", config::describe_fields<render::RenderConfig>()},
          {"optim", config::describe_fields<OptimConfig>()},
          {"schedule", config::describe_fields<ScheduleConfig>()},
          {"spectral", config::describe_fields<SpectralFieldConfig>()},
-         {"pose_graph", config::describe_fields<PoseGraphConfig>()},
+         {"pose_graph", pose_graph},
          {"consistency", config::describe_fields<ConsistencyConfig>()}};
   j.update(config::describe_fields<PoseFreeConfig>());  // poses, pose_optim, ..., geometric
   return j;

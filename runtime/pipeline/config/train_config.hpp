@@ -120,10 +120,12 @@ struct TrainConfig {
 // Reads a config (all keys optional; defaults = the struct defaults) and validates it.
 TrainConfig train_config_from_json(const Json& j, const std::string& where);
 Json train_config_to_json(const TrainConfig& c);
-// The schema of the training config's sections described by field lists (field, optim,
-// schedule, the pose-free sections, spectral, consistency, and pose_graph's own keys): per key
-// its type, default and range (core/config_fields.hpp), from the same lists as the reader,
-// writer and validate(); a top-level key (coarse_to_fine) is described in place.
+// The schema of the training config's sections, each described by its field list (field,
+// render, optim, schedule, the pose-free sections, spectral, consistency, and pose_graph with
+// the confidence graph's keys that sit in it): per key its type, default and range
+// (core/config_fields.hpp), from the same lists as the reader, writer and validate(); a nested
+// config (spectral's psi, loss, fusion; consistency's discriminator) with its keys under
+// "fields"; a top-level key (coarse_to_fine) is described in place.
 Json train_config_schema();
 // Applies `overrides` (nested objects merged key by key) to `base` and re-reads strictly.
 Json merge_config_json(Json base, const Json& overrides);
