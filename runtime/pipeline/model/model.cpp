@@ -83,15 +83,15 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
   off_density_ = layout_.add("density_mlp", density_.n_params()).offset;
   off_head_ = layout_.add("head_mlp", head_.n_params()).offset;
   adam_ = std::make_unique<field::Adam>(rt, layout_.total(), adam_config(c.optim));
-  col_get_ = rt.kernel("pipeline/glue.cl", "pipeline_column_get");
-  col_set_ = rt.kernel("pipeline/glue.cl", "pipeline_column_set");
-  clamp_ = rt.kernel("pipeline/glue.cl", "pipeline_clamp_fwd");
-  fine_points_ = rt.kernel("pipeline/glue.cl", "pipeline_fine_points");
-  merge_ = rt.kernel("pipeline/glue.cl", "pipeline_merge_encodings");
-  live_count_ = rt.kernel("pipeline/glue.cl", "pipeline_live_count");
-  compact_rows_ = rt.kernel("pipeline/glue.cl", "pipeline_compact_rows");
-  expand_ = rt.kernel("pipeline/glue.cl", "pipeline_expand_outputs");
-  row_ray_k_ = rt.kernel("pipeline/glue.cl", "pipeline_row_ray");
+  col_get_ = rt.kernel("field/columns.cl", "field_column_get");
+  col_set_ = rt.kernel("field/columns.cl", "field_column_set");
+  clamp_ = rt.kernel("render/sample.cl", "render_clamp_points");
+  fine_points_ = rt.kernel("pipeline/encoding_reuse.cl", "pipeline_fine_points");
+  merge_ = rt.kernel("pipeline/encoding_reuse.cl", "pipeline_merge_encodings");
+  live_count_ = rt.kernel("pipeline/sample_compaction.cl", "pipeline_live_count");
+  compact_rows_ = rt.kernel("pipeline/sample_compaction.cl", "pipeline_compact_rows");
+  expand_ = rt.kernel("pipeline/sample_compaction.cl", "pipeline_expand_outputs");
+  row_ray_k_ = rt.kernel("pipeline/sample_compaction.cl", "pipeline_row_ray");
   // Coarse waves and the head band only with early termination.
   const auto& rc = c.render;
   waves_ = rc.stop_transmittance > 0.0f ? std::max(1, std::min(rc.coarse_waves, rc.n_samples)) : 1;
@@ -125,19 +125,19 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
     band_begin_ = floats(rt, R), band_count_ = floats(rt, R), band_offset_ = floats(rt, R + 1);
     band_row_ray_ = floats(rt, N), dens_b_ = floats(rt, N * kDensStride);
     head_b_ = floats(rt, N * 2), g_head_b_ = floats(rt, N * 2), g_dens_b_ = floats(rt, N * kDensStride);
-    band_k_ = rt.kernel("pipeline/glue.cl", "pipeline_head_band");
-    band_gather_ = rt.kernel("pipeline/glue.cl", "pipeline_band_gather");
-    band_scatter_ = rt.kernel("pipeline/glue.cl", "pipeline_band_scatter_live");
-    band_expand_ = rt.kernel("pipeline/glue.cl", "pipeline_band_expand_head");
+    band_k_ = rt.kernel("pipeline/head_band.cl", "pipeline_head_band");
+    band_gather_ = rt.kernel("pipeline/head_band.cl", "pipeline_band_gather");
+    band_scatter_ = rt.kernel("pipeline/head_band.cl", "pipeline_band_scatter_live");
+    band_expand_ = rt.kernel("pipeline/head_band.cl", "pipeline_band_expand_head");
   }
   if (waves_ > 1) {
     const size_t wmax = (S + size_t(waves_) - 1) / size_t(waves_);  // the widest wave
     alive_ = floats(rt, R), done_ = floats(rt, R);
     x_w_ = floats(rt, R * wmax * 3), enc_w_ = floats(rt, R * wmax * lf);
-    fill_ = rt.kernel("pipeline/glue.cl", "pipeline_fill");
-    wave_gather_ = rt.kernel("pipeline/glue.cl", "pipeline_wave_gather");
-    wave_scatter_ = rt.kernel("pipeline/glue.cl", "pipeline_wave_scatter");
-    wave_done_ = rt.kernel("pipeline/glue.cl", "pipeline_wave_done");
+    fill_ = rt.kernel("pipeline/coarse_waves.cl", "pipeline_fill");
+    wave_gather_ = rt.kernel("pipeline/coarse_waves.cl", "pipeline_wave_gather");
+    wave_scatter_ = rt.kernel("pipeline/coarse_waves.cl", "pipeline_wave_scatter");
+    wave_done_ = rt.kernel("pipeline/coarse_waves.cl", "pipeline_wave_done");
   }
   loss_buf_.fill_zero();
 }
@@ -283,7 +283,7 @@ void LidarNerfModel::backward_external(const std::vector<float>& grad_out, bool 
   if (!grad_ext_) {
     grad_ext_ = floats(rt_, layout_.total());
     grad_ext_.fill_zero();  // alignment gaps between the slices stay zero
-    add_k_ = rt_.kernel("pipeline/glue.cl", "pipeline_add_inplace");
+    add_k_ = rt_.kernel("field/accumulate.cl", "field_accumulate");
   }
   grad_out_.write_vec(grad_out);
   backward_chain(fwd_rays_, fwd_samples_, grad_ext_, ray_grads);
