@@ -131,3 +131,12 @@ __kernel void render_sample_importance(const int n_rays, const int n_coarse, con
     render_store_point(o, d, r, t, obase + out, x_out);
   }
 }
+
+// The clamp of sample positions to the normalised scene box [-bound, bound]^3 (LiDAR-NeRF /
+// torch-ngp clamp xyzs to the aabb), applied by pipeline::LidarNerfModel to every sample set:
+// x[k] = clamp(x[k], -bound, bound) for k < n (n = 3 x points), in place.
+__kernel void render_clamp_points(const int n, const float bound, __global float* x) {
+  const int k = get_global_id(0);
+  if (k >= n) return;
+  x[k] = clamp(x[k], -bound, bound);
+}

@@ -1,7 +1,9 @@
 // Ray sampling kernels vs the host reference: uniform stratified (jitter, midpoints,
-// determinism) and importance sampling (inverse CDF, merged sorted).
+// determinism), importance sampling (inverse CDF, merged sorted) and the clamp of sample
+// positions to the scene box.
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "render/ray_sampler.hpp"
 #include "render/volume_renderer.hpp"
@@ -177,4 +179,22 @@ TEST_CASE("Coarse weights of an opaque wall draw the importance samples to the w
   }
   // 32 fine samples per ray, nearly all near the wall, plus 1-4 coarse ones there.
   CHECK(double(near_wall) / (n_rays * 32) > 0.95);
+}
+
+TEST_CASE("render_clamp_points matches the host reference", "[render][sample]") {
+  auto& rt = test::runtime();
+  const int n = 3 * 777;
+  std::vector<float> x(n);
+  Rng rng(6);
+  for (auto& v : x) v = rng.uniform(-3, 3);
+  auto bx = cl::Buffer::from(rt, x);
+  auto k = rt.kernel("render/sample.cl", "render_clamp_points");
+  k.set_args(n, 1.0f, bx).launch({cl::round_up(n, 64)}, {64}).wait();
+  const auto y = bx.read_vec<float>(n);
+  int clamped = 0;
+  for (int i = 0; i < n; ++i) {
+    CHECK(y[i] == std::min(1.0f, std::max(-1.0f, x[i])));
+    clamped += std::fabs(x[i]) > 1.0f;
+  }
+  CHECK(clamped > 0);
 }

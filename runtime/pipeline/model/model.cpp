@@ -1,8 +1,10 @@
-// LidarNerfModel: composition of the field and render launchers into one training step
-// (method.md §0–1). Sample-major buffers hold max_rays × (n_samples + n_importance) samples.
+// LidarNerfModel: composition of the field and render launchers, and of the optional sampling
+// modes' launchers (encoding_reuse.hpp, sample_compaction.hpp, coarse_waves.hpp,
+// head_band.hpp), into one training step (method.md §0–1). Sample-major buffers hold
+// max_rays × (n_samples + n_importance) samples.
 #include "pipeline/model/model.hpp"
 
-#include "pipeline/model/model_constants.hpp"
+#include "pipeline/model/model_detail.hpp"
 
 #include "core/error.hpp"
 #include "field/hash_grid_encoder.hpp"
@@ -58,8 +60,6 @@ std::unique_ptr<field::Encoder> make_encoder(cl::Runtime& rt, const TrainConfig&
   return std::make_unique<field::HashGridEncoder>(rt, grid_config(c.field));
 }
 
-cl::Buffer floats(cl::Runtime& rt, size_t n) { return cl::Buffer(rt, std::max<size_t>(n, 1) * 4); }
-
 }  // namespace
 
 LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scene_scale,
@@ -83,18 +83,9 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
   off_density_ = layout_.add("density_mlp", density_.n_params()).offset;
   off_head_ = layout_.add("head_mlp", head_.n_params()).offset;
   adam_ = std::make_unique<field::Adam>(rt, layout_.total(), adam_config(c.optim));
-  col_get_ = rt.kernel("pipeline/glue.cl", "pipeline_column_get");
-  col_set_ = rt.kernel("pipeline/glue.cl", "pipeline_column_set");
-  clamp_ = rt.kernel("pipeline/glue.cl", "pipeline_clamp_fwd");
-  fine_points_ = rt.kernel("pipeline/glue.cl", "pipeline_fine_points");
-  merge_ = rt.kernel("pipeline/glue.cl", "pipeline_merge_encodings");
-  live_count_ = rt.kernel("pipeline/glue.cl", "pipeline_live_count");
-  compact_rows_ = rt.kernel("pipeline/glue.cl", "pipeline_compact_rows");
-  expand_ = rt.kernel("pipeline/glue.cl", "pipeline_expand_outputs");
-  row_ray_k_ = rt.kernel("pipeline/glue.cl", "pipeline_row_ray");
-  // Coarse waves and the head band only with early termination.
-  const auto& rc = c.render;
-  waves_ = rc.stop_transmittance > 0.0f ? std::max(1, std::min(rc.coarse_waves, rc.n_samples)) : 1;
+  col_get_ = rt.kernel("field/columns.cl", "field_column_get");
+  col_set_ = rt.kernel("field/columns.cl", "field_column_set");
+  clamp_ = rt.kernel("render/sample.cl", "render_clamp_points");
 
   const size_t R = size_t(max_rays), S = size_t(c.render.n_samples),
                M = S + size_t(c.render.n_importance), N = R * M;
@@ -105,8 +96,7 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
   grad_.fill_zero();
   o_ = floats(rt, R * 3), d_ = floats(rt, R * 3), target_ = floats(rt, R * 3);
   t_c_ = floats(rt, R * S), x_c_ = floats(rt, R * S * 3), w_c_ = floats(rt, R * S);
-  enc_c_ = floats(rt, R * S * lf), src_ = floats(rt, N);  // src_: int32 per merged sample
-  x_f_ = floats(rt, R * (M - S) * 3), enc_f_ = floats(rt, R * (M - S) * lf);
+  enc_c_ = floats(rt, R * S * lf);
   t_ = floats(rt, N), x_ = floats(rt, N * 3), enc_ = floats(rt, N * lf);
   dens_ = floats(rt, N * kDensStride), h0_ = floats(rt, N);
   dir_enc_ = floats(rt, R * enc_dim), head_out_ = floats(rt, N * 2);
@@ -115,29 +105,20 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
   g_h0_ = floats(rt, N), g_head_ = floats(rt, N * 2);
   g_dens_ = floats(rt, N * kDensStride), g_enc_ = floats(rt, N * lf);
   g_dir_enc_ = floats(rt, R * enc_dim);
-  if (c.render.stop_transmittance > 0.0f) {
-    count_ = floats(rt, R), offset_ = floats(rt, R + 1), row_ray_ = floats(rt, N);
-    x_l_ = floats(rt, N * 3), enc_l_ = floats(rt, N * lf), head_l_ = floats(rt, N * 2);
-    g_h0_l_ = floats(rt, N), g_head_l_ = floats(rt, N * 2);
-  }
-  band_thr_ = rc.stop_transmittance > 0.0f ? rc.head_weight_threshold : 0.0f;
-  if (band_thr_ > 0.0f) {
-    band_begin_ = floats(rt, R), band_count_ = floats(rt, R), band_offset_ = floats(rt, R + 1);
-    band_row_ray_ = floats(rt, N), dens_b_ = floats(rt, N * kDensStride);
-    head_b_ = floats(rt, N * 2), g_head_b_ = floats(rt, N * 2), g_dens_b_ = floats(rt, N * kDensStride);
-    band_k_ = rt.kernel("pipeline/glue.cl", "pipeline_head_band");
-    band_gather_ = rt.kernel("pipeline/glue.cl", "pipeline_band_gather");
-    band_scatter_ = rt.kernel("pipeline/glue.cl", "pipeline_band_scatter_live");
-    band_expand_ = rt.kernel("pipeline/glue.cl", "pipeline_band_expand_head");
-  }
-  if (waves_ > 1) {
-    const size_t wmax = (S + size_t(waves_) - 1) / size_t(waves_);  // the widest wave
-    alive_ = floats(rt, R), done_ = floats(rt, R);
-    x_w_ = floats(rt, R * wmax * 3), enc_w_ = floats(rt, R * wmax * lf);
-    fill_ = rt.kernel("pipeline/glue.cl", "pipeline_fill");
-    wave_gather_ = rt.kernel("pipeline/glue.cl", "pipeline_wave_gather");
-    wave_scatter_ = rt.kernel("pipeline/glue.cl", "pipeline_wave_scatter");
-    wave_done_ = rt.kernel("pipeline/glue.cl", "pipeline_wave_done");
+  // The optional sampling modes; coarse waves and the head band only with early termination.
+  const auto& rc = c.render;
+  const int width = encoder_->width();
+  if (rc.n_importance > 0)
+    reuse_ = std::make_unique<EncodingReuse>(rt, max_rays, rc.n_samples, rc.n_importance, width);
+  if (rc.stop_transmittance > 0.0f) {
+    live_ = std::make_unique<SampleCompaction>(rt, max_rays, int(M), rc.n_samples, width,
+                                                rc.stop_transmittance);
+    const int waves = std::max(1, std::min(rc.coarse_waves, rc.n_samples));
+    if (waves > 1)
+      waves_ = std::make_unique<CoarseWaves>(rt, max_rays, rc.n_samples, waves, width,
+                                             rc.stop_transmittance);
+    if (rc.head_weight_threshold > 0.0f)
+      band_ = std::make_unique<HeadBand>(rt, max_rays, int(M), rc.head_weight_threshold);
   }
   loss_buf_.fill_zero();
 }
@@ -154,21 +135,21 @@ void LidarNerfModel::init_params(uint64_t seed) {
 void LidarNerfModel::field_forward(int n_rays, int samples) {
   const int n = n_rays * samples;
   ray_count_ = n_rays;
-  // With early termination the field runs on the live rows only (enc_l_); the renderer always
+  // With early termination the field runs on the live rows only (live_); the renderer always
   // sees the full layout, dead samples at zero density.
   const int rows = compacted_ ? int(n_live_) : n;
   if (!encoded_ && !compacted_) encoder_->forward(params_, off_grid_, x_, n, enc_);
-  density_.forward(params_, off_density_, compacted_ ? enc_l_ : enc_, rows, dens_, density_ctx_);
+  density_.forward(params_, off_density_, compacted_ ? live_->encodings() : enc_, rows, dens_,
+                   density_ctx_);
   dirs_.forward(d_, n_rays, dir_enc_);
   banded_ = false;
-  if (compacted_ && band_thr_ > 0.0f) {
+  if (compacted_ && band_) {
     head_band(n_rays, samples);
   } else if (compacted_) {
-    const field::GroupIndex index{&row_ray_, &offset_, n_rays};
-    head_.forward(params_, off_head_, dens_, rows, head_l_, head_ctx_, &dir_enc_, 1, &index);
-    expand_.set_args(n_rays, samples, kDensStride, kDeadLogit, offset_, dens_, head_l_, h0_,
-                     head_out_);
-    expand_.launch({cl::round_up(size_t(n), 64)}, {64});
+    const field::GroupIndex index = live_->index(n_rays);
+    head_.forward(params_, off_head_, dens_, rows, live_->head_out(), head_ctx_, &dir_enc_, 1,
+                  &index);
+    live_->expand(n_rays, samples, dens_, h0_, head_out_);
   } else {
     col_get_.set_args(n, kDensStride, 0, dens_, h0_);
     col_get_.launch({cl::round_up(size_t(n), 64)}, {64});
@@ -215,25 +196,17 @@ void LidarNerfModel::backward_chain(int R, int M, cl::Buffer& grad, bool ray_gra
   const cl::Buffer *head_y = &head_out_, *g_head = &g_head_, *g_h0 = &g_h0_, *x = &x_;
   if (compacted_) {
     rows = int(n_live_);
-    const size_t global = cl::round_up(size_t(n), 64);
-    compact_rows_.set_args(R, M, 1, offset_, g_h0_, g_h0_l_);
-    compact_rows_.launch({global}, {64});
-    if (!banded_) {
-      compact_rows_.set_args(R, M, 2, offset_, g_head_, g_head_l_);
-      compact_rows_.launch({global}, {64});
-    }
-    head_y = &head_l_, g_head = &g_head_l_, g_h0 = &g_h0_l_, x = &x_l_;
+    live_->gather_gradients(R, M, g_h0_, banded_ ? nullptr : &g_head_);
+    head_y = &live_->head_out(), g_head = &live_->grad_head(), g_h0 = &live_->grad_h0();
+    x = &live_->positions();
   }
   if (banded_) {
     // The head ran on the band rows: its gradient goes into the band layout, then into the
     // live rows (zeros outside the band: the head outputs there are constants).
-    const size_t global = cl::round_up(size_t(n), 64);
-    band_gather_.set_args(R, M, 2, offset_, band_begin_, band_offset_, g_head_, g_head_b_, 0);
-    band_gather_.launch({global}, {64});
-    head_.backward(params_, off_head_, head_ctx_, head_b_, g_head_b_, grad, off_head_, &g_dens_b_,
-                   &g_dir_enc_);
-    band_scatter_.set_args(R, M, kDensStride, offset_, band_begin_, band_offset_, g_dens_b_, g_dens_);
-    band_scatter_.launch({global}, {64});
+    band_->gather_head_gradient(R, M, *live_, g_head_);
+    head_.backward(params_, off_head_, head_ctx_, band_->head_out(), band_->grad_head(), grad,
+                   off_head_, &band_->grad_density(), &g_dir_enc_);
+    band_->scatter_density_gradient(R, M, *live_, g_dens_);
   } else {
     head_.backward(params_, off_head_, head_ctx_, *head_y, *g_head, grad, off_head_, &g_dens_,
                    &g_dir_enc_);
@@ -253,8 +226,8 @@ void LidarNerfModel::backward_chain(int R, int M, cl::Buffer& grad, bool ray_gra
     g_dir_ = floats(rt_, size_t(max_rays_) * 3);
   }
   encoder_->backward(params_, off_grid_, *x, rows, g_enc_, grad, off_grid_, &g_x_);
-  ray_grad_.reduce_rows(compacted_ ? &offset_ : nullptr, t_, o_, d_, g_x_, R, M, kSceneBound,
-                        g_o_, g_d_);
+  ray_grad_.reduce_rows(compacted_ ? &live_->offsets() : nullptr, t_, o_, d_, g_x_, R, M,
+                        kSceneBound, g_o_, g_d_);
   dirs_.backward(d_, R, g_dir_enc_, g_dir_);
   grad_rays_ = R;
 }
@@ -283,7 +256,7 @@ void LidarNerfModel::backward_external(const std::vector<float>& grad_out, bool 
   if (!grad_ext_) {
     grad_ext_ = floats(rt_, layout_.total());
     grad_ext_.fill_zero();  // alignment gaps between the slices stay zero
-    add_k_ = rt_.kernel("pipeline/glue.cl", "pipeline_add_inplace");
+    add_k_ = rt_.kernel("field/accumulate.cl", "field_accumulate");
   }
   grad_out_.write_vec(grad_out);
   backward_chain(fwd_rays_, fwd_samples_, grad_ext_, ray_grads);

@@ -2,7 +2,12 @@
 // hash grid, or SG-NLF's hybrid [f_geo, λ·Ψ]) → density MLP (σ logit + 15 geometric features) → [geo, direction encoding] → LiDAR head → volume rendering, with
 // importance sampling from a density-only coarse pass, the range loss (+ the patch gradient
 // loss on patch batches), the backward chain and Adam over one flat parameter buffer.
-// A training step is enqueued as a whole; the only host sync is the caller's loss read-back.
+// A training step is enqueued as a whole; the only host sync is the caller's loss read-back
+// (and those of the optional sampling modes below).
+// The model composes the field and render launchers and, per optional sampling mode, a launcher
+// of its own that owns that mode's kernels and buffers: EncodingReuse (the coarse encodings in
+// the merged pass of importance sampling), SampleCompaction (early ray termination),
+// CoarseWaves (render.coarse_waves) and HeadBand (render.head_weight_threshold).
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -14,8 +19,12 @@
 #include "field/encoder.hpp"
 #include "field/mlp.hpp"
 #include "field/param_layout.hpp"
-#include "pipeline/model/ray_batch.hpp"
 #include "pipeline/config/train_config.hpp"
+#include "pipeline/model/coarse_waves.hpp"
+#include "pipeline/model/encoding_reuse.hpp"
+#include "pipeline/model/head_band.hpp"
+#include "pipeline/model/ray_batch.hpp"
+#include "pipeline/model/sample_compaction.hpp"
 #include "render/range_loss.hpp"
 #include "render/ray_gradient.hpp"
 #include "render/ray_sampler.hpp"
@@ -135,13 +144,13 @@ class LidarNerfModel {
   // Samples (uniform + importance) for n_rays rays from o_/d_; returns samples per ray.
   int sample(int n_rays, bool jitter, uint64_t seed, uint32_t step);
   // Early termination: counts the live merged samples per ray (one blocking read of n_rays
-  // ints), then gathers their positions and encodings into x_l_/enc_l_.
+  // ints), then gathers their positions and encodings (live_).
   void compact(int n_rays, int M);
   // The coarse pass in render.coarse_waves waves (see render_config.hpp): fills enc_c_, h0_
   // (σ logits, dead where not evaluated) and w_c_ for the n_rays × n_samples coarse samples.
   void coarse_waves(int n_rays);
   // The head on the band of samples with weight above render.head_weight_threshold (after the
-  // density on the live rows): fills h0_, weights_, head_out_ (full layout) and head_b_.
+  // density on the live rows): fills h0_, weights_ and head_out_ (full layout).
   void head_band(int n_rays, int M);
   // The backward chain of the last forward (R rays, M samples per ray) from grad_out_ into
   // `grad` (every slice overwritten), and the ray gradients when `ray_grads`.
@@ -160,42 +169,37 @@ class LidarNerfModel {
   render::VolumeRenderer renderer_;
   render::RangeLoss loss_;
   render::RayGradReducer ray_grad_;
-  cl::Kernel col_get_, col_set_, clamp_, fine_points_, merge_, live_count_, compact_rows_,
-      expand_, row_ray_k_;
+  // Glue between the field and render launchers: σ logit column of the density output ↔ h0
+  // (field/columns.cl), the clamp of sample positions to the scene box (render/sample.cl).
+  cl::Kernel col_get_, col_set_, clamp_;
   bool reuse_coarse_ = true, encoded_ = false, compacted_ = false;
   long n_live_ = 0, n_coarse_ = 0;
-  int waves_ = 1;
-  float band_thr_ = 0.0f;
   bool banded_ = false;  // the last field_forward ran the head on the band
   long n_band_ = 0;
   int ray_count_ = 0;
   size_t off_grid_, off_density_, off_head_;
   field::MlpContext density_ctx_, head_ctx_;
   cl::Buffer params_, grad_;
-  cl::Buffer o_, d_, target_, t_c_, x_c_, w_c_, enc_c_, src_, x_f_, enc_f_, t_, x_, enc_, dens_, h0_, dir_enc_,
-      head_out_, out_, weights_, grad_out_, terms_, loss_buf_, g_h0_, g_head_, g_dens_,
-      g_enc_, g_dir_enc_;
+  cl::Buffer o_, d_, target_, t_c_, x_c_, w_c_, enc_c_, t_, x_, enc_, dens_, h0_, dir_enc_,
+      head_out_, out_, weights_, grad_out_, terms_, loss_buf_, g_h0_, g_head_, g_dens_, g_enc_,
+      g_dir_enc_;
   // Pose-free methods: dL/dx per evaluated sample, per-ray dL/do, dL/dd, and the direction
   // encoding's share of dL/dd.
   cl::Buffer g_x_, g_o_, g_d_, g_dir_;
   int grad_rays_ = 0;
-  // External gradient (backward_external): its parameter gradient, pending until update().
+  // External gradient (backward_external): its parameter gradient, pending until update(),
+  // when field/accumulate.cl adds it to grad_.
   cl::Buffer grad_ext_;
   cl::Kernel add_k_;
   bool ext_pending_ = false;
   int fwd_rays_ = 0, fwd_samples_ = 0;  // the last forward_rays()
-  // Early termination: per-ray live counts and offsets (int32), each live row's ray, and the
-  // compact (live rows only) positions, encodings, head outputs and their gradients.
-  cl::Buffer count_, offset_, row_ray_, x_l_, enc_l_, head_l_, g_h0_l_, g_head_l_;
-  // Coarse waves: the alive rays of a wave, per-ray done flags (int32), the wave's positions
-  // and encodings.
-  cl::Buffer alive_, done_, x_w_, enc_w_;
-  cl::Kernel fill_, wave_gather_, wave_scatter_, wave_done_;
-  // Head band: per-ray begin / count / offsets (int32), each band row's ray, the band's
-  // density rows (head input), head outputs and their gradients.
-  cl::Buffer band_begin_, band_count_, band_offset_, band_row_ray_, dens_b_, head_b_, g_head_b_,
-      g_dens_b_;
-  cl::Kernel band_k_, band_gather_, band_scatter_, band_expand_;
+  // The optional sampling modes' launchers, null when the config does not use the mode:
+  // importance sampling (n_importance > 0), early termination (stop_transmittance > 0), and
+  // with it coarse waves (coarse_waves > 1) and the head band (head_weight_threshold > 0).
+  std::unique_ptr<EncodingReuse> reuse_;
+  std::unique_ptr<SampleCompaction> live_;
+  std::unique_ptr<CoarseWaves> waves_;
+  std::unique_ptr<HeadBand> band_;
 };
 
 }  // namespace sgnlf::pipeline
