@@ -1,9 +1,11 @@
-// `sgnlf bench --table T --scale S [--data-root DIR] [--real-root DIR] [--seed N] [--rows A,B]
-// [--sequences X,Y] --out DIR`: runs every row (or the chosen ones) of a table on every
-// sequence (or the chosen ones; runtime/harness), records the context and the device's
-// roofline, and writes <out>/results.json (results/schema.md) and <out>/table.md.
+// `sgnlf bench --table T --scale S [--data-root DIR] [--real-root DIR] [--seed N | --seeds
+// A,B,C] [--rows A,B] [--sequences X,Y] --out DIR`: runs every row (or the chosen ones) of a
+// table on every sequence (or the chosen ones) with every seed (runtime/harness), records the
+// context and the device's roofline, and writes <out>/results.json (results/schema.md) and
+// <out>/table.md.
 #include <iostream>
 #include <memory>
+#include <type_traits>
 
 #include "apps/command.hpp"
 #include "cl/runtime.hpp"
@@ -18,9 +20,15 @@
 namespace sgnlf::app {
 namespace {
 
-std::string join_list(const std::string& flag, const std::vector<std::string>& v) {
+template <class T>
+std::string join_list(const std::string& flag, const std::vector<T>& v) {
   std::string s;
-  for (const auto& x : v) s += (s.empty() ? flag : ",") + x;
+  for (const auto& x : v) {
+    std::string item;
+    if constexpr (std::is_same_v<T, std::string>) item = x;
+    else item = std::to_string(x);
+    s += (s.empty() ? flag : ",") + item;
+  }
   return s;
 }
 
@@ -55,7 +63,12 @@ const Registrar reg("bench", "Run a table of the paper (every row on every seque
                  "Folder of the real datasets that a synthetic scale's real sequences read "
                  "(default $SGNLF_SHARED_DIR/data/real, else ../shared/data/real); a sequence "
                  "whose folder is missing is skipped and recorded");
-  sub.add_option("--seed", o->seed, "Seed of every run")->capture_default_str();
+  auto* seed_opt = sub.add_option("--seed", o->seed, "Seed of every run")->capture_default_str();
+  auto* seeds_opt =
+      sub.add_option("--seeds", o->seeds,
+                     "Run every cell with each of these seeds (comma-separated): mean ± sample "
+                     "standard deviation over seeds, each seed's values kept")
+          ->delimiter(',');
   sub.add_option("--out", o->out_dir, "Output folder");
   sub.add_option("--device", o->device, "OpenCL device index or name (default $SGNLF_DEVICE)");
   sub.add_option("--rows", o->rows, "Only these rows (comma-separated methods; see --list)")
@@ -67,11 +80,19 @@ const Registrar reg("bench", "Run a table of the paper (every row on every seque
   return std::function<int()>([=] {
     if (*list) return list_tables();
     if (o->table.empty()) throw ConfigError("bench: --table is required (see --list)");
+    if (seed_opt->count() && seeds_opt->count())
+      throw ConfigError("bench: --seed and --seeds exclude each other (--seeds " +
+                        join_list("", o->seeds) + ", --seed " + std::to_string(o->seed) + ")");
+    if (seeds_opt->count() && o->seeds.empty())
+      throw ConfigError("bench: --seeds needs at least one seed");
     o->roofline = !*no_roofline;
+    const std::string seed_flag = o->seeds.empty() ? " --seed " + std::to_string(o->seed)
+                                                   : join_list(" --seeds ", o->seeds);
     o->command = "sgnlf bench --table " + o->table + " --scale " + o->scale +
                  (o->data_root.empty() ? "" : " --data-root " + o->data_root) +
                  (o->real_root.empty() ? "" : " --real-root " + o->real_root) +
-                 " --seed " + std::to_string(o->seed) + " --out " + o->out_dir +
+                 seed_flag +
+                 " --out " + o->out_dir +
                  (o->device.empty() ? "" : " --device " + o->device) +
                  (o->roofline ? "" : " --no-roofline") + join_list(" --rows ", o->rows) +
                  join_list(" --sequences ", o->sequences);
