@@ -2,7 +2,8 @@
 // A,B,C] [--rows A,B] [--sequences X,Y] --out DIR`: runs every row (or the chosen ones) of a
 // table on every sequence (or the chosen ones) with every seed (runtime/harness), records the
 // context and the device's roofline, and writes <out>/results.json (results/schema.md) and
-// <out>/table.md.
+// <out>/table.md. `--cells` lists the table's independent cells (row × sequence × seed);
+// `--cell K --out DIR` runs one and writes DIR/cell.json, for `sgnlf merge` (cmd_merge.cpp).
 #include <iostream>
 #include <memory>
 #include <type_traits>
@@ -10,6 +11,7 @@
 #include "apps/command.hpp"
 #include "cl/runtime.hpp"
 #include "core/log.hpp"
+#include "harness/cells.hpp"
 #include "harness/context.hpp"
 #include "harness/roofline.hpp"
 #include "harness/runner.hpp"
@@ -77,6 +79,13 @@ const Registrar reg("bench", "Run a table of the paper (every row on every seque
       ->delimiter(',');
   sub.add_flag("--no-roofline", *no_roofline, "Skip the roofline probe (~1-2 s)");
   sub.add_flag("--list", *list, "List the tables, rows and sequences");
+  auto cells = std::make_shared<bool>(false);
+  auto cell = std::make_shared<long>(-1);
+  sub.add_flag("--cells", *cells,
+               "List the table's independent cells (K, method, sequence, seed; tab-separated)");
+  auto* cell_opt = sub.add_option("--cell", *cell,
+                                  "Run only cell K (see --cells) and write <out>/cell.json "
+                                  "for sgnlf merge");
   return std::function<int()>([=] {
     if (*list) return list_tables();
     if (o->table.empty()) throw ConfigError("bench: --table is required (see --list)");
@@ -85,13 +94,23 @@ const Registrar reg("bench", "Run a table of the paper (every row on every seque
                         join_list("", o->seeds) + ", --seed " + std::to_string(o->seed) + ")");
     if (seeds_opt->count() && o->seeds.empty())
       throw ConfigError("bench: --seeds needs at least one seed");
+    if (*cells && cell_opt->count())
+      throw ConfigError("bench: --cells lists the cells, --cell K runs one: give one of them");
     o->roofline = !*no_roofline;
+    if (*cells) {  // --out is not needed to list them
+      if (o->out_dir.empty()) o->out_dir = ".";
+      const auto plan = harness::plan_table(*o, harness::default_hooks());
+      for (const auto& line : harness::cell_lines(plan)) std::cout << line << "\n";
+      std::cerr << plan.cells.size() << " cells (K, method, sequence, seed); run one with "
+                << "--cell K --out DIR, combine with sgnlf merge --out DIR CELL_DIR...\n";
+      return 0;
+    }
     const std::string seed_flag = o->seeds.empty() ? " --seed " + std::to_string(o->seed)
                                                    : join_list(" --seeds ", o->seeds);
     o->command = "sgnlf bench --table " + o->table + " --scale " + o->scale +
                  (o->data_root.empty() ? "" : " --data-root " + o->data_root) +
                  (o->real_root.empty() ? "" : " --real-root " + o->real_root) +
-                 seed_flag +
+                 seed_flag + (cell_opt->count() ? " --cell " + std::to_string(*cell) : "") +
                  " --out " + o->out_dir +
                  (o->device.empty() ? "" : " --device " + o->device) +
                  (o->roofline ? "" : " --no-roofline") + join_list(" --rows ", o->rows) +
@@ -107,6 +126,14 @@ const Registrar reg("bench", "Run a table of the paper (every row on every seque
       context["roofline"] = harness::measure_roofline(rt);
     } else {
       context["roofline"] = nullptr;
+    }
+    if (cell_opt->count()) {
+      const Json c = harness::run_cell(*o, harness::default_hooks(), *cell, context);
+      std::cout << "cell:    " << harness::write_cell(c, o->out_dir) << "\n";
+      const std::string st = c["outcome"]["status"];
+      if (st == "failed")
+        std::cerr << "sgnlf bench: cell " << *cell << " failed: " << c["outcome"]["error"].get<std::string>() << "\n";
+      return st == "failed" ? 1 : 0;
     }
     const Json results = harness::run_table(*o, harness::default_hooks(), context);
     const auto [json_path, md_path] = harness::write_outputs(results, o->out_dir);
