@@ -1,13 +1,17 @@
-// `sgnlf bench --table T --scale S [--data-root DIR] [--real-root DIR] [--seed N] [--rows A,B]
-// [--sequences X,Y] --out DIR`: runs every row (or the chosen ones) of a table on every
-// sequence (or the chosen ones; runtime/harness), records the context and the device's
-// roofline, and writes <out>/results.json (results/schema.md) and <out>/table.md.
+// `sgnlf bench --table T --scale S [--data-root DIR] [--real-root DIR] [--seed N | --seeds
+// A,B,C] [--rows A,B] [--sequences X,Y] --out DIR`: runs every row (or the chosen ones) of a
+// table on every sequence (or the chosen ones) with every seed (runtime/harness), records the
+// context and the device's roofline, and writes <out>/results.json (results/schema.md) and
+// <out>/table.md. `--cells` lists the table's independent cells (row × sequence × seed);
+// `--cell K --out DIR` runs one and writes DIR/cell.json, for `sgnlf merge` (cmd_merge.cpp).
 #include <iostream>
 #include <memory>
+#include <type_traits>
 
 #include "apps/command.hpp"
 #include "cl/runtime.hpp"
 #include "core/log.hpp"
+#include "harness/cells.hpp"
 #include "harness/context.hpp"
 #include "harness/roofline.hpp"
 #include "harness/runner.hpp"
@@ -18,9 +22,15 @@
 namespace sgnlf::app {
 namespace {
 
-std::string join_list(const std::string& flag, const std::vector<std::string>& v) {
+template <class T>
+std::string join_list(const std::string& flag, const std::vector<T>& v) {
   std::string s;
-  for (const auto& x : v) s += (s.empty() ? flag : ",") + x;
+  for (const auto& x : v) {
+    std::string item;
+    if constexpr (std::is_same_v<T, std::string>) item = x;
+    else item = std::to_string(x);
+    s += (s.empty() ? flag : ",") + item;
+  }
   return s;
 }
 
@@ -55,7 +65,12 @@ const Registrar reg("bench", "Run a table of the paper (every row on every seque
                  "Folder of the real datasets that a synthetic scale's real sequences read "
                  "(default $SGNLF_SHARED_DIR/data/real, else ../shared/data/real); a sequence "
                  "whose folder is missing is skipped and recorded");
-  sub.add_option("--seed", o->seed, "Seed of every run")->capture_default_str();
+  auto* seed_opt = sub.add_option("--seed", o->seed, "Seed of every run")->capture_default_str();
+  auto* seeds_opt =
+      sub.add_option("--seeds", o->seeds,
+                     "Run every cell with each of these seeds (comma-separated): mean ± sample "
+                     "standard deviation over seeds, each seed's values kept")
+          ->delimiter(',');
   sub.add_option("--out", o->out_dir, "Output folder");
   sub.add_option("--device", o->device, "OpenCL device index or name (default $SGNLF_DEVICE)");
   sub.add_option("--rows", o->rows, "Only these rows (comma-separated methods; see --list)")
@@ -64,14 +79,39 @@ const Registrar reg("bench", "Run a table of the paper (every row on every seque
       ->delimiter(',');
   sub.add_flag("--no-roofline", *no_roofline, "Skip the roofline probe (~1-2 s)");
   sub.add_flag("--list", *list, "List the tables, rows and sequences");
+  auto cells = std::make_shared<bool>(false);
+  auto cell = std::make_shared<long>(-1);
+  sub.add_flag("--cells", *cells,
+               "List the table's independent cells (K, method, sequence, seed; tab-separated)");
+  auto* cell_opt = sub.add_option("--cell", *cell,
+                                  "Run only cell K (see --cells) and write <out>/cell.json "
+                                  "for sgnlf merge");
   return std::function<int()>([=] {
     if (*list) return list_tables();
     if (o->table.empty()) throw ConfigError("bench: --table is required (see --list)");
+    if (seed_opt->count() && seeds_opt->count())
+      throw ConfigError("bench: --seed and --seeds exclude each other (--seeds " +
+                        join_list("", o->seeds) + ", --seed " + std::to_string(o->seed) + ")");
+    if (seeds_opt->count() && o->seeds.empty())
+      throw ConfigError("bench: --seeds needs at least one seed");
+    if (*cells && cell_opt->count())
+      throw ConfigError("bench: --cells lists the cells, --cell K runs one: give one of them");
     o->roofline = !*no_roofline;
+    if (*cells) {  // --out is not needed to list them
+      if (o->out_dir.empty()) o->out_dir = ".";
+      const auto plan = harness::plan_table(*o, harness::default_hooks());
+      for (const auto& line : harness::cell_lines(plan)) std::cout << line << "\n";
+      std::cerr << plan.cells.size() << " cells (K, method, sequence, seed); run one with "
+                << "--cell K --out DIR, combine with sgnlf merge --out DIR CELL_DIR...\n";
+      return 0;
+    }
+    const std::string seed_flag = o->seeds.empty() ? " --seed " + std::to_string(o->seed)
+                                                   : join_list(" --seeds ", o->seeds);
     o->command = "sgnlf bench --table " + o->table + " --scale " + o->scale +
                  (o->data_root.empty() ? "" : " --data-root " + o->data_root) +
                  (o->real_root.empty() ? "" : " --real-root " + o->real_root) +
-                 " --seed " + std::to_string(o->seed) + " --out " + o->out_dir +
+                 seed_flag + (cell_opt->count() ? " --cell " + std::to_string(*cell) : "") +
+                 " --out " + o->out_dir +
                  (o->device.empty() ? "" : " --device " + o->device) +
                  (o->roofline ? "" : " --no-roofline") + join_list(" --rows ", o->rows) +
                  join_list(" --sequences ", o->sequences);
@@ -86,6 +126,14 @@ const Registrar reg("bench", "Run a table of the paper (every row on every seque
       context["roofline"] = harness::measure_roofline(rt);
     } else {
       context["roofline"] = nullptr;
+    }
+    if (cell_opt->count()) {
+      const Json c = harness::run_cell(*o, harness::default_hooks(), *cell, context);
+      std::cout << "cell:    " << harness::write_cell(c, o->out_dir) << "\n";
+      const std::string st = c["outcome"]["status"];
+      if (st == "failed")
+        std::cerr << "sgnlf bench: cell " << *cell << " failed: " << c["outcome"]["error"].get<std::string>() << "\n";
+      return st == "failed" ? 1 : 0;
     }
     const Json results = harness::run_table(*o, harness::default_hooks(), context);
     const auto [json_path, md_path] = harness::write_outputs(results, o->out_dir);

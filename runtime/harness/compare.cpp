@@ -49,6 +49,13 @@ Json merged_metrics(const Json& seq) {
   return m;
 }
 
+// A side's spread over seeds for one set of metrics: per-metric sample standard deviations
+// over `n` seeds (results/schema.md "Several seeds"); n < 2 = one seed, no spread.
+struct Spread {
+  const Json* sd = nullptr;
+  size_t n = 0;
+};
+
 struct Comparer {
   const CompareOptions& opt;
   CompareReport& rep;
@@ -57,7 +64,8 @@ struct Comparer {
     rep.findings.push_back({kind, fails, where, msg});
   }
 
-  void metrics(const std::string& where, const Json& fresh, const Json& base) {
+  void metrics(const std::string& where, const Json& fresh, const Json& base,
+               Spread fresh_spread = {}, Spread base_spread = {}) {
     if (!base.is_object()) return;
     for (auto it = base.begin(); it != base.end(); ++it) {
       const std::string& k = it.key();
@@ -75,11 +83,29 @@ struct Comparer {
         add("regression", true, w, "not finite: " + fmt(n));
         continue;
       }
-      const double tol = metric_tolerance(k, rep.mode, b);
+      double tol = metric_tolerance(k, rep.mode, b);
+      std::string spread_note;
+      // Loose, both sides means over several seeds: allow twice the standard error of the
+      // difference of the two means (Welch) on top of the tolerance. Tight comparisons stay
+      // tight: one seed is deterministic on one device, so the spread is no noise there.
+      if (rep.mode == "loose" && fresh_spread.n >= 2 && base_spread.n >= 2 && fresh_spread.sd &&
+          base_spread.sd) {
+        const Json& sn = at(*fresh_spread.sd, k);
+        const Json& sb = at(*base_spread.sd, k);
+        if (sn.is_number() && sb.is_number()) {
+          const double a = sn.get<double>(), c = sb.get<double>();
+          const double se = std::sqrt(a * a / double(fresh_spread.n) + c * c / double(base_spread.n));
+          tol += 2.0 * se;
+          ++rep.seed_spread_used;
+          spread_note = " incl. 2 × " + fmt(se) + " seed standard error (" +
+                        std::to_string(fresh_spread.n) + " vs " + std::to_string(base_spread.n) +
+                        " seeds)";
+        }
+      }
       const MetricInfo* info = metric_info(k);
       const double worse = info ? (info->lower_better ? n - b : b - n) : std::fabs(n - b);
       const std::string detail = "new " + fmt(n) + " vs baseline " + fmt(b) + " (diff " +
-                                 fmt(n - b) + ", tolerance " + fmt(tol) + ")";
+                                 fmt(n - b) + ", tolerance " + fmt(tol) + spread_note + ")";
       if (worse > tol)
         add("regression", true, w, "worse: " + detail);
       else if (-worse > tol)
@@ -246,9 +272,14 @@ CompareReport compare_results(const Json& fresh, const Json& base, const Compare
       if (ns == "ok") c.add("note", false, m, "row now runs (baseline: " + bs + "); update the baseline");
       continue;
     }
-    c.metrics(m + " / mean", at(*nrow, "mean"), at(brow, "mean"));
+    const auto row_spread = [](const Json& row, const std::string& key) {
+      return Spread{&at(row, key + "_sd"), arr(row, key + "_by_seed").size()};
+    };
+    c.metrics(m + " / mean", at(*nrow, "mean"), at(brow, "mean"), row_spread(*nrow, "mean"),
+              row_spread(brow, "mean"));
     if (at(brow, "mean_real").is_object())  // real sequences of a synthetic scale, averaged apart
-      c.metrics(m + " / mean_real", at(*nrow, "mean_real"), at(brow, "mean_real"));
+      c.metrics(m + " / mean_real", at(*nrow, "mean_real"), at(brow, "mean_real"),
+                row_spread(*nrow, "mean_real"), row_spread(brow, "mean_real"));
     for (const auto& bseq : arr(brow, "sequences")) {
       const std::string s = str(bseq, "sequence");
       const Json* nseq = find_by(at(*nrow, "sequences"), "sequence", s);
@@ -259,7 +290,21 @@ CompareReport compare_results(const Json& fresh, const Json& base, const Compare
                   (skip ? " (skipped: " + str(*skip, "reason") + ")" : std::string()));
         continue;
       }
-      c.metrics(m + " / " + s, merged_metrics(*nseq), merged_metrics(bseq));
+      c.metrics(m + " / " + s, merged_metrics(*nseq), merged_metrics(bseq),
+                Spread{&at(*nseq, "metrics_sd"), arr(*nseq, "seeds").size()},
+                Spread{&at(bseq, "metrics_sd"), arr(bseq, "seeds").size()});
+      // Several seeds, tight: every seed's run is a deterministic twin of the baseline's.
+      if (rep.mode == "tight")
+        for (const auto& brun : arr(bseq, "runs")) {
+          const Json* nrun = nullptr;
+          for (const auto& x : arr(*nseq, "runs"))
+            if (at(x, "seed") == at(brun, "seed")) nrun = &x;
+          const std::string w = m + " / " + s + " / seed " + at(brun, "seed").dump();
+          if (!nrun)
+            c.add("missing", true, w, "this seed's run is missing from the new result");
+          else
+            c.metrics(w, merged_metrics(*nrun), merged_metrics(brun));
+        }
     }
     c.timings(m + " / timings", at(*nrow, "timings"), at(brow, "timings"), same_device, min_reps,
               max_ratio);
@@ -293,7 +338,10 @@ std::string format_report(const CompareReport& r) {
   for (const auto& f : r.findings) fails += f.fails;
   o << "compare: " << r.mode << " tolerances (" << r.mode_reason << "); " << r.metrics_compared
     << " metrics and " << r.timings_compared << " timings compared, " << r.timings_skipped
-    << " timings skipped (too few repetitions or another device)\n";
+    << " timings skipped (too few repetitions or another device)";
+  if (r.seed_spread_used)
+    o << "; " << r.seed_spread_used << " metrics allowed their seed spread (several seeds)";
+  o << "\n";
   for (const auto& f : r.findings)
     o << (f.fails ? "  FAIL " : "  ok   ") << f.kind << ": " << f.where << ": " << f.message << "\n";
   o << (fails ? "REGRESSION: " + std::to_string(fails) + " finding(s) fail\n"

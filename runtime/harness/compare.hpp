@@ -33,6 +33,7 @@ struct CompareReport {
   std::string mode;  // tight | loose (resolved)
   std::string mode_reason;
   int metrics_compared = 0, timings_compared = 0, timings_skipped = 0;
+  int seed_spread_used = 0;  // metrics whose allowance included the seed spread (loose)
   std::vector<Finding> findings;
   bool regression() const;
 };

@@ -49,9 +49,11 @@ std::vector<std::string> str_list(const Json& j) {
 Json naive_for(const Json& r, const std::string& sequence) {
   for (const auto& row : r.value("rows", Json::array()))
     for (const auto& s : row.value("sequences", Json::array()))
-      if (s.value("sequence", "") == sequence && s.contains("extra") && s["extra"].is_object() &&
-          s["extra"].contains("naive_baseline"))
-        return s["extra"]["naive_baseline"];
+      if (s.value("sequence", "") == sequence)
+        for (const auto& run : s.contains("runs") ? s["runs"] : Json::array({s}))  // several seeds
+          if (run.contains("extra") && run["extra"].is_object() &&
+              run["extra"].contains("naive_baseline"))
+            return run["extra"]["naive_baseline"];
   return Json::object();
 }
 
@@ -80,6 +82,12 @@ std::string format_metric(const std::string& key, const Json& v) {
   return buf;
 }
 
+// "mean ± sd" when `sd` is a number (several seeds), else the mean alone.
+static std::string format_mean_sd(const std::string& key, const Json& mean, const Json& sd) {
+  if (!mean.is_number() || !sd.is_number()) return format_metric(key, mean);
+  return format_metric(key, mean) + " ± " + format_metric(key, sd);
+}
+
 // One table of the rows' means (`mean_key`: "mean" over the twins, "mean_real" over the real
 // sequences of a synthetic scale): ours | paper | Δ for each of the paper's columns, then
 // ours-only columns, then the naive baseline's mean over `naive_seqs`.
@@ -106,7 +114,8 @@ void main_table(std::ostringstream& o, const Json& r, const std::vector<std::str
         any_unverified = true;
       }
       const Json& ours = ok ? get_or_null(mean, c) : Json();
-      o << " " << (ok ? format_metric(c, ours) : status_cell(row)) << " | "
+      const Json& sd = ok ? get_or_null(get_or_null(row, mean_key + "_sd"), c) : Json();
+      o << " " << (ok ? format_mean_sd(c, ours, sd) : status_cell(row)) << " | "
         << format_metric(c, paper) << mark << " | "
         << (ours.is_number() && paper.is_number()
                 ? signed_fmt(c, ours.get<double>() - paper.get<double>())
@@ -114,7 +123,10 @@ void main_table(std::ostringstream& o, const Json& r, const std::vector<std::str
         << " |";
     }
     for (const auto& c : extra)
-      o << " " << (ok ? format_metric(c, get_or_null(mean, c)) : status_cell(row)) << " |";
+      o << " " << (ok ? format_mean_sd(c, get_or_null(mean, c),
+                                        get_or_null(get_or_null(row, mean_key + "_sd"), c))
+                      : status_cell(row))
+        << " |";
     o << "\n";
   }
   // Reference row: the naive baseline, mean over the sequences that report it.
@@ -146,8 +158,18 @@ std::string render_markdown(const Json& r) {
   const Json& ctx = r.value("context", Json::object());
   o << "# " << r.value("title", r.value("table", "")) << "\n\n";
   o << "Table `" << r.value("table", "") << "`, scale `" << r.value("scale", "") << "`, "
-    << r.value("data", "") << " data, seed " << get_or_null(r["config"], "seed").dump()
-    << ", " << r.value("created_utc", "") << ".\n";
+    << r.value("data", "") << " data, ";
+  const Json& seeds = get_or_null(r["config"], "seeds");
+  if (seeds.is_array() && seeds.size() > 1) {
+    o << "seeds ";
+    for (size_t i = 0; i < seeds.size(); ++i) o << (i ? ", " : "") << seeds[i].dump();
+  } else {
+    o << "seed " << get_or_null(r["config"], "seed").dump();
+  }
+  o << ", " << r.value("created_utc", "") << ".\n";
+  if (seeds.is_array() && seeds.size() > 1)
+    o << "Ours: mean ± sample standard deviation over the " << seeds.size()
+      << " seeds (of the per-seed means over sequences in the main tables).\n";
   if (!r.value("command", "").empty()) o << "Command: `" << r.value("command", "") << "`\n";
   o << "\n";
 
@@ -207,17 +229,20 @@ std::string render_markdown(const Json& r) {
     for (size_t i = 0; i < all.size(); ++i) o << "---:|";
     o << "\n";
     for (const auto& row : r.value("rows", Json::array())) {
-      Json m;
+      Json m, msd;
       for (const auto& s : row.value("sequences", Json::array()))
         if (s.value("sequence", "") == name) {
           m = s.value("metrics", Json::object());
+          msd = s.value("metrics_sd", Json::object());
           const Json pose = s.value("pose_metrics", Json());
           if (pose.is_object())
             for (auto it = pose.begin(); it != pose.end(); ++it) m[it.key()] = it.value();
         }
       o << "| " << row.value("label", "") << " |";
       for (const auto& c : all)
-        o << " " << (m.is_object() ? format_metric(c, get_or_null(m, c)) : status_cell(row))
+        o << " "
+          << (m.is_object() ? format_mean_sd(c, get_or_null(m, c), get_or_null(msd, c))
+                            : status_cell(row))
           << " |";
       o << "\n";
     }

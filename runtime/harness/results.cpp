@@ -102,9 +102,64 @@ Json row_timings(const std::vector<Json>& sequences) {
   return out;
 }
 
+SeedStats seed_stats(const std::vector<Json>& per_seed) {
+  std::set<std::string> keys;
+  for (const auto& m : per_seed)
+    if (m.is_object())
+      for (auto it = m.begin(); it != m.end(); ++it) keys.insert(it.key());
+  SeedStats st;
+  const double n = double(per_seed.size());
+  for (const auto& k : keys) {
+    std::vector<double> v;
+    for (const auto& m : per_seed)
+      if (m.is_object() && m.contains(k) && m[k].is_number()) v.push_back(m[k].get<double>());
+    if (v.size() != per_seed.size() || v.empty()) {
+      st.mean[k] = nullptr;
+      st.sd[k] = nullptr;
+      continue;
+    }
+    double sum = 0;
+    for (double x : v) sum += x;
+    const double mean = sum / n;
+    st.mean[k] = mean;
+    if (v.size() < 2) {
+      st.sd[k] = nullptr;
+      continue;
+    }
+    double ss = 0;
+    for (double x : v) ss += (x - mean) * (x - mean);
+    st.sd[k] = std::sqrt(ss / (n - 1));
+  }
+  return st;
+}
+
+Json seed_sequence_entry(const std::vector<Json>& runs) {
+  require(!runs.empty(), "seed_sequence_entry: no runs");
+  Json e;
+  e["sequence"] = runs.front().value("sequence", "");
+  Json seeds = Json::array(), hashes = Json::array();
+  std::vector<Json> metrics, pose, all;
+  for (const auto& r : runs) {
+    seeds.push_back(r.value("seed", Json(nullptr)));
+    hashes.push_back(r.value("config_hash", Json(nullptr)));
+    metrics.push_back(r.value("metrics", Json::object()));
+    pose.push_back(r.value("pose_metrics", Json()));
+    all.push_back(all_metrics(r));
+  }
+  e["seeds"] = seeds;
+  e["dataset"] = runs.front().value("dataset", Json());
+  e["config_hash"] = config_hash(hashes);
+  e["metrics"] = seed_stats(metrics).mean;
+  e["pose_metrics"] = pose.front().is_object() ? seed_stats(pose).mean : Json(nullptr);
+  e["metrics_sd"] = seed_stats(all).sd;
+  e["timings"] = row_timings(runs);
+  e["runs"] = runs;
+  return e;
+}
+
 Json make_row(const std::string& table, const RowDef& row, const std::string& status,
               const std::vector<Json>& sequences, const std::string& error,
-              const std::vector<std::string>& real_sequences) {
+              const std::vector<std::string>& real_sequences, const std::vector<uint64_t>& seeds) {
   Json r;
   r["method"] = row.method;
   r["label"] = row.label;
@@ -122,13 +177,47 @@ Json make_row(const std::string& table, const RowDef& row, const std::string& st
                            real_sequences.end();
       (is_real ? reals : twins).push_back(s);
     }
-    r["mean"] = mean_over_sequences(twins);
-    if (!reals.empty()) r["mean_real"] = mean_over_sequences(reals);
+    if (seeds.size() > 1) {
+      // Per seed, the mean over sequences; then mean and spread of those over the seeds.
+      const auto by_seed = [&](const std::vector<Json>& group, const char* key) {
+        std::vector<Json> means;
+        Json list = Json::array();
+        for (const uint64_t seed : seeds) {
+          std::vector<Json> of_seed;
+          for (const auto& s : group)
+            if (s.value("seed", Json()) == Json(seed)) of_seed.push_back(s);
+          means.push_back(mean_over_sequences(of_seed));
+          list.push_back(Json{{"seed", seed}, {"mean", means.back()}});
+        }
+        const SeedStats st = seed_stats(means);
+        r[key] = st.mean;
+        r[std::string(key) + "_sd"] = st.sd;
+        r[std::string(key) + "_by_seed"] = list;
+      };
+      by_seed(twins, "mean");
+      if (!reals.empty()) by_seed(reals, "mean_real");
+    } else {
+      r["mean"] = mean_over_sequences(twins);
+      if (!reals.empty()) r["mean_real"] = mean_over_sequences(reals);
+    }
     Json all_paper = paper;
     const Json unv = r["paper_unverified"];
     for (auto it = unv.begin(); it != unv.end(); ++it) all_paper[it.key()] = it.value();
     r["diff_vs_paper"] = diff_vs_paper(r["mean"], all_paper);
     r["timings"] = row_timings(sequences);
+    if (seeds.size() > 1) {  // one entry per sequence: its seeds' runs, mean and spread
+      std::vector<std::string> order;
+      std::map<std::string, std::vector<Json>> of_seq;
+      for (const auto& s : sequences) {
+        const std::string name = s.value("sequence", "");
+        if (!of_seq.count(name)) order.push_back(name);
+        of_seq[name].push_back(s);
+      }
+      Json agg = Json::array();
+      for (const auto& name : order) agg.push_back(seed_sequence_entry(of_seq[name]));
+      r["sequences"] = agg;
+      return r;
+    }
   } else {
     r["mean"] = nullptr;
     r["diff_vs_paper"] = nullptr;

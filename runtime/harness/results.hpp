@@ -33,6 +33,19 @@ Json row_timings(const std::vector<Json>& sequences);
 // stay over the synthetic twins alone.
 Json make_row(const std::string& table, const RowDef& row, const std::string& status,
               const std::vector<Json>& sequences, const std::string& error = "",
-              const std::vector<std::string>& real_sequences = {});
+              const std::vector<std::string>& real_sequences = {},
+              const std::vector<uint64_t>& seeds = {});
+
+// Several seeds (results/schema.md "Several seeds"): per metric the mean and the sample
+// standard deviation (n − 1) over the objects given (one per seed); a metric null or missing
+// in any of them is null in both, and the deviation is null for fewer than 2.
+struct SeedStats {
+  Json mean = Json::object(), sd = Json::object();
+};
+SeedStats seed_stats(const std::vector<Json>& per_seed);
+
+// One sequence's entry of a several-seed row: the seeds' runs (`runs`, each a one-seed entry)
+// and their mean (`metrics`, `pose_metrics`) and spread (`metrics_sd`).
+Json seed_sequence_entry(const std::vector<Json>& runs);
 
 }  // namespace sgnlf::harness

@@ -25,6 +25,11 @@ void BenchOptions::validate() const {
   if (std::find(scales.begin(), scales.end(), scale) == scales.end())
     throw ConfigError("bench: unknown scale '" + scale + "' (known: smoke, quick, paper)");
   if (out_dir.empty()) throw ConfigError("bench: --out is required");
+  for (size_t i = 0; i < seeds.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (seeds[i] == seeds[j])
+        throw ConfigError("bench: --seeds: seed " + std::to_string(seeds[i]) +
+                          " is listed twice");
   if (!data_root.empty() && !fs::is_directory(data_root))
     throw ConfigError("bench: --data-root '" + data_root + "' is not a directory");
   if (!real_root.empty() && !fs::is_directory(real_root))
@@ -68,9 +73,20 @@ std::string sequence_data_root(const SequenceDef& s, const BenchOptions& opt) {
   return "";
 }
 
+std::vector<uint64_t> BenchOptions::seed_list() const {
+  return seeds.empty() ? std::vector<uint64_t>{seed} : seeds;
+}
+
 Json BenchOptions::to_json() const {
   Json j{{"table", table},   {"scale", scale}, {"data_root", data_root},
          {"device", device}, {"seed", seed},   {"roofline", roofline}};
+  const auto sl = seed_list();
+  if (sl.size() > 1) {  // several seeds: `seeds` instead of `seed` (one seed: unchanged)
+    j.erase("seed");
+    j["seeds"] = sl;
+  } else {
+    j["seed"] = sl.front();
+  }
   if (!rows.empty()) j["rows"] = rows;
   if (!sequences.empty()) j["sequences"] = sequences;
   return j;
@@ -106,160 +122,247 @@ struct TableProgress {
 
 }  // namespace
 
-Json run_table(const BenchOptions& opt, const BenchHooks& hooks, Json context) {
+namespace {
+
+std::string missing_reason(const std::string& dir) {
+  return "real data not found at " + dir + " (--real-root DIR, or $SGNLF_SHARED_DIR/data/real)";
+}
+
+}  // namespace
+
+TablePlan plan_table(const BenchOptions& opt, const BenchHooks& hooks) {
   opt.validate();
-  const TableDef t = table_def(opt.table);
-  const bool real = !opt.data_root.empty();
-  auto seqs = table_sequences(t, opt.scale, real);
+  TablePlan p;
+  p.table = table_def(opt.table);
+  p.sequences = table_sequences(p.table, opt.scale, !opt.data_root.empty());
   if (!opt.sequences.empty())
-    seqs.erase(std::remove_if(seqs.begin(), seqs.end(),
-                              [&](const SequenceDef& d) {
-                                return std::find(opt.sequences.begin(), opt.sequences.end(),
-                                                 d.name) == opt.sequences.end();
-                              }),
-               seqs.end());
-  // Real sequences of a synthetic scale: run from their folder when it exists, else skipped
-  // (recorded in `skipped_sequences`); averaged apart from the twins (make_row).
+    p.sequences.erase(std::remove_if(p.sequences.begin(), p.sequences.end(),
+                                     [&](const SequenceDef& d) {
+                                       return std::find(opt.sequences.begin(),
+                                                        opt.sequences.end(),
+                                                        d.name) == opt.sequences.end();
+                                     }),
+                      p.sequences.end());
+  p.seeds = opt.seed_list();
+  for (const auto& row : p.table.rows) {
+    const bool selected = opt.rows.empty() ||
+                          std::find(opt.rows.begin(), opt.rows.end(), row.method) != opt.rows.end();
+    const bool impl = hooks.implemented && hooks.implemented(row.method);
+    p.row_state.push_back(!selected ? "skipped" : impl ? "run" : "not_implemented");
+    if (p.row_state.back() != "run") continue;
+    for (const auto& sd : p.sequences)
+      for (const uint64_t seed : p.seeds)
+        p.cells.push_back(Cell{p.cells.size(), row.method, sd.name, seed});
+  }
+  return p;
+}
+
+Json TablePlan::to_json() const {
+  Json rows = Json::array(), seqs = Json::array();
+  for (size_t i = 0; i < table.rows.size(); ++i)
+    rows.push_back(Json{{"method", table.rows[i].method}, {"state", row_state[i]}});
+  for (const auto& sd : sequences) seqs.push_back(sd.to_json());
+  return Json{{"table", table.name}, {"rows", rows},   {"sequences", seqs},
+              {"seeds", seeds},      {"cells", cells.size()}};
+}
+
+std::string TablePlan::hash() const { return config_hash(to_json()); }
+
+Json CellOutcome::to_json() const {
+  return Json{{"status", status},   {"error", error.empty() ? Json(nullptr) : Json(error)},
+              {"data_path", data_path.empty() ? Json(nullptr) : Json(data_path)},
+              {"entry", entry},     {"dataset", dataset},
+              {"prepare_s", prepare_s >= 0 ? Json(prepare_s) : Json(nullptr)}};
+}
+
+CellOutcome CellOutcome::from_json(const Json& j, const std::string& where) {
+  const auto bad = [&](const std::string& field, const std::string& what) {
+    return ConfigError(where + ": outcome." + field + " " + what);
+  };
+  if (!j.is_object()) throw ConfigError(where + ": outcome is not an object");
+  CellOutcome o;
+  o.present = true;
+  if (!j.contains("status") || !j["status"].is_string()) throw bad("status", "is missing");
+  o.status = j["status"].get<std::string>();
+  static const char* known[] = {"ok", "failed", "not_implemented", "missing", "unloadable"};
+  if (std::find_if(std::begin(known), std::end(known),
+                   [&](const char* k) { return o.status == k; }) == std::end(known))
+    throw bad("status", "'" + o.status + "' is not ok|failed|not_implemented|missing|unloadable");
+  const auto opt_str = [&](const char* k) {
+    if (!j.contains(k) || j[k].is_null()) return std::string();
+    if (!j[k].is_string()) throw bad(k, "is not a string");
+    return j[k].get<std::string>();
+  };
+  o.error = opt_str("error");
+  o.data_path = opt_str("data_path");
+  o.entry = j.value("entry", Json());
+  o.dataset = j.value("dataset", Json());
+  if (o.status == "ok" && (!o.entry.is_object() || !o.entry.contains("sequence") ||
+                           !o.entry.contains("metrics")))
+    throw bad("entry", "of an ok cell is not a run entry (sequence, metrics, ...)");
+  if (j.contains("prepare_s") && j["prepare_s"].is_number()) o.prepare_s = j["prepare_s"];
+  return o;
+}
+
+CellOutcome execute_cell(const BenchOptions& opt, const BenchHooks& hooks, const TablePlan& plan,
+                         const Cell& cell, std::map<std::string, PreparedSequence>& cache) {
+  const auto it = std::find_if(plan.sequences.begin(), plan.sequences.end(),
+                               [&](const SequenceDef& d) { return d.name == cell.sequence; });
+  require(it != plan.sequences.end(), "execute_cell: the plan has no sequence " + cell.sequence);
+  const SequenceDef& sd = *it;
+  const bool real = !opt.data_root.empty();
+  const bool real_seq = !real && sd.is_real_dir();
+  CellOutcome o;
+  o.present = true;
+  if (real_seq) {
+    o.data_path = sequence_data_root(sd, opt);
+    if (!fs::is_directory(o.data_path)) {
+      o.status = "missing";
+      o.error = missing_reason(o.data_path);
+      return o;
+    }
+  }
+  if (!cache.count(sd.name)) {
+    const double ts = now_s();
+    const std::string dir = (fs::path(opt.out_dir) / "data" / sd.name).string();
+    BenchOptions popt = opt;  // a real sequence is loaded like a --data-root window
+    if (real_seq) popt.data_root = o.data_path;
+    try {
+      PreparedSequence ps = hooks.prepare(sd, popt, dir);
+      o.prepare_s = now_s() - ts;
+      cache[sd.name] = ps;
+    } catch (const std::exception& e) {
+      // An optional real sequence that does not load is skipped like a missing one, so that
+      // the twins' rows still finish.
+      o.status = real_seq ? "unloadable" : "failed";
+      o.error = real_seq ? "real data at " + o.data_path + " could not be loaded: " + e.what()
+                         : std::string(e.what());
+      return o;
+    }
+  }
+  const PreparedSequence& ps = cache[sd.name];
+  o.dataset = ps.dataset;
+  pipeline::MethodRequest req;
+  req.method = cell.method;
+  req.scale = opt.scale;
+  req.dataset_dir = ps.dataset_dir;
+  fs::path run_dir = fs::path(opt.out_dir) / "runs" / cell.method / sd.name;
+  if (plan.seeds.size() > 1) run_dir /= "seed-" + std::to_string(cell.seed);
+  req.out_dir = run_dir.string();
+  req.seed = cell.seed;
+  req.device = opt.device;
+  req.overrides = ps.overrides;
+  try {
+    const double tr = now_s();
+    const pipeline::MethodResult res = hooks.run(req);
+    const double wall = now_s() - tr;
+    if (!res.implemented) {
+      o.status = "not_implemented";
+      return o;
+    }
+    o.entry = sequence_entry(sd.name, cell.seed, ps.dataset, res, req.out_dir, wall);
+    o.status = "ok";
+  } catch (const std::exception& e) {
+    o.status = "failed";
+    o.error = e.what();
+  }
+  return o;
+}
+
+Json assemble_table(const TablePlan& plan, const std::vector<CellOutcome>& outcomes,
+                    const TableHeader& h) {
+  require(outcomes.size() == plan.cells.size(), "assemble_table: one outcome per cell");
+  const TableDef& t = plan.table;
+  const size_t ns = plan.sequences.size(), nk = plan.seeds.size();
+  // Cells of row r (its position among the rows that run), sequence s, seed k.
+  const auto cell_of = [&](size_t run_row, size_t s, size_t k) -> const CellOutcome& {
+    return outcomes[(run_row * ns + s) * nk + k];
+  };
+  // Real sequences whose folder is missing: found by any cell, skipped up front.
   Json skipped = Json::array();
+  std::set<std::string> dropped;  // missing or unloadable
   std::vector<std::string> real_names;
   bool any_real_dir = false;
-  if (!real) {
-    std::vector<SequenceDef> kept;
-    for (const auto& sd : seqs) {
-      if (!sd.is_real_dir()) {
-        kept.push_back(sd);
-        continue;
+  for (size_t s = 0; s < ns; ++s) {
+    const SequenceDef& sd = plan.sequences[s];
+    if (h.real || !sd.is_real_dir()) continue;
+    any_real_dir = true;
+    const CellOutcome* miss = nullptr;
+    for (size_t c = 0; c < plan.cells.size(); ++c)
+      if (plan.cells[c].sequence == sd.name && outcomes[c].present &&
+          outcomes[c].status == "missing") {
+        miss = &outcomes[c];
+        break;
       }
-      any_real_dir = true;
-      const std::string dir = sequence_data_root(sd, opt);
-      if (fs::is_directory(dir)) {
-        kept.push_back(sd);
-        real_names.push_back(sd.name);
-        continue;
-      }
-      const std::string reason = "real data not found at " + dir +
-                                 " (--real-root DIR, or $SGNLF_SHARED_DIR/data/real)";
-      log::warn("[bench] sequence ", sd.name, " skipped: ", reason);
-      skipped.push_back(Json{{"name", sd.name}, {"real_dir", sd.real_dir}, {"path", dir},
-                             {"reason", reason}});
+    if (miss) {
+      skipped.push_back(Json{{"name", sd.name}, {"real_dir", sd.real_dir},
+                             {"path", miss->data_path}, {"reason", miss->error}});
+      dropped.insert(sd.name);
+    } else {
+      real_names.push_back(sd.name);
     }
-    seqs = kept;
   }
-  if (seqs.empty())
-    throw ConfigError("bench: table " + t.name + " at scale " + opt.scale +
+  if (dropped.size() == ns)
+    throw ConfigError("bench: table " + t.name + " at scale " + h.config.value("scale", "") +
                       ": no sequence left to run (the real data of every chosen one is missing)");
-  const auto is_real_seq = [&](const std::string& name) {
-    return std::find(real_names.begin(), real_names.end(), name) != real_names.end();
-  };
-  const auto selected = [&](const std::string& method) {
-    return opt.rows.empty() ||
-           std::find(opt.rows.begin(), opt.rows.end(), method) != opt.rows.end();
-  };
-  const double t0 = now_s();
-
-  std::vector<bool> impl;
-  long implemented_rows = 0;
-  for (const auto& row : t.rows) {
-    impl.push_back(hooks.implemented && hooks.implemented(row.method));
-    if (!impl.back()) log::info("[bench] row ", row.method, ": not implemented");
-    implemented_rows += impl.back() && selected(row.method);
-  }
-  TableProgress prog;
-  prog.total = implemented_rows * long(seqs.size());
-
-  std::map<std::string, PreparedSequence> prepared;  // by sequence name, shared by rows
-  std::set<std::string> unloadable;  // real sequences whose folder is there but did not load
+  std::map<std::string, Json> prepared;
   std::vector<double> prepare_s;
   Json runs = Json::array(), rows = Json::array();
+  size_t run_row = 0;
   for (size_t ri = 0; ri < t.rows.size(); ++ri) {
     const RowDef& row = t.rows[ri];
-    if (!selected(row.method)) {
-      rows.push_back(make_row(t.name, row, "skipped", {}));
-      continue;
-    }
-    if (!impl[ri]) {
-      rows.push_back(make_row(t.name, row, "not_implemented", {}));
+    const std::string& state = plan.row_state[ri];
+    if (state != "run") {
+      rows.push_back(make_row(t.name, row, state, {}));
       continue;
     }
     std::vector<Json> entries;
     std::string status = "ok", error;
-    for (size_t si = 0; si < seqs.size() && status == "ok"; ++si) {
-      const SequenceDef& sd = seqs[si];
-      if (unloadable.count(sd.name)) continue;
-      bool preparing = false;
-      try {
-        if (!prepared.count(sd.name)) {
-          preparing = true;
-          const bool real_seq = is_real_seq(sd.name);
-          prog.phase(ri, t.rows.size(), row.method, si, seqs.size(), sd.name,
-                     real || real_seq ? "load" : "simulate");
-          const double ts = now_s();
-          const std::string dir = (fs::path(opt.out_dir) / "data" / sd.name).string();
-          BenchOptions popt = opt;  // a real sequence is loaded like a --data-root window
-          if (real_seq) popt.data_root = sequence_data_root(sd, opt);
-          prepared[sd.name] = hooks.prepare(sd, popt, dir);
-          prepare_s.push_back(now_s() - ts);
-          preparing = false;
-        }
-        const PreparedSequence& ps = prepared[sd.name];
-        pipeline::MethodRequest req;
-        req.method = row.method;
-        req.scale = opt.scale;
-        req.dataset_dir = ps.dataset_dir;
-        req.out_dir = (fs::path(opt.out_dir) / "runs" / row.method / sd.name).string();
-        req.seed = opt.seed;
-        req.device = opt.device;
-        req.overrides = ps.overrides;
-        prog.phase(ri, t.rows.size(), row.method, si, seqs.size(), sd.name, "train + evaluate");
-        const double tr = now_s();
-        const pipeline::MethodResult res = hooks.run(req);
-        const double wall = now_s() - tr;
-        if (!res.implemented) {
+    for (size_t s = 0; s < ns && status == "ok"; ++s) {
+      const std::string& name = plan.sequences[s].name;
+      for (size_t k = 0; k < nk && status == "ok" && !dropped.count(name); ++k) {
+        const CellOutcome& o = cell_of(run_row, s, k);
+        require(o.present, "assemble_table: cell " + row.method + " / " + name + " / seed " +
+                               std::to_string(plan.seeds[k]) + " has no outcome");
+        if (!o.dataset.is_null() && !prepared.count(name)) prepared[name] = o.dataset;
+        if (o.prepare_s >= 0) prepare_s.push_back(o.prepare_s);
+        if (o.status == "unloadable" || o.status == "missing") {
+          skipped.push_back(Json{{"name", name}, {"real_dir", plan.sequences[s].real_dir},
+                                 {"path", o.data_path}, {"reason", o.error}});
+          dropped.insert(name);
+          real_names.erase(std::remove(real_names.begin(), real_names.end(), name),
+                           real_names.end());
+        } else if (o.status == "not_implemented") {
           status = "not_implemented";
-          break;
+        } else if (o.status == "failed") {
+          status = "failed";
+          error = name + ": " + o.error;
+        } else {
+          entries.push_back(o.entry);
+          runs.push_back(Json{{"method", row.method},
+                              {"sequence", name},
+                              {"seed", plan.seeds[k]},
+                              {"dataset_seed", o.dataset.value("seed", Json(nullptr))}});
         }
-        entries.push_back(sequence_entry(sd.name, opt.seed, ps.dataset, res, req.out_dir, wall));
-        runs.push_back(Json{{"method", row.method},
-                            {"sequence", sd.name},
-                            {"seed", opt.seed},
-                            {"dataset_seed", ps.dataset.value("seed", Json(nullptr))}});
-        ++prog.done;
-      } catch (const std::exception& e) {
-        if (preparing && is_real_seq(sd.name)) {
-          // An optional real sequence that does not load is skipped like a missing one, so
-          // that the twins' rows still finish.
-          const std::string dir = sequence_data_root(sd, opt);
-          const std::string reason = "real data at " + dir + " could not be loaded: " + e.what();
-          log::warn("[bench] sequence ", sd.name, " skipped: ", reason);
-          skipped.push_back(Json{{"name", sd.name}, {"real_dir", sd.real_dir}, {"path", dir},
-                                 {"reason", reason}});
-          unloadable.insert(sd.name);
-          real_names.erase(std::find(real_names.begin(), real_names.end(), sd.name));
-          for (size_t rj = ri; rj < t.rows.size(); ++rj)
-            prog.total -= impl[rj] && selected(t.rows[rj].method) ? 1 : 0;
-          continue;
-        }
-        status = "failed";
-        error = sd.name + ": " + e.what();
-        log::warn("[bench] row ", row.method, " failed on ", sd.name, ": ", e.what());
       }
     }
-    if (status != "ok")
-      prog.total -= long(seqs.size() - unloadable.size()) - long(entries.size());
+    ++run_row;
     rows.push_back(make_row(t.name, row, status, status == "ok" ? entries : std::vector<Json>{},
-                            error, real_names));
+                            error, real_names, plan.seeds));
     if (status == "failed") rows.back()["sequences"] = entries;  // keep what finished
   }
 
   Json seq_list = Json::array();
-  for (const auto& sd : seqs) {
-    if (unloadable.count(sd.name)) continue;  // listed in skipped_sequences
+  for (const auto& sd : plan.sequences) {
+    if (dropped.count(sd.name)) continue;  // listed in skipped_sequences
     Json s = sd.to_json();
-    if (is_real_seq(sd.name)) s["real_path"] = sequence_data_root(sd, opt);
-    if (prepared.count(sd.name)) s["dataset"] = prepared[sd.name].dataset;
+    if (!h.real && sd.is_real_dir())
+      s["real_path"] = (fs::path(h.real_root) / sd.real_dir).string();
+    if (prepared.count(sd.name)) s["dataset"] = prepared[sd.name];
     seq_list.push_back(s);
   }
-  context["peak_rss_kib"] = peak_rss_kib();
+  Json context = h.context;
+  context["peak_rss_kib"] = h.peak_rss_kib;
 
   Json r;
   r["schema"] = kSchemaName;
@@ -267,25 +370,113 @@ Json run_table(const BenchOptions& opt, const BenchHooks& hooks, Json context) {
   r["kind"] = "table";
   r["table"] = t.name;
   r["title"] = t.title;
-  r["scale"] = opt.scale;
-  r["data"] = real ? "real" : "synthetic";
+  r["scale"] = h.config.value("scale", "");
+  r["data"] = h.real ? "real" : "synthetic";
   r["created_utc"] = utc_now();
-  r["command"] = opt.command;
-  r["out_dir"] = opt.out_dir;
-  r["config"] = opt.to_json();
+  r["command"] = h.command;
+  r["out_dir"] = h.out_dir;
+  r["config"] = h.config;
   r["config_hash"] = config_hash(r["config"]);
-  r["seeds"] = Json{{"table_seed", opt.seed}, {"runs", runs}};
+  r["seeds"] = Json{{"table_seed", plan.seeds.front()}, {"runs", runs}};
+  if (nk > 1) r["seeds"]["table_seeds"] = plan.seeds;
   r["context"] = context;
   r["columns"] = t.columns;
   r["extra_columns"] = t.extra_columns;
-  r["metric_definitions"] = hooks.metric_definitions ? hooks.metric_definitions() : Json();
+  r["metric_definitions"] = h.metric_definitions;
   r["sequences"] = seq_list;
   r["skipped_sequences"] = skipped;
-  if (any_real_dir) r["real_root"] = opt.resolved_real_root();
+  if (any_real_dir) r["real_root"] = h.real_root;
   r["rows"] = rows;
-  r["timings"] = Json{{"prepare_s", summarize(prepare_s)}, {"total_s", now_s() - t0}};
-  r["peak_rss_kib"] = peak_rss_kib();
+  r["timings"] = Json{{"prepare_s", summarize(prepare_s)}, {"total_s", h.total_s}};
+  r["peak_rss_kib"] = h.peak_rss_kib;
   return r;
+}
+
+Json run_table(const BenchOptions& opt, const BenchHooks& hooks, Json context) {
+  const TablePlan plan = plan_table(opt, hooks);
+  const bool real = !opt.data_root.empty();
+  const double t0 = now_s();
+  // Real sequences of a synthetic scale: run from their folder when it exists, else skipped
+  // (recorded in `skipped_sequences`); averaged apart from the twins (make_row).
+  std::set<std::string> dropped;
+  for (const auto& sd : plan.sequences)
+    if (!real && sd.is_real_dir() && !fs::is_directory(sequence_data_root(sd, opt))) {
+      log::warn("[bench] sequence ", sd.name, " skipped: ",
+                missing_reason(sequence_data_root(sd, opt)));
+      dropped.insert(sd.name);
+    }
+  if (dropped.size() == plan.sequences.size())
+    throw ConfigError("bench: table " + plan.table.name + " at scale " + opt.scale +
+                      ": no sequence left to run (the real data of every chosen one is missing)");
+  std::vector<CellOutcome> outcomes(plan.cells.size());
+  for (const Cell& c : plan.cells)
+    if (dropped.count(c.sequence)) {
+      CellOutcome& o = outcomes[c.index];
+      o.present = true;
+      o.status = "missing";
+      const auto& sd = *std::find_if(plan.sequences.begin(), plan.sequences.end(),
+                                     [&](const SequenceDef& d) { return d.name == c.sequence; });
+      o.data_path = sequence_data_root(sd, opt);
+      o.error = missing_reason(o.data_path);
+    }
+  for (size_t ri = 0; ri < plan.table.rows.size(); ++ri)
+    if (plan.row_state[ri] == "not_implemented")
+      log::info("[bench] row ", plan.table.rows[ri].method, ": not implemented");
+
+  TableProgress prog;
+  for (const auto& c : plan.cells) prog.total += !dropped.count(c.sequence);
+  std::map<std::string, PreparedSequence> cache;  // by sequence name, shared by rows and seeds
+  std::set<std::string> stopped;  // rows that failed or are not implemented: not run further
+  const auto row_index = [&](const std::string& m) {
+    for (size_t i = 0; i < plan.table.rows.size(); ++i)
+      if (plan.table.rows[i].method == m) return i;
+    return size_t(0);
+  };
+  const auto seq_index = [&](const std::string& n) {
+    for (size_t i = 0; i < plan.sequences.size(); ++i)
+      if (plan.sequences[i].name == n) return i;
+    return size_t(0);
+  };
+  for (const Cell& c : plan.cells) {
+    if (stopped.count(c.method) || dropped.count(c.sequence)) continue;
+    const size_t ri = row_index(c.method), si = seq_index(c.sequence);
+    const bool real_seq = !real && plan.sequences[si].is_real_dir();
+    const std::string seq_label =
+        plan.seeds.size() > 1 ? c.sequence + " seed " + std::to_string(c.seed) : c.sequence;
+    if (!cache.count(c.sequence))
+      prog.phase(ri, plan.table.rows.size(), c.method, si, plan.sequences.size(), seq_label,
+                 real || real_seq ? "load" : "simulate");
+    prog.phase(ri, plan.table.rows.size(), c.method, si, plan.sequences.size(), seq_label,
+               "train + evaluate");
+    CellOutcome& o = outcomes[c.index];
+    o = execute_cell(opt, hooks, plan, c, cache);
+    if (o.status == "ok") {
+      ++prog.done;
+    } else if (o.status == "unloadable") {
+      log::warn("[bench] sequence ", c.sequence, " skipped: ", o.error);
+      dropped.insert(c.sequence);
+    } else {
+      if (o.status == "failed")
+        log::warn("[bench] row ", c.method, " failed on ", seq_label, ": ", o.error);
+      stopped.insert(c.method);
+    }
+    prog.total = 0;  // cells done, plus those still to run
+    for (const auto& d : plan.cells)
+      prog.total += outcomes[d.index].present
+                        ? outcomes[d.index].status == "ok"
+                        : !stopped.count(d.method) && !dropped.count(d.sequence);
+  }
+  TableHeader h;
+  h.config = opt.to_json();
+  h.command = opt.command;
+  h.out_dir = opt.out_dir;
+  h.real_root = opt.resolved_real_root();
+  h.real = real;
+  h.metric_definitions = hooks.metric_definitions ? hooks.metric_definitions() : Json();
+  h.context = std::move(context);
+  h.total_s = now_s() - t0;
+  h.peak_rss_kib = peak_rss_kib();
+  return assemble_table(plan, outcomes, h);
 }
 
 std::pair<std::string, std::string> write_outputs(const Json& results, const std::string& out_dir) {

@@ -4,6 +4,7 @@
 // app passes default_hooks() (wiring.hpp), which calls pipeline::run_method.
 #pragma once
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct BenchOptions {
   std::string out_dir;
   std::string device;     // OpenCL device spec ("" = default)
   uint64_t seed = 1;
+  // --seeds: every cell runs with each of these (results/schema.md "Several seeds"); empty =
+  // the one `seed`. One element is the same as --seed (a single-seed result, unchanged).
+  std::vector<uint64_t> seeds;
   bool roofline = true;   // measure and record the device's roofline
   std::string command;    // the command line, recorded verbatim
   // Subsets (empty = all): rows outside `rows` are kept in the result as status "skipped";
@@ -33,6 +37,7 @@ struct BenchOptions {
   // config only when non-empty, so a full table's config_hash does not change.
   std::vector<std::string> rows, sequences;
   void validate() const;
+  std::vector<uint64_t> seed_list() const;  // `seeds`, or {seed} when empty
   Json to_json() const;   // the resolved harness config (without `command`, `out_dir`, `real_root`)
   std::string resolved_real_root() const;  // real_root, or default_real_root() when empty
 };
@@ -65,6 +70,63 @@ struct BenchHooks {
   // What the metrics mean (metrics::definitions()), recorded as "metric_definitions".
   std::function<Json()> metric_definitions;
 };
+
+// A cell: one independent run of a table (row × sequence × seed), the unit of
+// `sgnlf bench --cells` / `--cell K` and `sgnlf merge` (harness/cells.hpp).
+struct Cell {
+  size_t index = 0;
+  std::string method, sequence;
+  uint64_t seed = 1;
+};
+
+// What a table run will do, fixed before anything runs: per table row its state ("run",
+// "skipped" by --rows, "not_implemented"), the sequences (after --sequences; a real sequence
+// of a synthetic scale is listed whether or not its folder is there: a cell finds out), the
+// seeds, and the cells: rows to run × sequences × seeds, in that order (row-major), indexed.
+struct TablePlan {
+  TableDef table;
+  std::vector<SequenceDef> sequences;
+  std::vector<std::string> row_state;
+  std::vector<uint64_t> seeds;
+  std::vector<Cell> cells;
+  Json to_json() const;     // {rows: [{method, state}], sequences: [names], seeds, cells: count}
+  std::string hash() const; // config_hash() of to_json(): equal plans, equal cell indices
+};
+TablePlan plan_table(const BenchOptions& opt, const BenchHooks& hooks);
+
+// The outcome of one cell (results/schema.md "Cells"), as run_table and a cell file keep it.
+struct CellOutcome {
+  bool present = false;
+  // ok | failed | not_implemented | missing (a real sequence's folder is not there) |
+  // unloadable (it is there and does not load)
+  std::string status;
+  std::string error;      // failed: the error; missing / unloadable: the reason
+  std::string data_path;  // a real sequence: the folder it is read from
+  Json entry;             // ok: the run's rows[].sequences[] entry
+  Json dataset;           // the prepared sequence's description (null when not prepared)
+  double prepare_s = -1;  // >= 0: this cell prepared the sequence, in that many seconds
+  Json to_json() const;
+  static CellOutcome from_json(const Json& j, const std::string& where);  // ConfigError
+};
+
+// Runs one cell: prepares its sequence (unless `cache` has it) and trains + evaluates.
+// Failures are recorded in the outcome, not thrown.
+CellOutcome execute_cell(const BenchOptions& opt, const BenchHooks& hooks, const TablePlan& plan,
+                         const Cell& cell, std::map<std::string, PreparedSequence>& cache);
+
+// The table's results JSON from the cells' outcomes (indexed like plan.cells; a cell may be
+// absent only after its row stopped or its sequence was skipped). Replays the one-process
+// order, so that the cells run apart and merged give the same rows as run_table.
+struct TableHeader {
+  Json config;  // BenchOptions::to_json()
+  std::string command, out_dir, real_root;
+  bool real = false;  // --data-root
+  Json metric_definitions, context;
+  double total_s = 0;
+  long peak_rss_kib = 0;
+};
+Json assemble_table(const TablePlan& plan, const std::vector<CellOutcome>& outcomes,
+                    const TableHeader& header);
 
 // Runs the table; `context` is the context block (context_block() + roofline), copied into
 // the result. Failures of single runs are recorded in their row (status "failed") and the

@@ -10,7 +10,9 @@ namespace sgnlf::test {
 // Metrics of the fake lidar-nerf on sequence k (0-based): cd = 0.1 + 0.02 k, depth_psnr =
 // 20 + k, intensity_psnr = 15 − k, fscore = 0.9; sg-nlf: cd halved, psnr + 2.
 // Each run reports 6 repetitions of "step" timings (0.010 s … 0.015 s) and a train time.
-inline harness::BenchHooks fake_hooks(int* prepare_calls = nullptr, bool fail_sg_nlf = false) {
+// With `seed_noise`, seed s adds 0.01 (s − 1) to cd and to depth_psnr (a spread over seeds).
+inline harness::BenchHooks fake_hooks(int* prepare_calls = nullptr, bool fail_sg_nlf = false,
+                                      bool seed_noise = false) {
   harness::BenchHooks h;
   h.implemented = [](const std::string& m) { return m == "lidar-nerf" || m == "sg-nlf"; };
   h.prepare = [prepare_calls](const harness::SequenceDef& s, const harness::BenchOptions&,
@@ -21,14 +23,15 @@ inline harness::BenchHooks fake_hooks(int* prepare_calls = nullptr, bool fail_sg
     p.dataset = Json{{"name", s.name}, {"frames", 16}, {"test", {13}}, {"seed", 1}};
     return p;
   };
-  h.run = [fail_sg_nlf](const pipeline::MethodRequest& r) {
+  h.run = [fail_sg_nlf, seed_noise](const pipeline::MethodRequest& r) {
     if (fail_sg_nlf && r.method == "sg-nlf") throw Error("fake divergence");
     const int k = r.dataset_dir.find("1728") != std::string::npos ? 1 : 0;
     const double f = r.method == "sg-nlf" ? 0.5 : 1.0;
     const double g = r.method == "sg-nlf" ? 2.0 : 0.0;
+    const double e = seed_noise ? 0.01 * double(r.seed - 1) : 0.0;
     pipeline::MethodResult res;
-    res.config = Json{{"method", r.method}, {"iterations", 10}};
-    res.metrics = Json{{"cd", f * (0.1 + 0.02 * k)}, {"depth_psnr", 20.0 + k + g},
+    res.config = Json{{"method", r.method}, {"iterations", 10}, {"seed", r.seed}};
+    res.metrics = Json{{"cd", f * (0.1 + 0.02 * k) + e}, {"depth_psnr", 20.0 + k + g + e},
                        {"intensity_psnr", 15.0 - k + g}, {"fscore", 0.9},
                        {"depth_lpips", nullptr}};
     res.per_frame = Json::array({Json{{"frame", 13}, {"cd", f * (0.1 + 0.02 * k)}}});
