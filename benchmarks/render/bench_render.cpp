@@ -47,7 +47,7 @@ void report(benchmark::State& state, double total_ms, size_t rays, size_t sample
     state.counters["pct_stream"] = 100.0 * it * bytes / s * 1e-9 / g_stream_gbps;
 }
 
-render::RenderConfig config(int samples, int importance = 0) {
+render::RenderConfig sampling_config(int samples, int importance = 0) {
   render::RenderConfig c;
   c.n_samples = samples;
   c.n_importance = importance;
@@ -79,7 +79,7 @@ BENCHMARK(BM_StreamProbe)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTi
 static void BM_SampleUniform(benchmark::State& state) {
   auto& rt = bench::runtime();
   const int n_rays = int(state.range(0)), S = int(state.range(1));
-  render::RaySampler sampler(rt, config(S), kScale);
+  render::RaySampler sampler(rt, sampling_config(S), kScale);
   cl::Buffer o, d;
   make_rays(n_rays, o, d);
   const size_t n = size_t(n_rays) * S;
@@ -104,7 +104,7 @@ BENCHMARK(BM_SampleUniform)
 static void BM_SampleImportance(benchmark::State& state) {
   auto& rt = bench::runtime();
   const int n_rays = int(state.range(0)), Sc = int(state.range(1)), Sf = int(state.range(2));
-  render::RaySampler sampler(rt, config(Sc, Sf), kScale);
+  render::RaySampler sampler(rt, sampling_config(Sc, Sf), kScale);
   cl::Buffer o, d;
   make_rays(n_rays, o, d);
   const size_t nc = size_t(n_rays) * Sc, no = size_t(n_rays) * (Sc + Sf);
@@ -150,7 +150,7 @@ static VolumeInputs volume_inputs(cl::Runtime& rt, int n_rays, int S) {
 static void BM_VolumeForward(benchmark::State& state) {
   auto& rt = bench::runtime();
   const int n_rays = int(state.range(0)), S = int(state.range(1));
-  render::VolumeRenderer vr(rt, config(S), kScale);
+  render::VolumeRenderer vr(rt, sampling_config(S), kScale);
   auto v = volume_inputs(rt, n_rays, S);
   vr.forward(v.t, v.h0, v.head, n_rays, S, v.out, v.w).wait();
   double ms = 0;
@@ -172,7 +172,7 @@ BENCHMARK(BM_VolumeForward)
 static void BM_VolumeBackward(benchmark::State& state) {
   auto& rt = bench::runtime();
   const int n_rays = int(state.range(0)), S = int(state.range(1));
-  render::VolumeRenderer vr(rt, config(S), kScale);
+  render::VolumeRenderer vr(rt, sampling_config(S), kScale);
   auto v = volume_inputs(rt, n_rays, S);
   vr.forward(v.t, v.h0, v.head, n_rays, S, v.out, v.w);
   vr.backward(v.t, v.h0, v.head, v.w, v.grad_out, n_rays, S, v.gh0, v.ghead).wait();
@@ -198,7 +198,7 @@ BENCHMARK(BM_VolumeBackward)
 static void BM_MedianDepth(benchmark::State& state) {
   auto& rt = bench::runtime();
   const int n_rays = int(state.range(0)), S = int(state.range(1));
-  render::VolumeRenderer vr(rt, config(S), kScale);
+  render::VolumeRenderer vr(rt, sampling_config(S), kScale);
   auto v = volume_inputs(rt, n_rays, S);
   vr.forward(v.t, v.h0, v.head, n_rays, S, v.out, v.w);
   vr.median_depth(v.t, v.w, n_rays, S, v.out).wait();
@@ -244,7 +244,7 @@ BENCHMARK(BM_RayGradReduce)
 static void BM_RangeLoss(benchmark::State& state) {
   auto& rt = bench::runtime();
   const int n_rays = int(state.range(0));
-  render::RenderConfig cfg = config(64);
+  render::RenderConfig cfg = sampling_config(64);
   render::RangeLoss rl(rt, cfg, kScale);
   const int n_patches = n_rays / (cfg.patch_rows * cfg.patch_cols);
   std::vector<float> target = random_vec(3 * size_t(n_rays), 0.f, 1.f, 8);

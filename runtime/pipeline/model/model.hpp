@@ -9,6 +9,7 @@
 // the merged pass of importance sampling), SampleCompaction (early ray termination),
 // CoarseWaves (render.coarse_waves) and HeadBand (render.head_weight_threshold).
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -201,5 +202,10 @@ class LidarNerfModel {
   std::unique_ptr<CoarseWaves> waves_;
   std::unique_ptr<HeadBand> band_;
 };
+
+// Capacity (rays) a model needs for training and chunked rendering under `c`.
+inline int model_capacity(const TrainConfig& c) {
+  return std::max(c.schedule.rays_per_batch, c.schedule.render_chunk_rays);
+}
 
 }  // namespace sgnlf::pipeline

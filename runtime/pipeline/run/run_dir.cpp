@@ -50,10 +50,6 @@ RunScene make_run_scene(const Dataset& d, const TrainConfig& c) {
   return RunScene{make_pose_free_scene(d, init), std::move(init)};
 }
 
-int model_capacity(const TrainConfig& c) {
-  return std::max(c.schedule.rays_per_batch, c.schedule.render_chunk_rays);
-}
-
 LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
                    const std::string& dataset_override, const RenderSampling& requested) {
   LoadedRun run;

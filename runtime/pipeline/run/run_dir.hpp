@@ -66,7 +66,4 @@ struct RenderSampling {
 LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
                    const std::string& dataset_override = "", const RenderSampling& sampling = {});
 
-// Capacity (rays) a model needs for training and chunked rendering under `c`.
-int model_capacity(const TrainConfig& c);
-
 }  // namespace sgnlf::pipeline

@@ -3,7 +3,7 @@
 
 #include "datasets/protocol.hpp"
 #include "pipeline/train/geometric_stage.hpp"
-#include "pipeline/run/run_dir.hpp"
+#include "pipeline/model/model.hpp"
 
 namespace sgnlf::pipeline {
 
