@@ -8,6 +8,7 @@
 #include <set>
 
 #include "core/log.hpp"
+#include "harness/clock.hpp"
 #include "harness/context.hpp"
 #include "harness/results.hpp"
 #include "harness/schema.hpp"
@@ -15,18 +16,6 @@
 namespace sgnlf::harness {
 namespace fs = std::filesystem;
 namespace {
-
-double now_s() {
-  using namespace std::chrono;
-  return duration<double>(steady_clock::now().time_since_epoch()).count();
-}
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return buf;
-}
 
 const Json& at_path(const Json& j, const std::vector<std::string>& path) {
   static const Json null_json;

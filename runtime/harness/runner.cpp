@@ -10,6 +10,7 @@
 
 #include "core/log.hpp"
 #include "core/progress.hpp"
+#include "harness/clock.hpp"
 #include "harness/context.hpp"
 #include "harness/markdown.hpp"
 #include "harness/results.hpp"
@@ -93,18 +94,6 @@ Json BenchOptions::to_json() const {
 }
 
 namespace {
-
-double now_s() {
-  using namespace std::chrono;
-  return duration<double>(steady_clock::now().time_since_epoch()).count();
-}
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return buf;
-}
 
 // Progress line: which row, sequence and phase, with the table's ETA from the finished runs.
 struct TableProgress {
