@@ -1,7 +1,9 @@
 // A table run with fake hooks (no training, no data): deterministic numbers the harness tests
 // check by hand. lidar-nerf and sg-nlf "run"; the other rows are not implemented.
 #pragma once
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "harness/runner.hpp"
 
@@ -48,13 +50,26 @@ inline Json fake_context() {
               {"git", {{"sha", "0123456789abcdef0123456789abcdef01234567"}, {"dirty", false}}}};
 }
 
-inline Json fake_results(bool fail_sg_nlf = false, int* prepare_calls = nullptr) {
+// The kitti360-standard smoke table's options, seed 7 (or `seeds`), writing nothing.
+inline harness::BenchOptions fake_options(std::vector<uint64_t> seeds = {}) {
   harness::BenchOptions o;
   o.table = "kitti360-standard";
   o.scale = "smoke";
   o.out_dir = "/nonexistent/out";
   o.seed = 7;
-  return harness::run_table(o, fake_hooks(prepare_calls, fail_sg_nlf), fake_context());
+  o.seeds = std::move(seeds);
+  return o;
+}
+
+inline Json fake_results(bool fail_sg_nlf = false, int* prepare_calls = nullptr) {
+  return harness::run_table(fake_options(), fake_hooks(prepare_calls, fail_sg_nlf), fake_context());
+}
+
+// The row of `method` in a results JSON (std::out_of_range when there is none).
+inline Json& row(Json& r, const std::string& method) {
+  for (auto& x : r.at("rows"))
+    if (x.at("method") == method) return x;
+  throw std::out_of_range("no row " + method);
 }
 
 }  // namespace sgnlf::test

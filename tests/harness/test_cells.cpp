@@ -12,16 +12,6 @@ using namespace sgnlf;
 
 namespace {
 
-harness::BenchOptions opts(std::vector<uint64_t> seeds = {}) {
-  harness::BenchOptions o;
-  o.table = "kitti360-standard";
-  o.scale = "smoke";
-  o.out_dir = "/nonexistent/out";
-  o.seed = 7;
-  o.seeds = std::move(seeds);
-  return o;
-}
-
 // Every cell run on its own (a fresh cache each, as in separate processes), written and read
 // back as JSON text, as `sgnlf merge` reads the files.
 std::vector<std::pair<std::string, Json>> run_cells(const harness::BenchOptions& o,
@@ -38,19 +28,19 @@ std::vector<std::pair<std::string, Json>> run_cells(const harness::BenchOptions&
 
 TEST_CASE("--cells lists row × sequence × seed, running rows only", "[harness][cells]") {
   const auto h = test::fake_hooks();
-  auto plan = harness::plan_table(opts(), h);
+  auto plan = harness::plan_table(test::fake_options(), h);
   const auto lines = harness::cell_lines(plan);
   REQUIRE(lines.size() == 4);  // lidar-nerf and sg-nlf run (fake hooks) × 2 sequences
   CHECK(lines[0] == "0\tlidar-nerf\tkitti360-1538\t7");
   CHECK(lines[3] == "3\tsg-nlf\tkitti360-1728\t7");
-  plan = harness::plan_table(opts({1, 2, 3}), h);
+  plan = harness::plan_table(test::fake_options({1, 2, 3}), h);
   REQUIRE(plan.cells.size() == 12);
   CHECK(harness::cell_lines(plan)[4] == "4\tlidar-nerf\tkitti360-1728\t2");
-  auto sub = opts();
+  auto sub = test::fake_options();
   sub.rows = {"sg-nlf"};
   CHECK(harness::plan_table(sub, h).cells.size() == 2);
-  CHECK_THROWS_AS(harness::run_cell(opts(), h, 4, test::fake_context()), ConfigError);
-  CHECK_THROWS_AS(harness::run_cell(opts(), h, -1, test::fake_context()), ConfigError);
+  CHECK_THROWS_AS(harness::run_cell(test::fake_options(), h, 4, test::fake_context()), ConfigError);
+  CHECK_THROWS_AS(harness::run_cell(test::fake_options(), h, -1, test::fake_context()), ConfigError);
 }
 
 TEST_CASE("merge: cells run apart equal the one-process table", "[harness][cells]") {
@@ -61,7 +51,7 @@ TEST_CASE("merge: cells run apart equal the one-process table", "[harness][cells
   for (const Case& k : {Case{{}, false}, Case{{1, 2, 3}, false}, Case{{}, true},
                         Case{{2, 5}, true}}) {
     CAPTURE(k.seeds, k.fail);
-    const auto o = opts(k.seeds);
+    const auto o = test::fake_options(k.seeds);
     const auto h = test::fake_hooks(nullptr, k.fail, true);
     const Json one = harness::run_table(o, h, test::fake_context());
     const Json merged = harness::merge_cells(run_cells(o, h), "sgnlf merge", "/elsewhere");
@@ -78,7 +68,7 @@ TEST_CASE("merge: cells run apart equal the one-process table", "[harness][cells
   }
   // A failed row keeps the runs before the failure, as in one process.
   const auto h = test::fake_hooks(nullptr, true);
-  const Json merged = harness::merge_cells(run_cells(opts(), h), "m", "/x");
+  const Json merged = harness::merge_cells(run_cells(test::fake_options(), h), "m", "/x");
   CHECK(merged["rows"][4]["status"] == "failed");
   CHECK(merged["rows"][4]["error"].get<std::string>().find("kitti360-1538: fake divergence") == 0);
 }
@@ -86,7 +76,7 @@ TEST_CASE("merge: cells run apart equal the one-process table", "[harness][cells
 TEST_CASE("merge refuses missing, repeated and foreign cells, naming the files",
           "[harness][cells]") {
   const auto h = test::fake_hooks();
-  const auto cells = run_cells(opts(), h);
+  const auto cells = run_cells(test::fake_options(), h);
   auto missing = cells;
   missing.erase(missing.begin() + 2);
   CHECK_THROWS_WITH(harness::merge_cells(missing, "m", "/x"),
@@ -97,7 +87,7 @@ TEST_CASE("merge refuses missing, repeated and foreign cells, naming the files",
                     Catch::Contains("given twice: cell1.json and again.json"));
   // Another seed (config), another commit, another device, another table's cell.
   auto other = cells;
-  other[3].second = run_cells(opts({8}), h)[3].second;
+  other[3].second = run_cells(test::fake_options({8}), h)[3].second;
   CHECK_THROWS_WITH(harness::merge_cells(other, "m", "/x"),
                     Catch::Contains("cell0.json and cell3.json are from different config"));
   other = cells;
@@ -107,7 +97,7 @@ TEST_CASE("merge refuses missing, repeated and foreign cells, naming the files",
   other = cells;
   other[1].second["context"]["opencl"]["device"] = "another device";
   CHECK_THROWS_WITH(harness::merge_cells(other, "m", "/x"), Catch::Contains("OpenCL device"));
-  auto low = opts();
+  auto low = test::fake_options();
   low.table = "kitti360-low";
   other = cells;
   other[1].second = run_cells(low, h).at(0).second;

@@ -11,12 +11,6 @@ using namespace sgnlf;
 using harness::compare_results;
 
 namespace {
-Json& row(Json& r, const std::string& method) {
-  for (auto& x : r["rows"])
-    if (x["method"] == method) return x;
-  FAIL("no row " << method);
-  return r;
-}
 int fails(const harness::CompareReport& rep) {
   int n = 0;
   for (const auto& f : rep.findings) n += f.fails;
@@ -36,26 +30,26 @@ TEST_CASE("identical results pass in tight mode", "[harness][compare]") {
 TEST_CASE("a deliberately worsened metric fails", "[harness][compare]") {
   const Json base = test::fake_results();
   Json worse = base;
-  row(worse, "lidar-nerf")["mean"]["cd"] = base["rows"][0]["mean"]["cd"].get<double>() * 1.5;
+  test::row(worse, "lidar-nerf")["mean"]["cd"] = base["rows"][0]["mean"]["cd"].get<double>() * 1.5;
   auto rep = compare_results(worse, base);
   CHECK(rep.regression());
   CHECK(fails(rep) == 1);
   // Also in loose mode (different device), a Chamfer distance worse by more than the loose
   // allowance (1.4 x its value: the measured seed spread, tables.json "loose_spread") fails.
   Json much_worse = base;
-  row(much_worse, "lidar-nerf")["mean"]["cd"] = base["rows"][0]["mean"]["cd"].get<double>() * 2.5;
+  test::row(much_worse, "lidar-nerf")["mean"]["cd"] = base["rows"][0]["mean"]["cd"].get<double>() * 2.5;
   rep = compare_results(much_worse, base, {"loose"});
   CHECK(rep.regression());
   // A worse PSNR (higher is better) on one sequence fails too.
   Json psnr = base;
-  row(psnr, "sg-nlf")["sequences"][1]["metrics"]["depth_psnr"] = 10.0;
+  test::row(psnr, "sg-nlf")["sequences"][1]["metrics"]["depth_psnr"] = 10.0;
   CHECK(compare_results(psnr, base).regression());
 }
 
 TEST_CASE("improvements beyond tolerance fail only when strict", "[harness][compare]") {
   const Json base = test::fake_results();
   Json better = base;
-  row(better, "lidar-nerf")["mean"]["cd"] = 0.01;
+  test::row(better, "lidar-nerf")["mean"]["cd"] = 0.01;
   CHECK_FALSE(compare_results(better, base).regression());
   harness::CompareOptions strict;
   strict.strict = true;
@@ -66,7 +60,7 @@ TEST_CASE("tight and loose tolerances", "[harness][compare]") {
   const Json base = test::fake_results();
   Json drift = base;
   const double cd = base["rows"][0]["mean"]["cd"].get<double>();
-  row(drift, "lidar-nerf")["mean"]["cd"] = cd * 1.01;  // 1 % worse
+  test::row(drift, "lidar-nerf")["mean"]["cd"] = cd * 1.01;  // 1 % worse
   CHECK(compare_results(drift, base, {"tight"}).regression());
   CHECK_FALSE(compare_results(drift, base, {"loose"}).regression());
   // auto → loose when the device differs, for a trained table (quick or paper scale).
@@ -111,7 +105,7 @@ TEST_CASE("a smoke table is compared only as a deterministic twin", "[harness][c
   const Json base = test::fake_results();
   REQUIRE(base["scale"] == "smoke");
   Json drift = base;
-  row(drift, "lidar-nerf")["mean"]["cd"] = base["rows"][0]["mean"]["cd"].get<double>() * 1.01;
+  test::row(drift, "lidar-nerf")["mean"]["cd"] = base["rows"][0]["mean"]["cd"].get<double>() * 1.01;
   drift["context"]["opencl"]["device"] = "another-device";
   auto rep = compare_results(drift, base);
   CHECK(rep.mode == "tight");
@@ -139,7 +133,7 @@ TEST_CASE("a smoke table is compared only as a deterministic twin", "[harness][c
                                                Catch::Contains("every metric still matches"));
   // Same device, another run config: not a twin either, and the message says which.
   Json cfg = base;
-  row(cfg, "lidar-nerf")["sequences"][0]["config_hash"] = "ffffffffffffffff";
+  test::row(cfg, "lidar-nerf")["sequences"][0]["config_hash"] = "ffffffffffffffff";
   rep = compare_results(cfg, base);
   CHECK(rep.regression());
   CHECK_THAT(harness::format_report(rep), Catch::Contains("lidar-nerf / ") && Catch::Contains("ffffffffffffffff"));
@@ -165,7 +159,7 @@ TEST_CASE("results of the wrong shape are findings, not JSON type errors", "[har
 TEST_CASE("missing metric, sequence and row are reported and fail", "[harness][compare]") {
   const Json base = test::fake_results();
   Json m = base;
-  row(m, "lidar-nerf")["mean"].erase("depth_psnr");
+  test::row(m, "lidar-nerf")["mean"].erase("depth_psnr");
   auto rep = compare_results(m, base);
   CHECK(rep.regression());
   bool seen = false;
@@ -174,7 +168,7 @@ TEST_CASE("missing metric, sequence and row are reported and fail", "[harness][c
   CHECK(seen);
 
   Json s = base;
-  row(s, "sg-nlf")["sequences"].erase(1);
+  test::row(s, "sg-nlf")["sequences"].erase(1);
   CHECK(compare_results(s, base).regression());
 
   Json r = base;
@@ -194,7 +188,7 @@ TEST_CASE("timings: noise below the ratio is not flagged, a large ratio is", "[h
   const Json base = test::fake_results();
   auto scale_steps = [&](double f, int n) {
     Json t = base;
-    Json& tim = row(t, "lidar-nerf")["timings"]["step"];
+    Json& tim = test::row(t, "lidar-nerf")["timings"]["step"];
     Json reps = Json::array();
     for (int i = 0; i < n; ++i) reps.push_back(f * (0.010 + 0.001 * i));
     tim = Json{{"reps", reps}};

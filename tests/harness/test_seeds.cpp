@@ -12,30 +12,9 @@
 
 using namespace sgnlf;
 
-namespace {
-
-harness::BenchOptions opts(std::vector<uint64_t> seeds = {}) {
-  harness::BenchOptions o;
-  o.table = "kitti360-standard";
-  o.scale = "smoke";
-  o.out_dir = "/nonexistent/out";
-  o.seed = 7;
-  o.seeds = std::move(seeds);
-  return o;
-}
-
-Json& row(Json& r, const std::string& method) {
-  for (auto& x : r["rows"])
-    if (x["method"] == method) return x;
-  FAIL("no row " << method);
-  return r;
-}
-
-}  // namespace
-
 TEST_CASE("--seeds: mean ± sample sd per row and sequence, every seed's runs kept",
           "[harness][seeds]") {
-  const auto o = opts({1, 2, 3});
+  const auto o = test::fake_options({1, 2, 3});
   const Json r = harness::run_table(o, test::fake_hooks(nullptr, false, true), test::fake_context());
   CHECK(r["config"]["seeds"] == Json::array({1, 2, 3}));
   CHECK_FALSE(r["config"].contains("seed"));
@@ -75,7 +54,7 @@ TEST_CASE("--seeds: mean ± sample sd per row and sequence, every seed's runs ke
 TEST_CASE("--seeds with one seed is the single-seed result; a repeated seed is an error",
           "[harness][seeds]") {
   const Json single = test::fake_results();
-  const Json one = harness::run_table(opts({7}), test::fake_hooks(), test::fake_context());
+  const Json one = harness::run_table(test::fake_options({7}), test::fake_hooks(), test::fake_context());
   CHECK(one["config"] == single["config"]);
   CHECK(one["config_hash"] == single["config_hash"]);
   CHECK_FALSE(one["seeds"].contains("table_seeds"));
@@ -86,36 +65,36 @@ TEST_CASE("--seeds with one seed is the single-seed result; a repeated seed is a
     CHECK(one["rows"][i]["sequences"].size() == single["rows"][i]["sequences"].size());
   }
   CHECK(one["rows"][0]["sequences"][0]["run_dir"] == "/nonexistent/out/runs/lidar-nerf/kitti360-1538");
-  CHECK_THROWS_WITH(opts({1, 2, 1}).validate(), Catch::Contains("seed 1 is listed twice"));
+  CHECK_THROWS_WITH(test::fake_options({1, 2, 1}).validate(), Catch::Contains("seed 1 is listed twice"));
 }
 
 TEST_CASE("compare with several seeds: loose allows twice the standard error of the difference",
           "[harness][seeds][compare]") {
   const Json base =
-      harness::run_table(opts({1, 2, 3}), test::fake_hooks(nullptr, false, true), test::fake_context());
+      harness::run_table(test::fake_options({1, 2, 3}), test::fake_hooks(nullptr, false, true), test::fake_context());
   CHECK_FALSE(harness::compare_results(base, base).regression());
   // Loose cd allowance at 0.12: 0.005 + 1.4 × 0.12 = 0.173; 2 SE = 2 √(0.01²/3 + 0.01²/3) = 0.0163.
   const double tol = harness::metric_tolerance("cd", "loose", 0.12);
   const double two_se = 2 * std::sqrt(2 * 0.01 * 0.01 / 3);
   Json within = base;
-  row(within, "lidar-nerf")["mean"]["cd"] = 0.12 + tol + 0.5 * two_se;
+  test::row(within, "lidar-nerf")["mean"]["cd"] = 0.12 + tol + 0.5 * two_se;
   auto rep = harness::compare_results(within, base, {"loose"});
   CHECK_FALSE(rep.regression());
   CHECK(rep.seed_spread_used > 0);
   // The same difference with one side's spread unknown (one seed) is a regression.
   Json one_side = within;
-  row(one_side, "lidar-nerf").erase("mean_by_seed");
+  test::row(one_side, "lidar-nerf").erase("mean_by_seed");
   CHECK(harness::compare_results(one_side, base, {"loose"}).regression());
   // Beyond the tolerance plus 2 SE fails.
   Json beyond = base;
-  row(beyond, "lidar-nerf")["mean"]["cd"] = 0.12 + tol + 1.2 * two_se;
+  test::row(beyond, "lidar-nerf")["mean"]["cd"] = 0.12 + tol + 1.2 * two_se;
   CHECK(harness::compare_results(beyond, base, {"loose"}).regression());
   // Tight (same device and configs): no spread allowance, and every seed's run is compared.
   rep = harness::compare_results(within, base);
   CHECK(rep.mode == "tight");
   CHECK(rep.regression());
   Json one_seed = base;
-  row(one_seed, "lidar-nerf")["sequences"][0]["runs"][1]["metrics"]["cd"] = 0.5;
+  test::row(one_seed, "lidar-nerf")["sequences"][0]["runs"][1]["metrics"]["cd"] = 0.5;
   rep = harness::compare_results(one_seed, base);
   REQUIRE(rep.regression());
   bool named = false;
