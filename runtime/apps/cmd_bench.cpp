@@ -4,6 +4,7 @@
 // context and the device's roofline, and writes <out>/results.json (results/schema.md) and
 // <out>/table.md. `--cells` lists the table's independent cells (row × sequence × seed);
 // `--cell K --out DIR` runs one and writes DIR/cell.json, for `sgnlf merge` (cmd_merge.cpp).
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <type_traits>
@@ -13,6 +14,7 @@
 #include "core/log.hpp"
 #include "harness/cells.hpp"
 #include "harness/context.hpp"
+#include "harness/estimate.hpp"
 #include "harness/roofline.hpp"
 #include "harness/runner.hpp"
 #include "harness/tables.hpp"
@@ -86,6 +88,13 @@ const Registrar reg("bench", "Run a table of the paper (every row on every seque
   auto* cell_opt = sub.add_option("--cell", *cell,
                                   "Run only cell K (see --cells) and write <out>/cell.json "
                                   "for sgnlf merge");
+  auto estimate_only = std::make_shared<bool>(false);
+  auto estimate_from = std::make_shared<std::string>();
+  sub.add_flag("--estimate", *estimate_only,
+               "Print the run's estimated time (per cell and in all) and exit without running");
+  sub.add_option("--estimate-from", *estimate_from,
+                 "A previous results.json of this table and scale to estimate the time from "
+                 "(default results/tables/<table>/<scale>/results.json when it exists)");
   return std::function<int()>([=] {
     if (*list) return list_tables();
     if (o->table.empty()) throw ConfigError("bench: --table is required (see --list)");
@@ -104,6 +113,36 @@ const Registrar reg("bench", "Run a table of the paper (every row on every seque
       std::cerr << plan.cells.size() << " cells (K, method, sequence, seed); run one with "
                 << "--cell K --out DIR, combine with sgnlf merge --out DIR CELL_DIR...\n";
       return 0;
+    }
+    if (!cell_opt->count()) {
+      // The estimate comes first: a whole table can take minutes or days.
+      harness::BenchOptions planning = *o;  // --out is not needed to plan
+      if (planning.out_dir.empty()) planning.out_dir = ".";
+      const auto plan = harness::plan_table(planning, harness::default_hooks());
+      const std::string from = !estimate_from->empty()
+                                   ? *estimate_from
+                                   : "results/tables/" + o->table + "/" + o->scale + "/results.json";
+      if (!estimate_from->empty() || std::filesystem::exists(from)) {
+        const auto est = harness::estimate_table(plan, o->scale, load_json_file(from), from);
+        std::cout << "bench: " << est.summary() << "\n";
+        if (*estimate_only) {
+          for (size_t i = 0; i < est.cells.size(); ++i) {
+            const auto& c = est.cells[i];
+            const auto& pc = plan.cells[i];
+            std::cout << "  cell " << c.index << "\t" << pc.method << "\t" << pc.sequence
+                      << "\tseed " << pc.seed << "\t"
+                      << (c.seconds >= 0 ? harness::format_duration(c.seconds) + " (" + c.basis + ")"
+                                         : std::string("never measured"))
+                      << "\n";
+          }
+          return 0;
+        }
+      } else {
+        std::cout << "bench: " << plan.cells.size()
+                  << " cell(s); no previous run of this table and scale to estimate the time from ("
+                  << from << ")\n";
+        if (*estimate_only) return 0;
+      }
     }
     const std::string seed_flag = o->seeds.empty() ? " --seed " + std::to_string(o->seed)
                                                    : join_list(" --seeds ", o->seeds);

@@ -20,6 +20,9 @@ const Registrar reg("compare", "Compare a results JSON with a baseline (exit 4 o
   sub.add_option("--mode", opt->mode, "auto | tight | loose")->capture_default_str();
   sub.add_flag("--strict", opt->strict, "Improvements beyond tolerance fail too");
   sub.add_flag("--no-timings", *no_timings, "Do not compare timings");
+  sub.add_flag("--subset", opt->subset,
+               "Compare only the rows and sequences that NEW ran (a bench --rows/--sequences "
+               "run against a whole table)");
   sub.add_option("--min-repetitions", opt->min_repetitions, "Timing repetitions needed");
   sub.add_option("--max-ratio", opt->max_median_ratio, "Allowed median timing ratio");
   return std::function<int()>([=] {

@@ -1,5 +1,6 @@
 #include "harness/compare.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -139,12 +140,16 @@ struct Comparer {
   }
 };
 
-bool same_run_configs(const Json& fresh, const Json& base) {
+bool same_run_configs(const Json& fresh, const Json& base, bool subset) {
   for (const auto& brow : arr(base, "rows")) {
     const Json* nrow = find_by(at(fresh, "rows"), "method", str(brow, "method"));
-    if (!nrow) return false;
+    if (!nrow) {
+      if (subset) continue;
+      return false;
+    }
     for (const auto& bs : arr(brow, "sequences")) {
       const Json* ns = find_by(at(*nrow, "sequences"), "sequence", str(bs, "sequence"));
+      if (!ns && subset) continue;
       if (!ns || at(*ns, "config_hash") != at(bs, "config_hash")) return false;
     }
   }
@@ -219,7 +224,7 @@ CompareReport compare_results(const Json& fresh, const Json& base, const Compare
   const bool same_device = cn.is_object() && cb.is_object() && at(cn, "device") == at(cb, "device") &&
                            at(cn, "driver_version") == at(cb, "driver_version");
   const bool same_cfg = at(fresh, "config_hash") == at(base, "config_hash") &&
-                        same_run_configs(fresh, base);
+                        same_run_configs(fresh, base, opt.subset);
   // A smoke table is a few dozen iterations of an untrained model: its metrics say nothing
   // under loose tolerances (a CD within ±25 % of a 60-step model), only a bit-identical rerun
   // means anything. Loose tolerances are for trained tables (quick, paper) on another device.
@@ -259,7 +264,10 @@ CompareReport compare_results(const Json& fresh, const Json& base, const Compare
     const std::string m = str(brow, "method");
     const Json* nrow = find_by(at(fresh, "rows"), "method", m);
     if (!nrow) {
-      c.add("missing", true, m, "row missing from the new result");
+      if (opt.subset)
+        c.add("note", false, m, "row not run (subset comparison)");
+      else
+        c.add("missing", true, m, "row missing from the new result");
       continue;
     }
     const std::string bs = str(brow, "status"), ns = str(*nrow, "status");
@@ -275,14 +283,28 @@ CompareReport compare_results(const Json& fresh, const Json& base, const Compare
     const auto row_spread = [](const Json& row, const std::string& key) {
       return Spread{&at(row, key + "_sd"), arr(row, key + "_by_seed").size()};
     };
-    c.metrics(m + " / mean", at(*nrow, "mean"), at(brow, "mean"), row_spread(*nrow, "mean"),
-              row_spread(brow, "mean"));
-    if (at(brow, "mean_real").is_object())  // real sequences of a synthetic scale, averaged apart
-      c.metrics(m + " / mean_real", at(*nrow, "mean_real"), at(brow, "mean_real"),
-                row_spread(*nrow, "mean_real"), row_spread(brow, "mean_real"));
+    // A subset run's row mean covers other sequences than the whole table's: compare the
+    // means only over the same sequences.
+    const auto names = [](const Json& row) {
+      std::vector<std::string> v;
+      for (const auto& s : arr(row, "sequences")) v.push_back(str(s, "sequence"));
+      std::sort(v.begin(), v.end());
+      return v;
+    };
+    const bool same_sequences = names(*nrow) == names(brow);
+    if (opt.subset && !same_sequences) {
+      c.add("note", false, m + " / mean", "not compared: the new result ran other sequences");
+    } else {
+      c.metrics(m + " / mean", at(*nrow, "mean"), at(brow, "mean"), row_spread(*nrow, "mean"),
+                row_spread(brow, "mean"));
+      if (at(brow, "mean_real").is_object())  // real sequences of a synthetic scale, averaged apart
+        c.metrics(m + " / mean_real", at(*nrow, "mean_real"), at(brow, "mean_real"),
+                  row_spread(*nrow, "mean_real"), row_spread(brow, "mean_real"));
+    }
     for (const auto& bseq : arr(brow, "sequences")) {
       const std::string s = str(bseq, "sequence");
       const Json* nseq = find_by(at(*nrow, "sequences"), "sequence", s);
+      if (!nseq && opt.subset) continue;  // not run: the subset comparison holds only what ran
       if (!nseq) {
         const Json* skip = find_by(at(fresh, "skipped_sequences"), "name", s);
         c.add("missing", true, m + " / " + s,
@@ -312,6 +334,9 @@ CompareReport compare_results(const Json& fresh, const Json& base, const Compare
   for (const auto& nrow : arr(fresh, "rows"))
     if (!find_by(at(base, "rows"), "method", str(nrow, "method")))
       c.add("note", false, str(nrow, "method"), "row not in the baseline");
+  if (opt.subset && rep.metrics_compared == 0)
+    c.add("missing", true, "rows", "subset comparison: the new result has no row and sequence "
+                                   "in common with the baseline, nothing was compared");
   if (!same_device)
     c.add("note", false, "timings", "not compared: different OpenCL device or driver");
   if (smoke_other_device) {

@@ -17,6 +17,10 @@ struct CompareOptions {
   std::string mode = "auto";  // auto | tight | loose
   bool strict = false;        // improvements beyond tolerance fail too (baseline is stale)
   bool timings = true;        // compare timings at all
+  // Only the rows and sequences the new result ran (a `bench --rows/--sequences` run against a
+  // whole table): the baseline's others are not required, and a row's mean is compared only
+  // when both sides cover the same sequences.
+  bool subset = false;
   int min_repetitions = -1;   // -1: tables.json tolerances.timing
   double max_median_ratio = -1;
   void validate() const;

@@ -223,3 +223,37 @@ TEST_CASE("results of another schema or table are not comparable", "[harness][co
   CHECK(compare_results(t, base).regression());
   CHECK_THROWS_AS(compare_results(base, base, {"medium"}), ConfigError);
 }
+
+TEST_CASE("a subset run compares only the rows and sequences it ran", "[harness][compare]") {
+  const Json base = test::fake_results();
+  harness::CompareOptions sub;
+  sub.subset = true;
+  // One row on one sequence, as `bench --rows sg-nlf --sequences <first>` writes it.
+  Json part = base;
+  Json keep = test::row(part, "sg-nlf");
+  keep["sequences"].erase(1);
+  part["rows"] = Json::array({keep});
+  CHECK(compare_results(part, base).regression());  // whole-table comparison: rows missing
+  auto rep = compare_results(part, base, sub);
+  CHECK_FALSE(rep.regression());
+  CHECK(rep.metrics_compared > 0);
+  bool mean_skipped = false;
+  for (const auto& f : rep.findings)
+    mean_skipped |= f.where == "sg-nlf / mean" && f.kind == "note";
+  CHECK(mean_skipped);  // the mean covers other sequences: not compared
+
+  // What ran is still held to the tolerances.
+  Json worse = part;
+  auto& seq = worse["rows"][0]["sequences"][0];
+  seq["metrics"]["cd"] = seq["metrics"]["cd"].get<double>() * 3 + 1;
+  rep = compare_results(worse, base, sub);
+  CHECK(rep.regression());
+  bool seen = false;
+  for (const auto& f : rep.findings) seen |= f.fails && f.where.find("/ cd") != std::string::npos;
+  CHECK(seen);
+
+  // Nothing in common is not a pass.
+  Json none = part;
+  none["rows"][0]["sequences"][0]["sequence"] = "no-such-sequence";
+  CHECK(compare_results(none, base, sub).regression());
+}
