@@ -1,0 +1,194 @@
+// Time-sliced 2D hash grids (method.md §2, LiDAR4D's dynamic hash encoding): three planes xy,
+// xz, yz, each a stack of SLICES 2D multi-resolution hash grids (one per time slice); a time t
+// blends its two neighbouring slices linearly, and the three planes' blended features are
+// multiplied (Hadamard) per level. Forward, race-free (plane, level)-partitioned parameter
+// backward and the input-position backward d_x.
+//
+// Defines: LEVELS (L), FEATURES (F, 1..8), SLICES (T ≥ 1), CHUNK (points per work-item; 1 = one
+// work-item per point). meta[p·L + l] = (res, entry offset within one slice, entries, hashed) of
+// level l of plane p; pmeta[p] = (first entry of plane p in the module slice, entries per time
+// slice); entry e of slice s, level l, plane p stores F floats at
+// params[param_offset + (pmeta.x + s·pmeta.y + meta.y + e)·F + f]. A level indexes (gx, gy)
+// densely (gx + gy·res, clamped) when res² fits the table, else by the spatial hash
+// gx ⊕ gy·2654435761 (instant-ngp), as kernels/field/hashgrid.clh does in 3D.
+// Position: pos = ((x + 1)/2)·scale_l + 0.5 per axis (x ∈ [−1, 1]); time: u = clamp(t, 0, 1)·(T − 1),
+// slices s0 = floor(u), s1 = min(s0 + 1, T − 1), weights (1 − (u − s0), u − s0).
+// Encoding columns: enc[i·stride + col + l·F + f].
+#ifndef LEVELS
+#error "LEVELS must be defined"
+#endif
+#ifndef FEATURES
+#error "FEATURES must be defined"
+#endif
+#ifndef SLICES
+#error "SLICES must be defined"
+#endif
+#ifndef CHUNK
+#define CHUNK 64
+#endif
+#define HALF_TABLE 0
+#include "field/hashgrid.clh"
+
+// The two spatial axes of plane p: xy, xz, yz.
+inline int th_axis_a(int p) { return p == 2 ? 1 : 0; }
+inline int th_axis_b(int p) { return p == 0 ? 1 : 2; }
+
+// The neighbouring time slices of point i and the weight of the later one.
+inline int th_slices(__global const float* t, int i, int* s1, float* w1) {
+  const float u = clamp(t[i], 0.0f, 1.0f) * (float)(SLICES - 1);
+  const int s0 = min((int)floor(u), SLICES - 1);
+  *s1 = min(s0 + 1, SLICES - 1);
+  *w1 = u - (float)s0;
+  return s0;
+}
+
+// Grid cell and fraction of point i on plane p at level scale sc.
+inline float2 th_locate(__global const float* x, int i, int p, float sc, uint2* g) {
+  const float pa = fma(fma(x[3 * i + th_axis_a(p)], 0.5f, 0.5f), sc, 0.5f);
+  const float pb = fma(fma(x[3 * i + th_axis_b(p)], 0.5f, 0.5f), sc, 0.5f);
+  const float2 fl = (float2)(floor(pa), floor(pb));
+  *g = (uint2)((uint)(int)fl.x, (uint)(int)fl.y);
+  return (float2)(pa, pb) - fl;
+}
+
+// Bilinear sample of one slice's level table tb; with da non-null also ∂/∂pos_a and ∂/∂pos_b.
+inline featv th_bilerp(__global const float* tb, uint4 m, uint2 g, float2 fr, featv* da,
+                       featv* db) {
+  const featv v00 = LOADF(tb + (size_t)hg_index(g.x, g.y, 0u, m) * FEATURES);
+  const featv v10 = LOADF(tb + (size_t)hg_index(g.x + 1u, g.y, 0u, m) * FEATURES);
+  const featv v01 = LOADF(tb + (size_t)hg_index(g.x, g.y + 1u, 0u, m) * FEATURES);
+  const featv v11 = LOADF(tb + (size_t)hg_index(g.x + 1u, g.y + 1u, 0u, m) * FEATURES);
+  const featv lo = fma((featv)(fr.x), v10 - v00, v00), hi = fma((featv)(fr.x), v11 - v01, v01);
+  if (da) {
+    *da = fma((featv)(fr.y), (v11 - v01) - (v10 - v00), v10 - v00);
+    *db = hi - lo;
+  }
+  return fma((featv)(fr.y), hi - lo, lo);
+}
+
+// Time-blended feature of plane p, level l at point i (and its position derivatives, scaled
+// to ∂/∂x, when da is non-null).
+inline featv th_plane(__global const float* tbl, __global const uint4* meta,
+                      __global const uint2* pmeta, float sc, int p, int l,
+                      __global const float* x, __global const float* t, int i, featv* da,
+                      featv* db) {
+  const uint4 m = meta[p * LEVELS + l];
+  const uint2 pm = pmeta[p];
+  int s1;
+  float w1;
+  const int s0 = th_slices(t, i, &s1, &w1);
+  uint2 g;
+  const float2 fr = th_locate(x, i, p, sc, &g);
+  __global const float* t0 = tbl + (size_t)(pm.x + (uint)s0 * pm.y + m.y) * FEATURES;
+  __global const float* t1 = tbl + (size_t)(pm.x + (uint)s1 * pm.y + m.y) * FEATURES;
+  featv a0, b0, a1, b1;
+  const featv v0 = th_bilerp(t0, m, g, fr, da ? &a0 : 0, &b0);
+  const featv v1 = th_bilerp(t1, m, g, fr, da ? &a1 : 0, &b1);
+  const float w0 = 1.0f - w1;
+  if (da) {
+    *da = (0.5f * sc) * (w0 * a0 + w1 * a1);
+    *db = (0.5f * sc) * (w0 * b0 + w1 * b1);
+  }
+  return w0 * v0 + w1 * v1;
+}
+
+// Adds gv · (bilinear weights) into the 4 corners of one slice's level table (owned by the caller).
+inline void th_scatter(__global float* tb, uint4 m, uint2 g, float2 fr, featv gv) {
+  const uint e[4] = {hg_index(g.x, g.y, 0u, m), hg_index(g.x + 1u, g.y, 0u, m),
+                     hg_index(g.x, g.y + 1u, 0u, m), hg_index(g.x + 1u, g.y + 1u, 0u, m)};
+  const float w[4] = {(1.0f - fr.x) * (1.0f - fr.y), fr.x * (1.0f - fr.y), (1.0f - fr.x) * fr.y,
+                      fr.x * fr.y};
+  for (int c = 0; c < 4; ++c) {
+    __global float* q = tb + (size_t)e[c] * FEATURES;
+    STOREF(fma((featv)(w[c]), gv, LOADF(q)), q);
+  }
+}
+
+// One work-item per (chunk of CHUNK points, level).
+__kernel void field_hashgrid_time_fwd(const int n, __global const float* params,
+                                      const uint param_offset, __global const float* x,
+                                      __global const float* t, __global const float* scale,
+                                      __global const uint4* meta, __global const uint2* pmeta,
+                                      __global float* enc, const int stride, const int col) {
+  const int c = get_global_id(0), l = get_global_id(1);
+  const float sc = scale[l];
+  __global const float* tbl = params + param_offset;
+  const int end = min(n, (c + 1) * CHUNK);
+  for (int i = c * CHUNK; i < end; ++i) {
+    featv v = th_plane(tbl, meta, pmeta, sc, 0, l, x, t, i, 0, 0);
+    v *= th_plane(tbl, meta, pmeta, sc, 1, l, x, t, i, 0, 0);
+    v *= th_plane(tbl, meta, pmeta, sc, 2, l, x, t, i, 0, 0);
+    STOREF(v, enc + (size_t)i * stride + col + l * FEATURES);
+  }
+}
+
+// Deterministic parameter gradient: one work-item per (level l, plane p), index l + L·p, owns
+// level l of every time slice of plane p: zeroes it (unless accumulate), then adds over the
+// points in index order d_enc ⊙ (the other two planes) · time weight · bilinear weights.
+__kernel void field_hashgrid_time_bwd(const int n, __global const float* params,
+                                      const uint param_offset, __global const float* x,
+                                      __global const float* t, __global const float* scale,
+                                      __global const uint4* meta, __global const uint2* pmeta,
+                                      __global const float* d_enc, const int stride,
+                                      const int col, __global float* grad,
+                                      const uint grad_offset, const int accumulate) {
+  const int l = get_global_id(0) % LEVELS, p = get_global_id(0) / LEVELS;
+  const int q1 = p == 0 ? 1 : 0, q2 = p == 2 ? 1 : 2;
+  const uint4 m = meta[p * LEVELS + l];
+  const uint2 pm = pmeta[p];
+  const float sc = scale[l];
+  __global const float* tbl = params + param_offset;
+  __global float* gbase = grad + grad_offset + (size_t)(pm.x + m.y) * FEATURES;
+  if (!accumulate)
+    for (int s = 0; s < SLICES; ++s)
+      for (uint e = 0; e < m.z * FEATURES; ++e) gbase[(size_t)s * pm.y * FEATURES + e] = 0.0f;
+  for (int i = 0; i < n; ++i) {
+    const featv de = LOADF(d_enc + (size_t)i * stride + col + l * FEATURES);
+    const featv gv = de * th_plane(tbl, meta, pmeta, sc, q1, l, x, t, i, 0, 0) *
+                     th_plane(tbl, meta, pmeta, sc, q2, l, x, t, i, 0, 0);
+    int s1;
+    float w1;
+    const int s0 = th_slices(t, i, &s1, &w1);
+    uint2 g;
+    const float2 fr = th_locate(x, i, p, sc, &g);
+    th_scatter(gbase + (size_t)s0 * pm.y * FEATURES, m, g, fr, (1.0f - w1) * gv);
+    th_scatter(gbase + (size_t)s1 * pm.y * FEATURES, m, g, fr, w1 * gv);
+  }
+}
+
+// Input-position gradient: one work-item per (chunk, level) writes the level's contribution
+// Σ_f d_enc · ∂(v0 v1 v2)/∂x to part[l·n + i] (3 floats); field_hashgrid_time_dx_reduce sums
+// the levels in order.
+__kernel void field_hashgrid_time_bwd_dx(const int n, __global const float* params,
+                                         const uint param_offset, __global const float* x,
+                                         __global const float* t, __global const float* scale,
+                                         __global const uint4* meta, __global const uint2* pmeta,
+                                         __global const float* d_enc, const int stride,
+                                         const int col, __global float* part) {
+  const int c = get_global_id(0), l = get_global_id(1);
+  const float sc = scale[l];
+  __global const float* tbl = params + param_offset;
+  const int end = min(n, (c + 1) * CHUNK);
+  for (int i = c * CHUNK; i < end; ++i) {
+    const featv de = LOADF(d_enc + (size_t)i * stride + col + l * FEATURES);
+    featv v[3], da[3], db[3];
+    for (int p = 0; p < 3; ++p) v[p] = th_plane(tbl, meta, pmeta, sc, p, l, x, t, i, &da[p], &db[p]);
+    float dp[3] = {0.0f, 0.0f, 0.0f};
+    for (int p = 0; p < 3; ++p) {
+      const featv g = de * v[p == 0 ? 1 : 0] * v[p == 2 ? 1 : 2];
+      dp[th_axis_a(p)] += hg_sum(g * da[p]);
+      dp[th_axis_b(p)] += hg_sum(g * db[p]);
+    }
+    vstore3((float3)(dp[0], dp[1], dp[2]), (size_t)l * n + i, part);
+  }
+}
+
+// d_x[i] = Σ_l part[l][i], levels in order (deterministic).
+__kernel void field_hashgrid_time_dx_reduce(const int n, __global const float* part,
+                                            __global float* d_x) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  float3 acc = vload3(i, part);
+  for (int l = 1; l < LEVELS; ++l) acc += vload3((size_t)l * n + i, part);
+  vstore3(acc, i, d_x);
+}
