@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/rng.hpp"
+#include "field/frame_time.hpp"
 #include "field/kplanes.hpp"
 #include "reference_4d.hpp"
 #include "support/test_device.hpp"
@@ -220,4 +221,27 @@ TEST_CASE("kplanes gradients agree with finite differences of the device forward
     }
     CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 1e-2);
   }
+}
+
+TEST_CASE("kplanes launcher refuses bad shapes; frame times", "[field][kplanes]") {
+  auto& rt = test::runtime();
+  field::KPlanes kp(rt, small_config());
+  const int n = 10;
+  cl::Buffer b_p(rt, kp.n_params() * 4), b_x(rt, size_t(n) * 12), b_t(rt, size_t(n) * 4),
+      b_enc(rt, size_t(n) * 8 * 4), b_small(rt, size_t(n) * 4 * 4), b_g(rt, kp.n_params() * 4);
+  CHECK_NOTHROW(kp.forward(b_p, 0, b_x, b_t, n, b_enc));
+  CHECK_THROWS_AS(kp.forward(b_p, 0, b_x, b_t, n, b_small), Error);           // 8 columns
+  CHECK_NOTHROW(kp.forward(b_p, 0, b_x, b_t, n, b_small, PlaneGroups::Static));  // 4 columns
+  CHECK_THROWS_AS(kp.forward(b_p, 0, b_x, b_t, n, b_enc, PlaneGroups::Both, 8, 1), Error);
+  CHECK_THROWS_AS(kp.forward(b_p, 4, b_x, b_t, n, b_enc), Error);             // slice past end
+  CHECK_THROWS_AS(kp.forward(b_p, 0, b_x, b_t, n + 1, b_enc), Error);
+  CHECK_THROWS_AS(kp.backward(b_p, 0, b_x, b_t, n, b_enc, b_g, 1), Error);
+  rt.finish();
+
+  CHECK(field::frame_time(7, 7, 51) == 0.0f);
+  CHECK(field::frame_time(57, 7, 51) == 1.0f);
+  CHECK(field::frame_time(32, 7, 51) == Approx(0.5));
+  CHECK(field::frame_time(3, 3, 1) == 0.0f);
+  CHECK_THROWS_AS(field::frame_time(58, 7, 51), Error);
+  CHECK_THROWS_AS(field::frame_time(6, 7, 51), Error);
 }
