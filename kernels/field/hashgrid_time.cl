@@ -1,8 +1,8 @@
 // Time-sliced 2D hash grids (method.md §2, LiDAR4D's dynamic hash encoding): three planes xy,
 // xz, yz, each a stack of SLICES 2D multi-resolution hash grids (one per time slice); a time t
 // blends its two neighbouring slices linearly, and the three planes' blended features are
-// multiplied (Hadamard) per level. Forward, race-free (plane, level)-partitioned parameter
-// backward and the input-position backward d_x.
+// multiplied (Hadamard) per level. Forward, race-free level-partitioned parameter backward and
+// the input-position backward d_x.
 //
 // Defines: LEVELS (L), FEATURES (F, 1..8), SLICES (T ≥ 1), CHUNK (points per work-item; 1 = one
 // work-item per point). meta[p·L + l] = (res, entry offset within one slice, entries, hashed) of
@@ -92,18 +92,6 @@ inline featv th_plane(__global const float* tbl, __global const uint4* meta,
   return w0 * v0 + w1 * v1;
 }
 
-// Adds gv · (bilinear weights) into the 4 corners of one slice's level table (owned by the caller).
-inline void th_scatter(__global float* tb, uint4 m, uint2 g, float2 fr, featv gv) {
-  const uint e[4] = {hg_index(g.x, g.y, 0u, m), hg_index(g.x + 1u, g.y, 0u, m),
-                     hg_index(g.x, g.y + 1u, 0u, m), hg_index(g.x + 1u, g.y + 1u, 0u, m)};
-  const float w[4] = {(1.0f - fr.x) * (1.0f - fr.y), fr.x * (1.0f - fr.y), (1.0f - fr.x) * fr.y,
-                      fr.x * fr.y};
-  for (int c = 0; c < 4; ++c) {
-    __global float* q = tb + (size_t)e[c] * FEATURES;
-    STOREF(fma((featv)(w[c]), gv, LOADF(q)), q);
-  }
-}
-
 // One work-item per (chunk of CHUNK points, level).
 __kernel void field_hashgrid_time_fwd(const int n, __global const float* params,
                                       const uint param_offset, __global const float* x,
@@ -122,9 +110,10 @@ __kernel void field_hashgrid_time_fwd(const int n, __global const float* params,
   }
 }
 
-// Deterministic parameter gradient: one work-item per (level l, plane p), index l + L·p, owns
-// level l of every time slice of plane p: zeroes it (unless accumulate), then adds over the
-// points in index order d_enc ⊙ (the other two planes) · time weight · bilinear weights.
+// Deterministic parameter gradient: one work-item per level l owns level l of every time slice
+// of the three planes: zeroes it (unless accumulate), then, over the points in index order,
+// samples the three planes once (corner entries and weights kept) and adds to each
+// d_enc ⊙ (the product of the other two) · time weight · bilinear weight. No atomics.
 __kernel void field_hashgrid_time_bwd(const int n, __global const float* params,
                                       const uint param_offset, __global const float* x,
                                       __global const float* t, __global const float* scale,
@@ -132,27 +121,55 @@ __kernel void field_hashgrid_time_bwd(const int n, __global const float* params,
                                       __global const float* d_enc, const int stride,
                                       const int col, __global float* grad,
                                       const uint grad_offset, const int accumulate) {
-  const int l = get_global_id(0) % LEVELS, p = get_global_id(0) / LEVELS;
-  const int q1 = p == 0 ? 1 : 0, q2 = p == 2 ? 1 : 2;
-  const uint4 m = meta[p * LEVELS + l];
-  const uint2 pm = pmeta[p];
+  const int l = get_global_id(0);
   const float sc = scale[l];
   __global const float* tbl = params + param_offset;
-  __global float* gbase = grad + grad_offset + (size_t)(pm.x + m.y) * FEATURES;
+  __global float* gr = grad + grad_offset;
   if (!accumulate)
-    for (int s = 0; s < SLICES; ++s)
-      for (uint e = 0; e < m.z * FEATURES; ++e) gbase[(size_t)s * pm.y * FEATURES + e] = 0.0f;
+    for (int p = 0; p < 3; ++p) {
+      const uint4 m = meta[p * LEVELS + l];
+      const uint2 pm = pmeta[p];
+      for (int s = 0; s < SLICES; ++s) {
+        __global float* q = gr + (size_t)(pm.x + (uint)s * pm.y + m.y) * FEATURES;
+        for (uint e = 0; e < m.z * FEATURES; ++e) q[e] = 0.0f;
+      }
+    }
   for (int i = 0; i < n; ++i) {
     const featv de = LOADF(d_enc + (size_t)i * stride + col + l * FEATURES);
-    const featv gv = de * th_plane(tbl, meta, pmeta, sc, q1, l, x, t, i, 0, 0) *
-                     th_plane(tbl, meta, pmeta, sc, q2, l, x, t, i, 0, 0);
     int s1;
     float w1;
     const int s0 = th_slices(t, i, &s1, &w1);
-    uint2 g;
-    const float2 fr = th_locate(x, i, p, sc, &g);
-    th_scatter(gbase + (size_t)s0 * pm.y * FEATURES, m, g, fr, (1.0f - w1) * gv);
-    th_scatter(gbase + (size_t)s1 * pm.y * FEATURES, m, g, fr, w1 * gv);
+    const float w0 = 1.0f - w1;
+    uint e0[3][4], e1[3][4];
+    float w[3][4];
+    featv v[3];
+    for (int p = 0; p < 3; ++p) {
+      const uint4 m = meta[p * LEVELS + l];
+      const uint2 pm = pmeta[p];
+      uint2 g;
+      const float2 fr = th_locate(x, i, p, sc, &g);
+      const uint o0 = pm.x + (uint)s0 * pm.y + m.y, o1 = pm.x + (uint)s1 * pm.y + m.y;
+      featv acc = (featv)(0.0f);
+      for (int c = 0; c < 4; ++c) {
+        const uint cx = c & 1, cy = c >> 1;
+        const uint e = hg_index(g.x + cx, g.y + cy, 0u, m);
+        w[p][c] = (cx ? fr.x : 1.0f - fr.x) * (cy ? fr.y : 1.0f - fr.y);
+        e0[p][c] = o0 + e;
+        e1[p][c] = o1 + e;
+        acc += w[p][c] * (w0 * LOADF(tbl + (size_t)e0[p][c] * FEATURES) +
+                          w1 * LOADF(tbl + (size_t)e1[p][c] * FEATURES));
+      }
+      v[p] = acc;
+    }
+    for (int p = 0; p < 3; ++p) {
+      const featv gv = de * v[p == 0 ? 1 : 0] * v[p == 2 ? 1 : 2];
+      for (int c = 0; c < 4; ++c) {
+        __global float* q0 = gr + (size_t)e0[p][c] * FEATURES;
+        STOREF(fma((featv)(w0 * w[p][c]), gv, LOADF(q0)), q0);
+        __global float* q1 = gr + (size_t)e1[p][c] * FEATURES;
+        STOREF(fma((featv)(w1 * w[p][c]), gv, LOADF(q1)), q1);
+      }
+    }
   }
 }
 

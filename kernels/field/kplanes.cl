@@ -110,32 +110,38 @@ __kernel void field_kplanes_fwd(const int n, __global const float* params, const
   }
 }
 
-// Deterministic parameter gradient: one work-item per (scale s, plane k of group gi), index
-// s + S·(k + 3·gi), owns its plane: zeroes it (unless accumulate), then adds, over the points
-// in index order, d_enc ⊙ (product of the group's other two planes) times the bilinear weights.
+// Deterministic parameter gradient: one work-item per (scale s, group gi), index s + S·gi,
+// owns the group's three planes at that scale: zeroes them (unless accumulate), then, over the
+// points in index order, samples the three planes once and adds to each d_enc ⊙ (the product
+// of the other two) times its bilinear weights. No atomics.
 __kernel void field_kplanes_bwd(const int n, __global const float* params, const uint param_offset,
                                 __global const float* x, __global const float* t,
                                 __global const uint4* meta, const int group_first,
                                 __global const float* d_enc, const int stride, const int col,
                                 __global float* grad, const uint grad_offset,
                                 const int accumulate) {
-  const int w = get_global_id(0);
-  const int s = w % SCALES, k = (w / SCALES) % 3, gi = w / (3 * SCALES);
-  const int p0 = 3 * (group_first + gi), p = p0 + k;
-  const int q1 = p0 + (k == 0 ? 1 : 0), q2 = p0 + (k == 2 ? 1 : 2);
-  const uint4 m = meta[s * 6 + p];
+  const int s = get_global_id(0) % SCALES, gi = get_global_id(0) / SCALES;
+  const int p0 = 3 * (group_first + gi);
   __global const float* tbl = params + param_offset;
   __global float* g = grad + grad_offset;
   if (!accumulate)
-    for (uint e = 0; e < m.y * m.z * FEATURES; ++e) g[(size_t)m.x * FEATURES + e] = 0.0f;
+    for (int k = 0; k < 3; ++k) {
+      const uint4 m = meta[s * 6 + p0 + k];
+      for (uint e = 0; e < m.y * m.z * FEATURES; ++e) g[(size_t)m.x * FEATURES + e] = 0.0f;
+    }
   for (int i = 0; i < n; ++i) {
     const featv de = LOADF(d_enc + (size_t)i * stride + col + (gi * SCALES + s) * FEATURES);
-    const featv o = kp_plane(tbl, meta, s, q1, x, t, i, 0, 0, 0, 0) *
-                    kp_plane(tbl, meta, s, q2, x, t, i, 0, 0, 0, 0);
-    float ga, gb;
-    const float pa = kp_pos(x, t, i, kp_axis_a(p), m.y, &ga);
-    const float pb = kp_pos(x, t, i, kp_axis_b(p), m.z, &gb);
-    kp_scatter(g, m, pa, pb, de * o);
+    featv v[3];
+    float pa[3], pb[3];
+    for (int k = 0; k < 3; ++k) {
+      const uint4 m = meta[s * 6 + p0 + k];
+      float ga, gb;
+      pa[k] = kp_pos(x, t, i, kp_axis_a(p0 + k), m.y, &ga);
+      pb[k] = kp_pos(x, t, i, kp_axis_b(p0 + k), m.z, &gb);
+      v[k] = kp_sample(tbl, m, pa[k], pb[k], 0, 0);
+    }
+    for (int k = 0; k < 3; ++k)
+      kp_scatter(g, meta[s * 6 + p0 + k], pa[k], pb[k], de * v[k == 0 ? 1 : 0] * v[k == 2 ? 1 : 2]);
   }
 }
 

@@ -137,7 +137,7 @@ void KPlanes::backward(const cl::Buffer& params, size_t offset, const cl::Buffer
   check_bytes(grad, grad_offset + n_params_, "grad");
   bwd_.set_args(n, params, uint32_t(offset), x, t, meta_, first_group(groups), d_enc, stride, col,
                 grad, uint32_t(grad_offset), accumulate ? 1 : 0);
-  bwd_.launch({size_t(rows) * 3}, {1});
+  bwd_.launch({size_t(rows)}, {1});
   if (!d_x || n == 0) return;
   check_bytes(*d_x, size_t(n) * 3, "d_x");
   const size_t part = size_t(n) * size_t(rows) * 3;

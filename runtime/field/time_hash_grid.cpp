@@ -145,7 +145,7 @@ void TimeHashGrid::backward(const cl::Buffer& params, size_t offset, const cl::B
   check_bytes(grad, grad_offset + n_params_, "grad");
   bwd_.set_args(n, params, uint32_t(offset), x, t, scale_, meta_, pmeta_, d_enc, stride, col,
                 grad, uint32_t(grad_offset), accumulate ? 1 : 0);
-  bwd_.launch({size_t(cfg_.levels) * 3}, {1});
+  bwd_.launch({size_t(cfg_.levels)}, {1});
   if (!d_x || n == 0) return;
   check_bytes(*d_x, size_t(n) * 3, "d_x");
   const size_t part = size_t(n) * size_t(cfg_.levels) * 3;
