@@ -245,3 +245,30 @@ TEST_CASE("kplanes launcher refuses bad shapes; frame times", "[field][kplanes]"
   CHECK_THROWS_AS(field::frame_time(58, 7, 51), Error);
   CHECK_THROWS_AS(field::frame_time(6, 7, 51), Error);
 }
+
+TEST_CASE("kplanes at LiDAR4D's sizes (8 features, 32..256, time 8) match the reference",
+          "[field][kplanes]") {
+  auto& rt = test::runtime();
+  const field::KPlanesConfig cfg;
+  field::KPlanes kp(rt, cfg);
+  const int n = 300, w = kp.n_output();
+  REQUIRE(w == 64);
+  const auto table = uniform(kp.n_params(), -1.0f, 1.0f, 61);
+  const auto x = uniform(size_t(n) * 3, -1.0f, 1.0f, 62);
+  const auto t = uniform(size_t(n), 0.0f, 1.0f, 63);
+  const auto d_enc = uniform(size_t(n) * w, -1.0f, 1.0f, 64);
+  auto b_p = cl::Buffer::from(rt, table), b_x = cl::Buffer::from(rt, x);
+  auto b_t = cl::Buffer::from(rt, t), b_d = cl::Buffer::from(rt, d_enc);
+  cl::Buffer b_enc(rt, size_t(n) * w * 4), b_g(rt, table.size() * 4), b_dx(rt, size_t(n) * 12);
+  kp.forward(b_p, 0, b_x, b_t, n, b_enc);
+  kp.backward(b_p, 0, b_x, b_t, n, b_d, b_g, 0, &b_dx);
+  CHECK(test::max_sym_rel_err(b_enc.read_vec<float>(size_t(n) * w),
+                              test::ref::kplanes_fwd(cfg, table, x, t, PlaneGroups::Both),
+                              1e-2) < 1e-5);
+  CHECK(test::max_sym_rel_err(b_g.read_vec<float>(table.size()),
+                              test::ref::kplanes_bwd(cfg, table, x, t, d_enc, PlaneGroups::Both),
+                              1e-1) < 1e-5);
+  CHECK(test::max_sym_rel_err(b_dx.read_vec<float>(size_t(n) * 3),
+                              test::ref::kplanes_bwd_dx(cfg, table, x, t, d_enc, PlaneGroups::Both),
+                              1.0) < 3e-5);  // |d_x| up to ~100 (∂pos/∂x = 127.5): float sums
+}
