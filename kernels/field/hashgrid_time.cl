@@ -51,13 +51,18 @@ inline float2 th_locate(__global const float* x, int i, int p, float sc, uint2* 
   return (float2)(pa, pb) - fl;
 }
 
-// Bilinear sample of one slice's level table tb; with da non-null also ∂/∂pos_a and ∂/∂pos_b.
-inline featv th_bilerp(__global const float* tb, uint4 m, uint2 g, float2 fr, featv* da,
-                       featv* db) {
-  const featv v00 = LOADF(tb + (size_t)hg_index(g.x, g.y, 0u, m) * FEATURES);
-  const featv v10 = LOADF(tb + (size_t)hg_index(g.x + 1u, g.y, 0u, m) * FEATURES);
-  const featv v01 = LOADF(tb + (size_t)hg_index(g.x, g.y + 1u, 0u, m) * FEATURES);
-  const featv v11 = LOADF(tb + (size_t)hg_index(g.x + 1u, g.y + 1u, 0u, m) * FEATURES);
+// Bilinear sample of the time-blended corners w0·t0[e] + w1·t1[e] of two slices' level tables
+// (the corner indices computed once); with da non-null also ∂/∂pos_a and ∂/∂pos_b.
+inline featv th_bilerp(__global const float* t0, __global const float* t1, float w0, float w1,
+                       uint4 m, uint2 g, float2 fr, featv* da, featv* db) {
+  const size_t e00 = (size_t)hg_index(g.x, g.y, 0u, m) * FEATURES;
+  const size_t e10 = (size_t)hg_index(g.x + 1u, g.y, 0u, m) * FEATURES;
+  const size_t e01 = (size_t)hg_index(g.x, g.y + 1u, 0u, m) * FEATURES;
+  const size_t e11 = (size_t)hg_index(g.x + 1u, g.y + 1u, 0u, m) * FEATURES;
+  const featv v00 = w0 * LOADF(t0 + e00) + w1 * LOADF(t1 + e00);
+  const featv v10 = w0 * LOADF(t0 + e10) + w1 * LOADF(t1 + e10);
+  const featv v01 = w0 * LOADF(t0 + e01) + w1 * LOADF(t1 + e01);
+  const featv v11 = w0 * LOADF(t0 + e11) + w1 * LOADF(t1 + e11);
   const featv lo = fma((featv)(fr.x), v10 - v00, v00), hi = fma((featv)(fr.x), v11 - v01, v01);
   if (da) {
     *da = fma((featv)(fr.y), (v11 - v01) - (v10 - v00), v10 - v00);
@@ -81,15 +86,12 @@ inline featv th_plane(__global const float* tbl, __global const uint4* meta,
   const float2 fr = th_locate(x, i, p, sc, &g);
   __global const float* t0 = tbl + (size_t)(pm.x + (uint)s0 * pm.y + m.y) * FEATURES;
   __global const float* t1 = tbl + (size_t)(pm.x + (uint)s1 * pm.y + m.y) * FEATURES;
-  featv a0, b0, a1, b1;
-  const featv v0 = th_bilerp(t0, m, g, fr, da ? &a0 : 0, &b0);
-  const featv v1 = th_bilerp(t1, m, g, fr, da ? &a1 : 0, &b1);
-  const float w0 = 1.0f - w1;
+  const featv v = th_bilerp(t0, t1, 1.0f - w1, w1, m, g, fr, da, db);
   if (da) {
-    *da = (0.5f * sc) * (w0 * a0 + w1 * a1);
-    *db = (0.5f * sc) * (w0 * b0 + w1 * b1);
+    *da *= 0.5f * sc;
+    *db *= 0.5f * sc;
   }
-  return w0 * v0 + w1 * v1;
+  return v;
 }
 
 // One work-item per (chunk of CHUNK points, level).
