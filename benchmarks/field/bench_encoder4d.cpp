@@ -30,9 +30,12 @@ void set_gathers(benchmark::State& state, double secs, double gathers) {
 }  // namespace
 
 // Forward: per point and scale, 3 planes × 4 corners × F floats per group.
+// Second argument: points per work-item (KPlanesConfig::chunk; 0 = auto).
 static void kplanes_fwd(benchmark::State& state, PlaneGroups groups) {
   auto& rt = bench::runtime();
-  field::KPlanes kp(rt, field::KPlanesConfig{});
+  field::KPlanesConfig cfg;
+  cfg.chunk = int(state.range(1));
+  field::KPlanes kp(rt, cfg);
   const int n = int(state.range(0)), w = kp.n_output(groups);
   std::vector<float> params(kp.n_params());
   kp.init_params(params, 0, 1);
@@ -47,8 +50,9 @@ static void kplanes_fwd(benchmark::State& state, PlaneGroups groups) {
 }
 static void BM_KPlanesFwd(benchmark::State& s) { kplanes_fwd(s, PlaneGroups::Both); }
 static void BM_KPlanesFwdDynamic(benchmark::State& s) { kplanes_fwd(s, PlaneGroups::Dynamic); }
-BENCHMARK(BM_KPlanesFwd)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_KPlanesFwdDynamic)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_KPlanesFwd)->Args({1 << 18, 0})->Args({1 << 18, 16})->Args({1 << 18, 256})
+    ->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_KPlanesFwdDynamic)->Args({1 << 18, 0})->UseManualTime()->Unit(benchmark::kMillisecond);
 
 // Backward: the parameter pass reads the two other planes and scatters into its own (3 × 4
 // corners per plane), the d_x pass reads all three planes again; the gradient slice is zeroed.
