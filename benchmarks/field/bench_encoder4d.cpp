@@ -54,8 +54,9 @@ BENCHMARK(BM_KPlanesFwd)->Args({1 << 18, 0})->Args({1 << 18, 16})->Args({1 << 18
     ->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_KPlanesFwdDynamic)->Args({1 << 18, 0})->UseManualTime()->Unit(benchmark::kMillisecond);
 
-// Backward: the parameter pass reads the two other planes and scatters into its own (3 × 4
-// corners per plane), the d_x pass reads all three planes again; the gradient slice is zeroed.
+// Backward: per point and scale-group unit the parameter pass reads the 3 planes' 4 corners and
+// reads and writes the same 12 gradient entries (36 entry accesses), the d_x pass reads the 12
+// corners again; the gradient slice is zeroed once.
 static void kplanes_bwd(benchmark::State& state, bool with_dx) {
   auto& rt = bench::runtime();
   field::KPlanes kp(rt, field::KPlanesConfig{});
@@ -112,6 +113,8 @@ static void time_hash_bwd(benchmark::State& state, bool with_dx) {
   cl::Buffer b_g(rt, params.size() * 4), b_dx(rt, size_t(n) * 12);
   const double secs = run_timed(
       state, [&] { grid.backward(b_p, 0, b_x, b_t, n, b_d, b_g, 0, with_dx ? &b_dx : nullptr); });
+  // Per level: 3 planes × 2 slices × 4 corners read, and as many gradient entries read and
+  // written; the d_x pass reads the corners again.
   const double per_plane = 2 * 4;  // slices × corners
   const double corners = grid.config().levels * 3 * (3 * per_plane) +
                          (with_dx ? grid.config().levels * 3 * per_plane : 0);
