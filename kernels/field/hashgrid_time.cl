@@ -190,15 +190,14 @@ __kernel void field_hashgrid_time_bwd_dx(const int n, __global const float* para
   const int end = min(n, (c + 1) * CHUNK);
   for (int i = c * CHUNK; i < end; ++i) {
     const featv de = LOADF(d_enc + (size_t)i * stride + col + l * FEATURES);
-    featv v[3], da[3], db[3];
-    for (int p = 0; p < 3; ++p) v[p] = th_plane(tbl, meta, pmeta, sc, p, l, x, t, i, &da[p], &db[p]);
-    float dp[3] = {0.0f, 0.0f, 0.0f};
-    for (int p = 0; p < 3; ++p) {
-      const featv g = de * v[p == 0 ? 1 : 0] * v[p == 2 ? 1 : 2];
-      dp[th_axis_a(p)] += hg_sum(g * da[p]);
-      dp[th_axis_b(p)] += hg_sum(g * db[p]);
-    }
-    vstore3((float3)(dp[0], dp[1], dp[2]), (size_t)l * n + i, part);
+    featv a0, b0, a1, b1, a2, b2;  // straight-line code: xy, xz, yz
+    const featv v0 = th_plane(tbl, meta, pmeta, sc, 0, l, x, t, i, &a0, &b0);
+    const featv v1 = th_plane(tbl, meta, pmeta, sc, 1, l, x, t, i, &a1, &b1);
+    const featv v2 = th_plane(tbl, meta, pmeta, sc, 2, l, x, t, i, &a2, &b2);
+    const featv g0 = de * v1 * v2, g1 = de * v0 * v2, g2 = de * v0 * v1;
+    const float3 dp = (float3)(hg_sum(g0 * a0 + g1 * a1), hg_sum(g0 * b0 + g2 * a2),
+                               hg_sum(g1 * b1 + g2 * b2));
+    vstore3(dp, (size_t)l * n + i, part);
   }
 }
 

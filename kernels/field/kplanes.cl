@@ -160,17 +160,21 @@ __kernel void field_kplanes_bwd_dx(const int n, __global const float* params,
   const int end = min(n, (c + 1) * CHUNK);
   for (int i = c * CHUNK; i < end; ++i) {
     const featv de = LOADF(d_enc + (size_t)i * stride + col + (gi * SCALES + s) * FEATURES);
-    featv v[3], da[3], db[3];
-    float fa[3], fb[3];
-    for (int k = 0; k < 3; ++k)
-      v[k] = kp_plane(tbl, meta, s, p0 + k, x, t, i, &da[k], &db[k], &fa[k], &fb[k]);
-    float dp[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    for (int k = 0; k < 3; ++k) {
-      const featv g = de * v[k == 0 ? 1 : 0] * v[k == 2 ? 1 : 2];
-      dp[kp_axis_a(p0 + k)] += fa[k] * hg_sum(g * da[k]);
-      dp[kp_axis_b(p0 + k)] += fb[k] * hg_sum(g * db[k]);
-    }
-    vstore3((float3)(dp[0], dp[1], dp[2]), (size_t)(gi * SCALES + s) * n + i, part);
+    // Straight-line code (no private arrays indexed by axis, which PoCL keeps in memory).
+    featv a0, b0, a1, b1, a2, b2;
+    float fa0, fb0, fa1, fb1, fa2, fb2;
+    const featv v0 = kp_plane(tbl, meta, s, p0, x, t, i, &a0, &b0, &fa0, &fb0);
+    const featv v1 = kp_plane(tbl, meta, s, p0 + 1, x, t, i, &a1, &b1, &fa1, &fb1);
+    const featv v2 = kp_plane(tbl, meta, s, p0 + 2, x, t, i, &a2, &b2, &fa2, &fb2);
+    const float d0 = fa0 * hg_sum(de * v1 * v2 * a0), d1 = fa1 * hg_sum(de * v0 * v2 * a1);
+    const float d2 = fa2 * hg_sum(de * v0 * v1 * a2);
+    float3 dp;
+    if (p0 == 0)  // xy, xz, yz: x from xy and xz, y from xy and yz, z from xz and yz
+      dp = (float3)(d0 + d1, fb0 * hg_sum(de * v1 * v2 * b0) + d2,
+                    fb1 * hg_sum(de * v0 * v2 * b1) + fb2 * hg_sum(de * v0 * v1 * b2));
+    else  // xt, yt, zt: time is not differentiated
+      dp = (float3)(d0, d1, d2);
+    vstore3(dp, (size_t)(gi * SCALES + s) * n + i, part);
   }
 }
 
