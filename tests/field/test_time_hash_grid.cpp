@@ -75,10 +75,11 @@ TEST_CASE("time hash grid tables and config refusals", "[field][timehash]") {
 
 TEST_CASE("time hash grid forward and backward match the host reference", "[field][timehash]") {
   auto& rt = test::runtime();
-  for (int chunk : {0, 1, 5}) {
+  for (int variant = 0; variant < 4; ++variant) {
     auto cfg = small_config();
-    cfg.chunk = chunk;
-    INFO("chunk " << chunk);
+    cfg.chunk = variant == 1 ? 1 : variant == 2 ? 5 : 0;
+    if (variant == 3) cfg.time_slices = 1;  // a static stack: every time reads slice 0
+    INFO("chunk " << cfg.chunk << ", slices " << cfg.time_slices);
     field::TimeHashGrid grid(rt, cfg);
     const int n = 2000, w = grid.n_output(), stride = w + 2, col = 1;
     const size_t off = 32;
