@@ -110,16 +110,19 @@ __kernel void field_kplanes_fwd(const int n, __global const float* params, const
   }
 }
 
-// Deterministic parameter gradient: one work-item per (scale s, group gi), index s + S·gi,
-// owns the group's three planes at that scale: zeroes them (unless accumulate), then, over the
-// points in index order, samples the three planes once and adds to each d_enc ⊙ (the product
-// of the other two) times its bilinear weights. No atomics.
+// Deterministic parameter gradient, and with with_dx the input-position gradient from the same
+// corner reads: one work-item per (scale s, group gi), index s + S·gi, owns the group's three
+// planes at that scale: zeroes them (unless accumulate), then, over the points in index order,
+// samples the three planes once and adds to each d_enc ⊙ (the product of the other two) times
+// its bilinear weights; with_dx writes the unit's Σ_f d_enc · ∂(v0 v1 v2)/∂x to
+// part[(gi·S + s)·n + i] (3 floats), which field_kplanes_dx_reduce sums in order. No atomics.
 __kernel void field_kplanes_bwd(const int n, __global const float* params, const uint param_offset,
                                 __global const float* x, __global const float* t,
                                 __global const uint4* meta, const int group_first,
                                 __global const float* d_enc, const int stride, const int col,
                                 __global float* grad, const uint grad_offset,
-                                const int accumulate) {
+                                const int accumulate, const int with_dx,
+                                __global float* part) {
   const int s = get_global_id(0) % SCALES, gi = get_global_id(0) / SCALES;
   const int p0 = 3 * (group_first + gi);
   __global const float* tbl = params + param_offset;
@@ -131,50 +134,29 @@ __kernel void field_kplanes_bwd(const int n, __global const float* params, const
     }
   for (int i = 0; i < n; ++i) {
     const featv de = LOADF(d_enc + (size_t)i * stride + col + (gi * SCALES + s) * FEATURES);
-    featv v[3];
-    float pa[3], pb[3];
+    featv v[3], da[3], db[3];
+    float pa[3], pb[3], fa[3], fb[3];
     for (int k = 0; k < 3; ++k) {
       const uint4 m = meta[s * 6 + p0 + k];
-      float ga, gb;
-      pa[k] = kp_pos(x, t, i, kp_axis_a(p0 + k), m.y, &ga);
-      pb[k] = kp_pos(x, t, i, kp_axis_b(p0 + k), m.z, &gb);
-      v[k] = kp_sample(tbl, m, pa[k], pb[k], 0, 0);
+      pa[k] = kp_pos(x, t, i, kp_axis_a(p0 + k), m.y, &fa[k]);
+      pb[k] = kp_pos(x, t, i, kp_axis_b(p0 + k), m.z, &fb[k]);
+      v[k] = kp_sample(tbl, m, pa[k], pb[k], &da[k], &db[k]);
     }
-    for (int k = 0; k < 3; ++k)
-      kp_scatter(g, meta[s * 6 + p0 + k], pa[k], pb[k], de * v[k == 0 ? 1 : 0] * v[k == 2 ? 1 : 2]);
-  }
-}
-
-// Input-position gradient: one work-item per (chunk, scale s + S·gi) writes that scale and
-// group's contribution Σ_f d_enc · ∂(v0 v1 v2)/∂x to part[(gi·S + s)·n + i] (3 floats);
-// field_kplanes_dx_reduce sums the parts in order.
-__kernel void field_kplanes_bwd_dx(const int n, __global const float* params,
-                                   const uint param_offset, __global const float* x,
-                                   __global const float* t, __global const uint4* meta,
-                                   const int group_first, __global const float* d_enc,
-                                   const int stride, const int col, __global float* part) {
-  const int c = get_global_id(0);
-  const int s = get_global_id(1) % SCALES, gi = get_global_id(1) / SCALES;
-  const int p0 = 3 * (group_first + gi);
-  __global const float* tbl = params + param_offset;
-  const int end = min(n, (c + 1) * CHUNK);
-  for (int i = c * CHUNK; i < end; ++i) {
-    const featv de = LOADF(d_enc + (size_t)i * stride + col + (gi * SCALES + s) * FEATURES);
-    // Straight-line code (no private arrays indexed by axis, which PoCL keeps in memory).
-    featv a0, b0, a1, b1, a2, b2;
-    float fa0, fb0, fa1, fb1, fa2, fb2;
-    const featv v0 = kp_plane(tbl, meta, s, p0, x, t, i, &a0, &b0, &fa0, &fb0);
-    const featv v1 = kp_plane(tbl, meta, s, p0 + 1, x, t, i, &a1, &b1, &fa1, &fb1);
-    const featv v2 = kp_plane(tbl, meta, s, p0 + 2, x, t, i, &a2, &b2, &fa2, &fb2);
-    const float d0 = fa0 * hg_sum(de * v1 * v2 * a0), d1 = fa1 * hg_sum(de * v0 * v2 * a1);
-    const float d2 = fa2 * hg_sum(de * v0 * v1 * a2);
-    float3 dp;
-    if (p0 == 0)  // xy, xz, yz: x from xy and xz, y from xy and yz, z from xz and yz
-      dp = (float3)(d0 + d1, fb0 * hg_sum(de * v1 * v2 * b0) + d2,
-                    fb1 * hg_sum(de * v0 * v2 * b1) + fb2 * hg_sum(de * v0 * v1 * b2));
-    else  // xt, yt, zt: time is not differentiated
-      dp = (float3)(d0, d1, d2);
-    vstore3(dp, (size_t)(gi * SCALES + s) * n + i, part);
+    const featv g0 = de * v[1] * v[2], g1 = de * v[0] * v[2], g2 = de * v[0] * v[1];
+    kp_scatter(g, meta[s * 6 + p0], pa[0], pb[0], g0);
+    kp_scatter(g, meta[s * 6 + p0 + 1], pa[1], pb[1], g1);
+    kp_scatter(g, meta[s * 6 + p0 + 2], pa[2], pb[2], g2);
+    if (with_dx) {
+      const float d0 = fa[0] * hg_sum(g0 * da[0]), d1 = fa[1] * hg_sum(g1 * da[1]);
+      const float d2 = fa[2] * hg_sum(g2 * da[2]);
+      float3 dp;
+      if (p0 == 0)  // xy, xz, yz: x from xy and xz, y from xy and yz, z from xz and yz
+        dp = (float3)(d0 + d1, fb[0] * hg_sum(g0 * db[0]) + d2,
+                      fb[1] * hg_sum(g1 * db[1]) + fb[2] * hg_sum(g2 * db[2]));
+      else  // xt, yt, zt: time is not differentiated
+        dp = (float3)(d0, d1, d2);
+      vstore3(dp, (size_t)(gi * SCALES + s) * n + i, part);
+    }
   }
 }
 
