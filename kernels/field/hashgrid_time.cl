@@ -1,8 +1,8 @@
 // Time-sliced 2D hash grids (method.md §2, LiDAR4D's dynamic hash encoding): three planes xy,
 // xz, yz, each a stack of SLICES 2D multi-resolution hash grids (one per time slice); a time t
 // blends its two neighbouring slices linearly, and the three planes' blended features are
-// multiplied (Hadamard) per level. Forward, race-free level-partitioned parameter backward and
-// the input-position backward d_x.
+// multiplied (Hadamard) per level. Forward, and a race-free level-partitioned parameter
+// backward that also gives the input-position gradient d_x.
 //
 // Defines: LEVELS (L), FEATURES (F, 1..8), SLICES (T ≥ 1), CHUNK (points per work-item; 1 = one
 // work-item per point). meta[p·L + l] = (res, entry offset within one slice, entries, hashed) of
@@ -112,17 +112,21 @@ __kernel void field_hashgrid_time_fwd(const int n, __global const float* params,
   }
 }
 
-// Deterministic parameter gradient: one work-item per level l owns level l of every time slice
-// of the three planes: zeroes it (unless accumulate), then, over the points in index order,
-// samples the three planes once (corner entries and weights kept) and adds to each
-// d_enc ⊙ (the product of the other two) · time weight · bilinear weight. No atomics.
+// Deterministic parameter gradient, and with with_dx the input-position gradient from the same
+// corner reads: one work-item per level l owns level l of every time slice of the three planes:
+// zeroes it (unless accumulate), then, over the points in index order, samples the three
+// planes once (corner entries and weights kept) and adds to each d_enc ⊙ (the product of the
+// other two) · time weight · bilinear weight; with_dx writes the level's
+// Σ_f d_enc · ∂(v0 v1 v2)/∂x to part[l·n + i] (3 floats), which field_hashgrid_time_dx_reduce
+// sums in order. No atomics.
 __kernel void field_hashgrid_time_bwd(const int n, __global const float* params,
                                       const uint param_offset, __global const float* x,
                                       __global const float* t, __global const float* scale,
                                       __global const uint4* meta, __global const uint2* pmeta,
                                       __global const float* d_enc, const int stride,
                                       const int col, __global float* grad,
-                                      const uint grad_offset, const int accumulate) {
+                                      const uint grad_offset, const int accumulate,
+                                      const int with_dx, __global float* part) {
   const int l = get_global_id(0);
   const float sc = scale[l];
   __global const float* tbl = params + param_offset;
@@ -144,60 +148,39 @@ __kernel void field_hashgrid_time_bwd(const int n, __global const float* params,
     const float w0 = 1.0f - w1;
     uint e0[3][4], e1[3][4];
     float w[3][4];
-    featv v[3];
+    featv v[3], da[3], db[3];
     for (int p = 0; p < 3; ++p) {
       const uint4 m = meta[p * LEVELS + l];
       const uint2 pm = pmeta[p];
       uint2 g;
       const float2 fr = th_locate(x, i, p, sc, &g);
       const uint o0 = pm.x + (uint)s0 * pm.y + m.y, o1 = pm.x + (uint)s1 * pm.y + m.y;
-      featv acc = (featv)(0.0f);
+      featv cv[4];  // time-blended corners
       for (int c = 0; c < 4; ++c) {
         const uint cx = c & 1, cy = c >> 1;
         const uint e = hg_index(g.x + cx, g.y + cy, 0u, m);
         w[p][c] = (cx ? fr.x : 1.0f - fr.x) * (cy ? fr.y : 1.0f - fr.y);
         e0[p][c] = o0 + e;
         e1[p][c] = o1 + e;
-        acc += w[p][c] * (w0 * LOADF(tbl + (size_t)e0[p][c] * FEATURES) +
-                          w1 * LOADF(tbl + (size_t)e1[p][c] * FEATURES));
+        cv[c] = w0 * LOADF(tbl + (size_t)e0[p][c] * FEATURES) +
+                w1 * LOADF(tbl + (size_t)e1[p][c] * FEATURES);
       }
-      v[p] = acc;
+      v[p] = w[p][0] * cv[0] + w[p][1] * cv[1] + w[p][2] * cv[2] + w[p][3] * cv[3];
+      da[p] = (0.5f * sc) * fma((featv)(fr.y), (cv[3] - cv[2]) - (cv[1] - cv[0]), cv[1] - cv[0]);
+      db[p] = (0.5f * sc) * fma((featv)(fr.x), (cv[3] - cv[1]) - (cv[2] - cv[0]), cv[2] - cv[0]);
     }
-    for (int p = 0; p < 3; ++p) {
-      const featv gv = de * v[p == 0 ? 1 : 0] * v[p == 2 ? 1 : 2];
+    const featv gq[3] = {de * v[1] * v[2], de * v[0] * v[2], de * v[0] * v[1]};
+    for (int p = 0; p < 3; ++p)
       for (int c = 0; c < 4; ++c) {
         __global float* q0 = gr + (size_t)e0[p][c] * FEATURES;
-        STOREF(fma((featv)(w0 * w[p][c]), gv, LOADF(q0)), q0);
+        STOREF(fma((featv)(w0 * w[p][c]), gq[p], LOADF(q0)), q0);
         __global float* q1 = gr + (size_t)e1[p][c] * FEATURES;
-        STOREF(fma((featv)(w1 * w[p][c]), gv, LOADF(q1)), q1);
+        STOREF(fma((featv)(w1 * w[p][c]), gq[p], LOADF(q1)), q1);
       }
-    }
-  }
-}
-
-// Input-position gradient: one work-item per (chunk, level) writes the level's contribution
-// Σ_f d_enc · ∂(v0 v1 v2)/∂x to part[l·n + i] (3 floats); field_hashgrid_time_dx_reduce sums
-// the levels in order.
-__kernel void field_hashgrid_time_bwd_dx(const int n, __global const float* params,
-                                         const uint param_offset, __global const float* x,
-                                         __global const float* t, __global const float* scale,
-                                         __global const uint4* meta, __global const uint2* pmeta,
-                                         __global const float* d_enc, const int stride,
-                                         const int col, __global float* part) {
-  const int c = get_global_id(0), l = get_global_id(1);
-  const float sc = scale[l];
-  __global const float* tbl = params + param_offset;
-  const int end = min(n, (c + 1) * CHUNK);
-  for (int i = c * CHUNK; i < end; ++i) {
-    const featv de = LOADF(d_enc + (size_t)i * stride + col + l * FEATURES);
-    featv a0, b0, a1, b1, a2, b2;  // straight-line code: xy, xz, yz
-    const featv v0 = th_plane(tbl, meta, pmeta, sc, 0, l, x, t, i, &a0, &b0);
-    const featv v1 = th_plane(tbl, meta, pmeta, sc, 1, l, x, t, i, &a1, &b1);
-    const featv v2 = th_plane(tbl, meta, pmeta, sc, 2, l, x, t, i, &a2, &b2);
-    const featv g0 = de * v1 * v2, g1 = de * v0 * v2, g2 = de * v0 * v1;
-    const float3 dp = (float3)(hg_sum(g0 * a0 + g1 * a1), hg_sum(g0 * b0 + g2 * a2),
-                               hg_sum(g1 * b1 + g2 * b2));
-    vstore3(dp, (size_t)l * n + i, part);
+    if (with_dx)  // xy, xz, yz: x from xy and xz, y from xy and yz, z from xz and yz
+      vstore3((float3)(hg_sum(gq[0] * da[0] + gq[1] * da[1]), hg_sum(gq[0] * db[0] + gq[2] * da[2]),
+                       hg_sum(gq[1] * db[1] + gq[2] * db[2])),
+              (size_t)l * n + i, part);
   }
 }
 

@@ -93,7 +93,6 @@ TimeHashGrid::TimeHashGrid(cl::Runtime& rt, const TimeHashGridConfig& cfg)
   const std::string file = "field/hashgrid_time.cl";
   fwd_ = rt_.kernel(file, "field_hashgrid_time_fwd", opt);
   bwd_ = rt_.kernel(file, "field_hashgrid_time_bwd", opt);
-  bwd_dx_ = rt_.kernel(file, "field_hashgrid_time_bwd_dx", opt);
   dx_reduce_ = rt_.kernel(file, "field_hashgrid_time_dx_reduce", opt);
 }
 
@@ -143,19 +142,20 @@ void TimeHashGrid::backward(const cl::Buffer& params, size_t offset, const cl::B
   if (stride == 0) stride = n_output();
   check(params, offset, x, t, n, d_enc, stride, col, "d_enc");
   check_bytes(grad, grad_offset + n_params_, "grad");
-  bwd_.set_args(n, params, uint32_t(offset), x, t, scale_, meta_, pmeta_, d_enc, stride, col,
-                grad, uint32_t(grad_offset), accumulate ? 1 : 0);
-  bwd_.launch({size_t(cfg_.levels)}, {1});
-  if (!d_x || n == 0) return;
-  check_bytes(*d_x, size_t(n) * 3, "d_x");
-  const size_t part = size_t(n) * size_t(cfg_.levels) * 3;
-  if (dx_part_floats_ < part) {
-    dx_part_ = cl::Buffer(rt_, part * sizeof(float));
-    dx_part_floats_ = part;
+  const bool dx = d_x && n > 0;
+  if (dx) {
+    check_bytes(*d_x, size_t(n) * 3, "d_x");
+    const size_t part = size_t(n) * size_t(cfg_.levels) * 3;
+    if (dx_part_floats_ < part) {
+      dx_part_ = cl::Buffer(rt_, part * sizeof(float));
+      dx_part_floats_ = part;
+    }
   }
-  bwd_dx_.set_args(n, params, uint32_t(offset), x, t, scale_, meta_, pmeta_, d_enc, stride, col,
-                   dx_part_);
-  launch_points(bwd_dx_, n);
+  bwd_.set_args(n, params, uint32_t(offset), x, t, scale_, meta_, pmeta_, d_enc, stride, col,
+                grad, uint32_t(grad_offset), accumulate ? 1 : 0, dx ? 1 : 0,
+                dx ? dx_part_ : scale_);  // without d_x the part argument is never written
+  bwd_.launch({size_t(cfg_.levels)}, {1});
+  if (!dx) return;
   dx_reduce_.set_args(n, dx_part_, *d_x);
   dx_reduce_.launch({cl::round_up(size_t(n), 64)}, {64});
 }

@@ -98,7 +98,7 @@ class TimeHashGrid {
   size_t n_params_ = 0;
   int chunk_ = 1;
   cl::Buffer scale_, meta_, pmeta_;
-  cl::Kernel fwd_, bwd_, bwd_dx_, dx_reduce_;
+  cl::Kernel fwd_, bwd_, dx_reduce_;
   cl::Buffer dx_part_;
   size_t dx_part_floats_ = 0;
   void check(const cl::Buffer& params, size_t offset, const cl::Buffer& x, const cl::Buffer& t,
