@@ -4,15 +4,17 @@
 // multiplied (Hadamard) per level. Forward, and a race-free level-partitioned parameter
 // backward that also gives the input-position gradient d_x.
 //
-// Defines: LEVELS (L), FEATURES (F, 1..8), SLICES (T ≥ 1), CHUNK (points per work-item; 1 = one
-// work-item per point). meta[p·L + l] = (res, entry offset within one slice, entries, hashed) of
-// level l of plane p; pmeta[p] = (first entry of plane p in the module slice, entries per time
-// slice); entry e of slice s, level l, plane p stores F floats at
+// Defines: LEVELS (L), FEATURES (F, 1..8), SLICES (T ≥ 1), CHUNK (points per work-item of the
+// forward; 1 = one work-item per point); the backward runs L work-items.
+// meta[p·L + l] = (res, entry offset within one slice, entries, hashed) of level l of plane p;
+// pmeta[p] = (first entry of plane p in the module slice, entries per time slice); entry e of
+// slice s, level l, plane p stores F floats at
 // params[param_offset + (pmeta.x + s·pmeta.y + meta.y + e)·F + f]. A level indexes (gx, gy)
 // densely (gx + gy·res, clamped) when res² fits the table, else by the spatial hash
 // gx ⊕ gy·2654435761 (instant-ngp), as kernels/field/hashgrid.clh does in 3D.
-// Position: pos = ((x + 1)/2)·scale_l + 0.5 per axis (x ∈ [−1, 1]); time: u = clamp(t, 0, 1)·(T − 1),
-// slices s0 = floor(u), s1 = min(s0 + 1, T − 1), weights (1 − (u − s0), u − s0).
+// Position: pos = ((x + 1)/2)·scale_l + 0.5 per axis (x ∈ [−1, 1]); time:
+// u = clamp(t, 0, 1)·(T − 1), slices s0 = floor(u), s1 = min(s0 + 1, T − 1), weights
+// (1 − (u − s0), u − s0).
 // Encoding columns: enc[i·stride + col + l·F + f].
 #ifndef LEVELS
 #error "LEVELS must be defined"
@@ -117,8 +119,8 @@ __kernel void field_hashgrid_time_fwd(const int n, __global const float* params,
 // zeroes it (unless accumulate), then, over the points in index order, samples the three
 // planes once (corner entries and weights kept) and adds to each d_enc ⊙ (the product of the
 // other two) · time weight · bilinear weight; with_dx writes the level's
-// Σ_f d_enc · ∂(v0 v1 v2)/∂x to part[l·n + i] (3 floats), which field_hashgrid_time_dx_reduce
-// sums in order. No atomics.
+// Σ_f d_enc · ∂(v0 v1 v2)/∂x to part[l·n + i] (3 floats), which
+// field_hashgrid_time_dx_reduce sums in order. No atomics.
 __kernel void field_hashgrid_time_bwd(const int n, __global const float* params,
                                       const uint param_offset, __global const float* x,
                                       __global const float* t, __global const float* scale,

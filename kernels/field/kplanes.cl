@@ -1,12 +1,14 @@
-// K-Planes-style 4D plane encoding (method.md §2, LiDAR4D's planes): forward, race-free
-// plane-partitioned parameter backward and the input-position backward d_x (LiDAR4D samples the
-// dynamic planes at x + scene flow, so the flow network learns through d_x).
+// K-Planes-style 4D plane encoding (method.md §2, LiDAR4D's planes): forward, and a race-free
+// (scale, group)-partitioned parameter backward that also gives the input-position gradient d_x
+// (LiDAR4D samples the dynamic planes at x + scene flow, so the flow network learns through d_x).
+// The backward runs S·groups work-items: enough for a CPU, too few for a GPU (as the hash grid's
+// deterministic backward).
 //
-// Defines: SCALES (S), FEATURES (F, 1..8), CHUNK (points per work-item; 1 = one work-item per
-// point, the GPU schedule). Planes per scale, in order: static xy, xz, yz, dynamic xt, yt, zt
-// (plane p = 3·group + k). meta[s·6 + p] = (entry offset in the module slice, width W = grid
-// points of the plane's first axis, height H = of its second axis, 0); entry (i, j) of a plane
-// is i + j·W and stores F floats (entry-major).
+// Defines: SCALES (S), FEATURES (F, 1..8), CHUNK (points per work-item of the forward; 1 = one
+// work-item per point, the GPU schedule). Planes per scale, in order: static xy, xz, yz,
+// dynamic xt, yt, zt (plane p = 3·group + k). meta[s·6 + p] = (entry offset in the module
+// slice, width W = grid points of the plane's first axis, height H = of its second axis, 0);
+// entry (i, j) of a plane is i + j·W and stores F floats (entry-major).
 // Coordinates (align_corners, border padding): a spatial axis of R points maps x ∈ [−1, 1] to
 // pos = (clamp(x) + 1)/2 · (R − 1); time maps t ∈ [0, 1] to clamp(t) · (T − 1). Bilinear over
 // the cell min(floor(pos), R − 2). Per scale and group the feature is the Hadamard product of
@@ -56,7 +58,8 @@ inline featv kp_sample(__global const float* tbl, uint4 m, float pa, float pb, f
   const uint ia = kp_cell(pa, m.y, &fa), ib = kp_cell(pb, m.z, &fb);
   __global const float* e = tbl + (size_t)(m.x + ia + ib * m.y) * FEATURES;
   const featv v00 = LOADF(e), v10 = LOADF(e + FEATURES);
-  const featv v01 = LOADF(e + (size_t)m.y * FEATURES), v11 = LOADF(e + (size_t)(m.y + 1u) * FEATURES);
+  const featv v01 = LOADF(e + (size_t)m.y * FEATURES);
+  const featv v11 = LOADF(e + (size_t)(m.y + 1u) * FEATURES);
   const featv lo = fma((featv)(fa), v10 - v00, v00), hi = fma((featv)(fa), v11 - v01, v01);
   if (d_a) {
     *d_a = fma((featv)(fb), (v11 - v01) - (v10 - v00), v10 - v00);

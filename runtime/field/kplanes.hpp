@@ -30,7 +30,7 @@ struct KPlanesConfig {
   int features = 8;          // per plane: 1, 2, 4 or 8
   float init_lo = 0.1f;      // spatial planes start uniform in [init_lo, init_hi] (K-Planes);
   float init_hi = 0.5f;      // time planes start at 1, so the dynamic group starts static
-  int chunk = 0;             // points per work-item: 0 = auto (64 on CPUs, 1 otherwise)
+  int chunk = 0;             // forward points per work-item: 0 = auto (64 on CPUs, else 1)
 
   // The keys and ranges (core/config_fields.hpp); features' set, init_lo ≤ init_hi and the
   // finest resolution are validate()'s.

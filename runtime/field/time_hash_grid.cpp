@@ -80,7 +80,8 @@ TimeHashGrid::TimeHashGrid(cl::Runtime& rt, const TimeHashGridConfig& cfg)
   for (const auto& lv : planes_[0].levels) scale.push_back(lv.scale);
   for (const auto& p : planes_) {
     pmeta.insert(pmeta.end(), {p.offset, p.slice_entries});
-    for (const auto& lv : p.levels) meta.insert(meta.end(), {lv.res, lv.offset, lv.size, lv.hashed});
+    for (const auto& lv : p.levels)
+      meta.insert(meta.end(), {lv.res, lv.offset, lv.size, lv.hashed});
   }
   scale_ = cl::Buffer::from(rt_, scale);
   meta_ = cl::Buffer::from(rt_, meta);

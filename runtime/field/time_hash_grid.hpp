@@ -34,7 +34,7 @@ struct TimeHashGridConfig {
   int log2_table_xz = 12;
   int log2_table_yz = 12;
   int time_slices = 8;            // T
-  int chunk = 0;                  // points per work-item: 0 = auto (64 on CPUs, 1 otherwise)
+  int chunk = 0;                  // forward points per work-item: 0 = auto (64 on CPUs, else 1)
 
   // The keys and ranges (core/config_fields.hpp); features' set and the finest resolution are
   // validate()'s.

@@ -115,7 +115,8 @@ std::vector<std::vector<Unit>> time_hash_units(const field::TimeHashGridConfig& 
         float fr[2];
         const int axes[2] = {sm.a, sm.b};
         for (int d = 0; d < 2; ++d) {
-          const float pos = std::fma(std::fma(x[3 * i + size_t(axes[d])], 0.5f, 0.5f), lv.scale, 0.5f);
+          const float x01 = std::fma(x[3 * i + size_t(axes[d])], 0.5f, 0.5f);
+          const float pos = std::fma(x01, lv.scale, 0.5f);
           const float fl = std::floor(pos);
           g[d] = uint32_t(int32_t(fl));
           fr[d] = pos - fl;

@@ -80,8 +80,9 @@ TEST_CASE("kplanes layout, init and config refusals", "[field][kplanes]") {
                     Contains("'time_resolution'"));
   CHECK_THROWS_WITH(field::KPlanesConfig::from_json(Json{{"init_lo", 0.6}}, "kp"),
                     Contains("'init_lo'"));
-  CHECK_THROWS_WITH(field::KPlanesConfig::from_json(Json{{"resolution", 2048}, {"scales", 4}}, "kp"),
-                    Contains("'resolution'"));
+  CHECK_THROWS_WITH(
+      field::KPlanesConfig::from_json(Json{{"resolution", 2048}, {"scales", 4}}, "kp"),
+      Contains("'resolution'"));
   CHECK_THROWS_AS(field::KPlanesConfig::from_json(Json{{"scales", "4"}}, "kp"), ConfigError);
   const auto round = field::KPlanesConfig::from_json(small_config().to_json(), "kp");
   CHECK(round.to_json() == small_config().to_json());
