@@ -54,9 +54,9 @@ BENCHMARK(BM_KPlanesFwd)->Args({1 << 18, 0})->Args({1 << 18, 16})->Args({1 << 18
     ->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_KPlanesFwdDynamic)->Args({1 << 18, 0})->UseManualTime()->Unit(benchmark::kMillisecond);
 
-// Backward: per point and scale-group unit the parameter pass reads the 3 planes' 4 corners and
-// reads and writes the same 12 gradient entries (36 entry accesses), the d_x pass reads the 12
-// corners again; the gradient slice is zeroed once.
+// Backward: per point and scale-group unit the kernel reads the 3 planes' 4 corners and reads
+// and writes the same 12 gradient entries (36 entry accesses); d_x comes from the same reads
+// (per unit 3 floats written, then summed by the reduce); the gradient slice is zeroed once.
 static void kplanes_bwd(benchmark::State& state, bool with_dx) {
   auto& rt = bench::runtime();
   field::KPlanes kp(rt, field::KPlanesConfig{});
@@ -71,9 +71,10 @@ static void kplanes_bwd(benchmark::State& state, bool with_dx) {
   const double secs = run_timed(
       state, [&] { kp.backward(b_p, 0, b_x, b_t, n, b_d, b_g, 0, with_dx ? &b_dx : nullptr); });
   const double units = double(w) / kp.config().features;  // scale × group per point
-  const double corners = units * 3 * (3 * 4) + (with_dx ? units * 3 * 4 : 0);
-  const double bytes = double(n) * (corners * kp.config().features * 4 + 16 + w * 4 * 3 *
-                                    (with_dx ? 2 : 1)) + double(params.size()) * 4;
+  const double corners = units * 3 * (3 * 4);
+  const double bytes = double(n) * (corners * kp.config().features * 4 + 16 + w * 4 +
+                                    (with_dx ? units * 24 + 12 : 0)) +
+                       double(params.size()) * 4;
   set_counters(state, secs, n, 0, bytes);
   set_gathers(state, secs, double(n) * corners);
 }
@@ -114,12 +115,11 @@ static void time_hash_bwd(benchmark::State& state, bool with_dx) {
   const double secs = run_timed(
       state, [&] { grid.backward(b_p, 0, b_x, b_t, n, b_d, b_g, 0, with_dx ? &b_dx : nullptr); });
   // Per level: 3 planes × 2 slices × 4 corners read, and as many gradient entries read and
-  // written; the d_x pass reads the corners again.
-  const double per_plane = 2 * 4;  // slices × corners
-  const double corners = grid.config().levels * 3 * (3 * per_plane) +
-                         (with_dx ? grid.config().levels * 3 * per_plane : 0);
-  const double bytes = double(n) * (corners * f * 4 + 16 + w * 4 * 3 * (with_dx ? 2 : 1)) +
-                       double(params.size()) * 4;
+  // written; d_x comes from the same reads (3 floats per level written, then summed).
+  const double levels = grid.config().levels, corners = levels * 3 * (3 * 2 * 4);
+  const double bytes =
+      double(n) * (corners * f * 4 + 16 + w * 4 + (with_dx ? levels * 24 + 12 : 0)) +
+      double(params.size()) * 4;
   set_counters(state, secs, n, 0, bytes);
   set_gathers(state, secs, double(n) * corners);
 }
