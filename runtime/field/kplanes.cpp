@@ -1,0 +1,163 @@
+// KPlanes host launcher: plane table, parameter init, validation of shapes and the enqueueing
+// of the kernels in kernels/field/kplanes.cl.
+#include "field/kplanes.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/rng.hpp"
+
+namespace sgnlf::field {
+namespace {
+int first_group(PlaneGroups g) { return g == PlaneGroups::Dynamic ? 1 : 0; }
+int n_groups(PlaneGroups g) { return g == PlaneGroups::Both ? 2 : 1; }
+}  // namespace
+
+void KPlanesConfig::validate(const std::string& where) const {
+  config::check_fields(*this, where);
+  if (features != 1 && features != 2 && features != 4 && features != 8)
+    throw ConfigError(where + ": 'features' = " + std::to_string(features) +
+                      " must be 1, 2, 4 or 8");
+  if (!(init_lo <= init_hi))
+    throw ConfigError(where + ": 'init_lo' = " + std::to_string(init_lo) + " exceeds 'init_hi' = " +
+                      std::to_string(init_hi));
+  const long finest = long(resolution) << (scales - 1);
+  if (finest > 8192)
+    throw ConfigError(where + ": 'resolution' · 2^('scales' − 1) = " + std::to_string(finest) +
+                      " exceeds 8192");
+}
+
+KPlanesConfig KPlanesConfig::from_json(const Json& j, const std::string& where) {
+  KPlanesConfig c;
+  ConfigReader r(j, where);
+  config::read_fields_here(r, c);
+  r.finish();
+  c.validate(where);
+  return c;
+}
+
+std::vector<KPlane> kplanes_layout(const KPlanesConfig& cfg) {
+  cfg.validate();
+  static const int axis_a[6] = {0, 0, 1, 0, 1, 2}, axis_b[6] = {1, 2, 2, 3, 3, 3};
+  std::vector<KPlane> out;
+  uint64_t offset = 0;
+  for (int s = 0; s < cfg.scales; ++s) {
+    const uint32_t res[4] = {uint32_t(cfg.resolution) << s, uint32_t(cfg.resolution) << s,
+                             uint32_t(cfg.resolution) << s, uint32_t(cfg.time_resolution)};
+    for (int p = 0; p < 6; ++p) {
+      KPlane pl;
+      pl.scale = s;
+      pl.plane = p;
+      pl.offset = uint32_t(offset);
+      pl.width = res[axis_a[p]];
+      pl.height = res[axis_b[p]];
+      offset += uint64_t(pl.width) * pl.height;
+      out.push_back(pl);
+    }
+  }
+  if (offset * uint64_t(cfg.features) >= (uint64_t(1) << 31))
+    throw ConfigError("kplanes: parameter count exceeds 2^31 floats");
+  return out;
+}
+
+KPlanes::KPlanes(cl::Runtime& rt, const KPlanesConfig& cfg)
+    : rt_(rt), cfg_(cfg), planes_(kplanes_layout(cfg)) {
+  const auto& last = planes_.back();
+  n_params_ = (size_t(last.offset) + size_t(last.width) * last.height) * size_t(cfg_.features);
+  std::vector<uint32_t> meta;
+  for (const auto& p : planes_) meta.insert(meta.end(), {p.offset, p.width, p.height, 0u});
+  meta_ = cl::Buffer::from(rt_, meta);
+  chunk_ = cfg_.chunk > 0 ? cfg_.chunk : (rt_.device().type == "CPU" ? 64 : 1);
+  const std::string opt = "-DSCALES=" + std::to_string(cfg_.scales) +
+                          " -DFEATURES=" + std::to_string(cfg_.features) +
+                          " -DCHUNK=" + std::to_string(chunk_);
+  const std::string file = "field/kplanes.cl";
+  fwd_ = rt_.kernel(file, "field_kplanes_fwd", opt);
+  bwd_ = rt_.kernel(file, "field_kplanes_bwd", opt);
+  dx_reduce_ = rt_.kernel(file, "field_kplanes_dx_reduce", opt);
+}
+
+int KPlanes::n_output(PlaneGroups groups) const {
+  return n_groups(groups) * cfg_.scales * cfg_.features;
+}
+
+void KPlanes::init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) const {
+  if (offset + n_params_ > host_params.size())
+    throw Error("KPlanes::init_params: slice [" + std::to_string(offset) + ", +" +
+                std::to_string(n_params_) + ") exceeds buffer of " +
+                std::to_string(host_params.size()));
+  Rng rng(seed, 0x4b50u);
+  const size_t f = size_t(cfg_.features);
+  for (const auto& p : planes_) {
+    const size_t begin = offset + size_t(p.offset) * f, count = size_t(p.width) * p.height * f;
+    for (size_t i = 0; i < count; ++i)
+      host_params[begin + i] = p.plane >= 3 ? 1.0f : rng.uniform(cfg_.init_lo, cfg_.init_hi);
+  }
+}
+
+static void check_bytes(const cl::Buffer& b, size_t floats, const char* what) {
+  if (b.bytes() < floats * sizeof(float))
+    throw Error(std::string("KPlanes: buffer '") + what + "' has " + std::to_string(b.bytes()) +
+                " bytes, needs " + std::to_string(floats * sizeof(float)));
+}
+
+void KPlanes::check(const cl::Buffer& params, size_t offset, const cl::Buffer& x,
+                    const cl::Buffer& t, int n, const cl::Buffer& enc, int width, int stride,
+                    int col, const char* what) const {
+  if (n < 0) throw Error("KPlanes: negative point count " + std::to_string(n));
+  if (col < 0 || col + width > stride)
+    throw Error("KPlanes: columns [" + std::to_string(col) + ", +" + std::to_string(width) +
+                ") do not fit a row of " + std::to_string(stride));
+  check_bytes(params, offset + n_params_, "params");
+  check_bytes(x, size_t(n) * 3, "x");
+  check_bytes(t, size_t(n), "t");
+  if (n > 0) check_bytes(enc, size_t(n - 1) * size_t(stride) + size_t(col + width), what);
+}
+
+void KPlanes::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& x,
+                      const cl::Buffer& t, int n, cl::Buffer& enc, PlaneGroups groups, int stride,
+                      int col) {
+  const int width = n_output(groups);
+  if (stride == 0) stride = width;
+  check(params, offset, x, t, n, enc, width, stride, col, "enc");
+  if (n == 0) return;
+  fwd_.set_args(n, params, uint32_t(offset), x, t, meta_, first_group(groups), enc, stride, col);
+  launch_points(fwd_, n, n_groups(groups) * cfg_.scales);
+}
+
+void KPlanes::backward(const cl::Buffer& params, size_t offset, const cl::Buffer& x,
+                       const cl::Buffer& t, int n, const cl::Buffer& d_enc, cl::Buffer& grad,
+                       size_t grad_offset, cl::Buffer* d_x, PlaneGroups groups, bool accumulate,
+                       int stride, int col) {
+  const int width = n_output(groups), rows = n_groups(groups) * cfg_.scales;
+  if (stride == 0) stride = width;
+  check(params, offset, x, t, n, d_enc, width, stride, col, "d_enc");
+  check_bytes(grad, grad_offset + n_params_, "grad");
+  const bool dx = d_x && n > 0;
+  if (dx) {
+    check_bytes(*d_x, size_t(n) * 3, "d_x");
+    const size_t part = size_t(n) * size_t(rows) * 3;
+    if (dx_part_floats_ < part) {
+      dx_part_ = cl::Buffer(rt_, part * sizeof(float));
+      dx_part_floats_ = part;
+    }
+  }
+  bwd_.set_args(n, params, uint32_t(offset), x, t, meta_, first_group(groups), d_enc, stride, col,
+                grad, uint32_t(grad_offset), accumulate ? 1 : 0, dx ? 1 : 0,
+                dx ? dx_part_ : meta_);  // without d_x the part argument is never written
+  bwd_.launch({size_t(rows)}, {1});
+  if (!dx) return;
+  dx_reduce_.set_args(n, rows, dx_part_, *d_x);
+  dx_reduce_.launch({cl::round_up(size_t(n), 64)}, {64});
+}
+
+void KPlanes::launch_points(cl::Kernel& k, int n, int rows) {
+  const size_t items = (size_t(n) + size_t(chunk_) - 1) / size_t(chunk_);
+  if (chunk_ == 1)
+    k.launch({cl::round_up(items, 64), size_t(rows)}, {64, 1});
+  else
+    k.launch({items, size_t(rows)}, {1, 1});
+}
+
+}  // namespace sgnlf::field

@@ -1,0 +1,111 @@
+// K-Planes-style 4D plane encoding (method.md §2, LiDAR4D's planes; K-Planes, Fridovich-Keil
+// et al. 2023) on OpenCL: forward, deterministic parameter backward and input-position
+// backward d_x (kernels/field/kplanes.cl).
+//
+// Per scale s (spatial resolution R_s = resolution · 2^s points per axis, time resolution T):
+// six planes, static xy, xz, yz and dynamic xt, yt, zt, each F features per grid point,
+// sampled bilinearly (align_corners, border padding) at x ∈ [−1, 1]³ and t ∈ [0, 1]. A group's
+// feature at a scale is the Hadamard product of its three planes; the output concatenates the
+// scales, static group first: [static s0..s(S−1) | dynamic s0..s(S−1)], S·F columns each.
+// LiDAR4D feeds its planes coordinates in [0, 1] and so samples only half of each 64-point
+// plane (about 32 cells across the box) and of its 25-point time axis; here the box spans the
+// whole plane, with the spec's 32·{1, 2, 4, 8} points and T = 8.
+// Layout of the module slice: scales one after another, in each the six planes in the order
+// above, each W·H entries of F floats (entry (i, j) at i + j·W), no gaps.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cl/runtime.hpp"
+#include "core/config.hpp"
+#include "core/config_fields.hpp"
+
+namespace sgnlf::field {
+
+struct KPlanesConfig {
+  int resolution = 32;       // spatial grid points per axis at the coarsest scale
+  int scales = 4;            // scales 1, 2, …, 2^(scales − 1)
+  int time_resolution = 8;   // grid points along t
+  int features = 8;          // per plane: 1, 2, 4 or 8
+  float init_lo = 0.1f;      // spatial planes start uniform in [init_lo, init_hi] (K-Planes);
+  float init_hi = 0.5f;      // time planes start at 1, so the dynamic group starts static
+  int chunk = 0;             // forward points per work-item: 0 = auto (64 on CPUs, else 1)
+
+  // The keys and ranges (core/config_fields.hpp); features' set, init_lo ≤ init_hi and the
+  // finest resolution are validate()'s.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("resolution", s.resolution, 2, 4096);
+    v("scales", s.scales, 1, 8);
+    v("time_resolution", s.time_resolution, 2, 1024);
+    v("features", s.features, 1, 8);
+    v("init_lo", s.init_lo, -10.0f, 10.0f);
+    v("init_hi", s.init_hi, -10.0f, 10.0f);
+    v("chunk", s.chunk, 0, 4096);
+  }
+  void validate(const std::string& where = "kplanes") const;  // throws ConfigError
+  static KPlanesConfig from_json(const Json& j, const std::string& where);
+  Json to_json() const { return config::write_fields(*this); }
+};
+
+// Which plane groups a pass computes: both (the point's own time), or one of them (LiDAR4D
+// samples only the dynamic planes at the flowed neighbour positions).
+enum class PlaneGroups { Both, Static, Dynamic };
+
+struct KPlane {
+  int scale = 0;
+  int plane = 0;          // 0..5: xy, xz, yz, xt, yt, zt
+  uint32_t offset = 0;    // first entry within the module slice
+  uint32_t width = 0;     // grid points along the plane's first axis
+  uint32_t height = 0;    // along its second axis
+};
+
+// The plane table of a configuration (pure host function, shared with tests).
+std::vector<KPlane> kplanes_layout(const KPlanesConfig& cfg);
+
+class KPlanes {
+ public:
+  KPlanes(cl::Runtime& rt, const KPlanesConfig& cfg);
+
+  const KPlanesConfig& config() const { return cfg_; }
+  const std::vector<KPlane>& planes() const { return planes_; }
+  size_t n_params() const { return n_params_; }
+  // Output columns of a pass over `groups` (S·F per group).
+  int n_output(PlaneGroups groups = PlaneGroups::Both) const;
+
+  // Spatial planes uniform in [init_lo, init_hi], time planes 1, into
+  // host_params[offset, offset + n_params()) from `seed`.
+  void init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) const;
+
+  // enc[i·stride + col + c], c < n_output(groups): encoding of x (N × 3) at times t (N).
+  // stride 0 = n_output(groups). Enqueued, no wait.
+  void forward(const cl::Buffer& params, size_t offset, const cl::Buffer& x,
+               const cl::Buffer& t, int n, cl::Buffer& enc,
+               PlaneGroups groups = PlaneGroups::Both, int stride = 0, int col = 0);
+  // From d_enc (same columns as forward): writes dL/dparams of the planes of `groups` into
+  // grad[grad_offset + …] (overwriting them, or adding to them with accumulate; the other
+  // group's planes are untouched); if d_x is given, overwrites it with dL/dx (N × 3; time is
+  // not differentiated). Enqueued, no wait.
+  void backward(const cl::Buffer& params, size_t offset, const cl::Buffer& x,
+                const cl::Buffer& t, int n, const cl::Buffer& d_enc, cl::Buffer& grad,
+                size_t grad_offset, cl::Buffer* d_x = nullptr,
+                PlaneGroups groups = PlaneGroups::Both, bool accumulate = false, int stride = 0,
+                int col = 0);
+
+ private:
+  cl::Runtime& rt_;
+  KPlanesConfig cfg_;
+  std::vector<KPlane> planes_;
+  size_t n_params_ = 0;
+  int chunk_ = 1;
+  cl::Buffer meta_;
+  cl::Kernel fwd_, bwd_, dx_reduce_;
+  cl::Buffer dx_part_;
+  size_t dx_part_floats_ = 0;
+  void check(const cl::Buffer& params, size_t offset, const cl::Buffer& x, const cl::Buffer& t,
+             int n, const cl::Buffer& enc, int width, int stride, int col, const char* what) const;
+  void launch_points(cl::Kernel& k, int n, int rows);
+};
+
+}  // namespace sgnlf::field

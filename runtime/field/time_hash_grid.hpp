@@ -1,0 +1,109 @@
+// Time-sliced 2D hash grids (method.md §2, LiDAR4D's dynamic hash encoding) on OpenCL: forward,
+// deterministic parameter backward and input-position backward d_x
+// (kernels/field/hashgrid_time.cl).
+//
+// Three planes xy, xz, yz; each is a stack of `time_slices` 2D multi-resolution hash grids of
+// the same shape (one per time slice). A time t ∈ [0, 1] lies at u = t·(T − 1) between slices
+// floor(u) and floor(u) + 1 and blends their features linearly (LiDAR4D's HashGridT); per level
+// the three planes' blended features are multiplied (Hadamard), giving L·F columns like the 3D
+// hash grid (hash_grid.hpp) whose conventions it shares: level l's scale base·growth^l − 1,
+// res = ceil(scale) + 2, pos = ((x + 1)/2)·scale + 0.5, a dense index where res² fits the table,
+// else the spatial hash gx ⊕ gy·2654435761. LiDAR4D's sizes: 8 levels × 4 features, base 512,
+// finest 32768, tables 2^14 (xy), 2^12 (xz, yz); its time resolution (25 there) is one number
+// shared with the planes, T = 8 here (the spec's time resolution).
+// Layout of the module slice: plane p at plane.offset entries, then its slices one after
+// another (slice_entries each), in each slice the levels one after another, F floats per entry.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cl/runtime.hpp"
+#include "core/config.hpp"
+#include "core/config_fields.hpp"
+#include "field/hash_grid.hpp"
+
+namespace sgnlf::field {
+
+struct TimeHashGridConfig {
+  int levels = 8;
+  int features = 4;               // per level: 1, 2, 4 or 8
+  float base_resolution = 512.0f;
+  float per_level_scale = 1.8114473f;  // (32768 / 512)^(1/7): finest 32768 at 8 levels
+  int log2_table_xy = 14;         // entries per level (upper bound) of each plane
+  int log2_table_xz = 12;
+  int log2_table_yz = 12;
+  int time_slices = 8;            // T
+  int chunk = 0;                  // forward points per work-item: 0 = auto (64 on CPUs, else 1)
+
+  // The keys and ranges (core/config_fields.hpp); features' set and the finest resolution are
+  // validate()'s.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("levels", s.levels, 1, 32);
+    v("features", s.features, 1, 8);
+    v("base_resolution", s.base_resolution, 1.0f, 65536.0f);
+    v("per_level_scale", s.per_level_scale, 1.0f, 4.0f);
+    v("log2_table_xy", s.log2_table_xy, 4, 24);
+    v("log2_table_xz", s.log2_table_xz, 4, 24);
+    v("log2_table_yz", s.log2_table_yz, 4, 24);
+    v("time_slices", s.time_slices, 1, 1024);
+    v("chunk", s.chunk, 0, 4096);
+  }
+  void validate(const std::string& where = "time_hash_grid") const;  // throws ConfigError
+  static TimeHashGridConfig from_json(const Json& j, const std::string& where);
+  Json to_json() const { return config::write_fields(*this); }
+};
+
+struct TimeHashPlane {
+  uint32_t offset = 0;         // first entry of the plane within the module slice
+  uint32_t slice_entries = 0;  // entries of one time slice (all levels)
+  std::vector<HashGridLevel> levels;  // offsets within a slice
+};
+
+// The three planes' tables of a configuration (pure host function, shared with tests).
+std::vector<TimeHashPlane> time_hash_grid_planes(const TimeHashGridConfig& cfg);
+
+// LiDAR4D's static 3D hash grid with the existing HashGrid: 8 levels × 4 features, base 512,
+// finest 32768, 2^19 entries per level.
+HashGridConfig lidar4d_static_hash_config();
+
+class TimeHashGrid {
+ public:
+  TimeHashGrid(cl::Runtime& rt, const TimeHashGridConfig& cfg);
+
+  const TimeHashGridConfig& config() const { return cfg_; }
+  const std::vector<TimeHashPlane>& planes() const { return planes_; }
+  size_t n_params() const { return n_params_; }
+  int n_output() const { return cfg_.levels * cfg_.features; }
+
+  // Uniform ±1e-4 (instant-ngp, tiny-cuda-nn's default) into host_params[offset, + n_params()).
+  void init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) const;
+
+  // enc[i·stride + col + c], c < n_output(): encoding of x (N × 3) at times t (N).
+  // stride 0 = n_output(). Enqueued, no wait.
+  void forward(const cl::Buffer& params, size_t offset, const cl::Buffer& x,
+               const cl::Buffer& t, int n, cl::Buffer& enc, int stride = 0, int col = 0);
+  // Overwrites grad[grad_offset, + n_params()) with dL/dparams (adds to it with accumulate);
+  // if d_x is given, overwrites it with dL/dx (N × 3; time is not differentiated).
+  void backward(const cl::Buffer& params, size_t offset, const cl::Buffer& x,
+                const cl::Buffer& t, int n, const cl::Buffer& d_enc, cl::Buffer& grad,
+                size_t grad_offset, cl::Buffer* d_x = nullptr, bool accumulate = false,
+                int stride = 0, int col = 0);
+
+ private:
+  cl::Runtime& rt_;
+  TimeHashGridConfig cfg_;
+  std::vector<TimeHashPlane> planes_;
+  size_t n_params_ = 0;
+  int chunk_ = 1;
+  cl::Buffer scale_, meta_, pmeta_;
+  cl::Kernel fwd_, bwd_, dx_reduce_;
+  cl::Buffer dx_part_;
+  size_t dx_part_floats_ = 0;
+  void check(const cl::Buffer& params, size_t offset, const cl::Buffer& x, const cl::Buffer& t,
+             int n, const cl::Buffer& enc, int stride, int col, const char* what) const;
+  void launch_points(cl::Kernel& k, int n);
+};
+
+}  // namespace sgnlf::field
