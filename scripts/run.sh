@@ -13,7 +13,7 @@ OUT=${OUT:-runs/quick-kitti360-standard}
 echo
 cat "$OUT/table.md"
 echo
-if [ -f results/quick-kitti360-standard/results.json ]; then
-  ./build/bin/sgnlf compare "$OUT/results.json" results/quick-kitti360-standard/results.json || true
+if [ -f results/tables/kitti360-standard/quick/results.json ]; then
+  ./build/bin/sgnlf compare "$OUT/results.json" results/tables/kitti360-standard/quick/results.json || true
 fi
 echo "run.sh: results in $OUT/results.json (schema: results/schema.md) and $OUT/table.md"
