@@ -27,7 +27,7 @@ for t in "${targets[@]}"; do build+=(--target "$t"); done
 cmake --build "$B" -j "$JOBS" "${build[@]}" --target fuzz_make_corpus
 if [ "${REGEN_CORPUS:-0}" = "1" ]; then
   rm -rf fuzz/corpus
-  "$B/fuzz/fuzz_make_corpus" fuzz/corpus results/baselines/smoke-kitti360-standard.json
+  "$B/fuzz/fuzz_make_corpus" fuzz/corpus results/tables/kitti360-standard/smoke/results.json
 fi
 mkdir -p "$B/logs" "$B/crashes"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=0}

@@ -7,7 +7,7 @@
 # UndefinedBehaviorSanitizer (SCOPE=ci scripts/sanitize.sh), and every fuzz target for
 # SGNLF_FUZZ_SECONDS (default 20) from its seed corpus (scripts/fuzz.sh).
 # SGNLF_HARDENING=0 skips both jobs (the fuzz corpora and fixed crash inputs are still replayed
-# by the ordinary suite, CTest replay_fuzz_*). Times: results/hardening/README.md.
+# by the ordinary suite, CTest replay_fuzz_*). Times: docs/studies/hardening/README.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export SGNLF_REQUIRE_REAL_DATA=${SGNLF_REQUIRE_REAL_DATA:-1}

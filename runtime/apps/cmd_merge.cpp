@@ -1,47 +1,86 @@
-// `sgnlf merge --out DIR CELL...`: combines the cell files of a table run as cells
-// (`sgnlf bench --cell K`, runtime/harness/cells.hpp) into DIR/results.json and DIR/table.md,
-// equal to the one-process run's apart from the fields results/schema.md "Cells" names.
-// `--expect RESULTS` checks that equality against a one-process run (exit 4 when they differ).
+// `sgnlf merge --out DIR INPUT...`: one table from its pieces, written as DIR/results.json and
+// DIR/table.md. The inputs are either
+//   - cell files of one table run as cells (`sgnlf bench --cell K`, runtime/harness/cells.hpp):
+//     the result equals the one-process run's apart from the fields results/schema.md "Cells"
+//     names; `--expect RESULTS` checks that equality (exit 4 when they differ); or
+//   - results.json files of the same table and scale holding some of its rows (partial runs,
+//     other commits; runtime/harness/combine.hpp, results/schema.md "Combined tables"): every
+//     row of the table, "not run" where no input ran it, each run's source and staleness.
+//     `--later-wins` lets a later input replace an earlier one's different result.
+// The kind is read from the first input; the others must be of the same kind.
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
 #include "apps/command.hpp"
 #include "harness/cells.hpp"
+#include "harness/combine.hpp"
 #include "harness/runner.hpp"
+#include "harness/wiring.hpp"
 
 namespace sgnlf::app {
 namespace {
 
-const Registrar reg("merge", "Combine the cell results of a table (sgnlf bench --cell K) into one",
+const Registrar reg("merge",
+                    "Combine a table's cell results (sgnlf bench --cell K), or partial results.json "
+                    "files of one table, into one table",
                     [](CLI::App& sub) {
   auto out = std::make_shared<std::string>();
   auto inputs = std::make_shared<std::vector<std::string>>();
   auto expect = std::make_shared<std::string>();
+  auto later_wins = std::make_shared<bool>(false);
   sub.add_option("--out", *out, "Output folder (results.json, table.md)")->required();
-  sub.add_option("CELL", *inputs, "Cell files, or folders holding cell.json")->required();
+  sub.add_option("INPUT", *inputs,
+                 "Cell files or folders holding cell.json; or results.json files (or folders "
+                 "holding one) of one table and scale")
+      ->required();
   sub.add_option("--expect", *expect,
-                 "A one-process results.json of the same table: fail (exit 4) unless the merged "
-                 "result equals it apart from times, paths and context");
+                 "Cells only: a one-process results.json of the same table: fail (exit 4) unless "
+                 "the merged result equals it apart from times, paths and context");
+  sub.add_flag("--later-wins", *later_wins,
+               "results.json inputs: where two inputs have different runs of the same row and "
+               "sequence, the later input (in the order given) replaces the earlier; without "
+               "it such a conflict is refused");
   return std::function<int()>([=] {
-    std::vector<std::pair<std::string, Json>> cells;
-    std::string command = "sgnlf merge --out " + *out;
-    for (const auto& in : *inputs) {
-      const std::string path = harness::cell_file_path(in);
+    std::vector<std::pair<std::string, Json>> files;
+    std::string command = "sgnlf merge --out " + *out + (*later_wins ? " --later-wins" : "");
+    bool tables = false;
+    for (size_t i = 0; i < inputs->size(); ++i) {
+      const std::string& in = (*inputs)[i];
+      const bool dir_with_results = std::filesystem::is_regular_file(
+          std::filesystem::path(in) / "results.json");
+      const std::string path = dir_with_results ? (std::filesystem::path(in) / "results.json").string()
+                                                : harness::cell_file_path(in);
       Json j;
       try {
         j = load_json_file(path);
       } catch (const std::exception& e) {
         throw ConfigError("merge: " + path + " is not readable JSON: " + e.what());
       }
-      cells.emplace_back(path, std::move(j));
+      if (i == 0) tables = harness::is_results_table(j);
+      if (harness::is_results_table(j) != tables)
+        throw ConfigError("merge: " + files.front().first + " and " + path +
+                          " are of different kinds (a results.json table and a cell file)");
+      files.emplace_back(path, std::move(j));
       command += " " + in;
     }
-    const Json results = harness::merge_cells(cells, command, *out);
+    if (!tables && *later_wins) throw ConfigError("merge: --later-wins is for results.json inputs");
+    if (tables && !expect->empty()) throw ConfigError("merge: --expect is for cell files");
+    const Json results =
+        tables ? harness::combine_tables(files, harness::CombineOptions{*later_wins},
+                                         harness::default_hooks(), command, *out)
+               : harness::merge_cells(files, command, *out);
     const auto [json_path, md_path] = harness::write_outputs(results, *out);
-    int failed = 0;
-    for (const auto& row : results["rows"]) failed += row["status"] == "failed";
-    std::cout << "merged " << cells.size() << " cells\nresults: " << json_path
-              << "\ntable:   " << md_path << "\n";
+    int failed = 0, stale = 0, not_run = 0;
+    for (const auto& row : results["rows"]) {
+      failed += row["status"] == "failed";
+      stale += row.value("stale", Json()) == Json(true);
+      not_run += row["status"] == "not_run";
+    }
+    std::cout << "merged " << files.size() << (tables ? " results" : " cells") << "\nresults: "
+              << json_path << "\ntable:   " << md_path << "\n";
+    if (tables)
+      std::cout << not_run << " row(s) not run, " << stale << " row(s) with a stale config\n";
     if (!expect->empty()) {
       const auto diff = harness::table_differences(results, load_json_file(*expect));
       if (!diff.empty()) {
@@ -52,7 +91,7 @@ const Registrar reg("merge", "Combine the cell results of a table (sgnlf bench -
       std::cout << "equal to " << *expect << " (apart from times, paths and context)\n";
     }
     if (failed) std::cerr << "sgnlf merge: " << failed << " row(s) failed, see " << md_path << "\n";
-    return failed ? 1 : 0;
+    return failed && !tables ? 1 : 0;
   });
 });
 

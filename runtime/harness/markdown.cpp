@@ -28,7 +28,20 @@ std::string status_cell(const Json& row) {
   if (s == "not_implemented") return "not implemented";
   if (s == "failed") return "failed";
   if (s == "skipped") return "not run (--rows)";
+  if (s == "not_run") return "not run";
   return "—";
+}
+
+// A combined table's row label (results/schema.md "Combined tables"): marks a row whose
+// means leave sequences out or whose runs were made with another config than today's.
+std::string row_label(const Json& row) {
+  std::string l = row.value("label", row.value("method", ""));
+  const Json& nr = row.contains("sequences_not_run") ? row["sequences_not_run"] : Json();
+  if (row.value("status", "") == "ok" && nr.is_array() && !nr.empty())
+    l += " (partial: " + std::to_string(row.value("sequences", Json::array()).size()) + " of " +
+         std::to_string(row["sequences"].size() + nr.size()) + " sequences)";
+  if (row.value("stale", Json()) == Json(true)) l += " (stale config)";
+  return l;
 }
 
 const Json& get_or_null(const Json& j, const std::string& k) {
@@ -104,7 +117,7 @@ void main_table(std::ostringstream& o, const Json& r, const std::vector<std::str
   for (const auto& row : r.value("rows", Json::array())) {
     const bool ok = row.value("status", "") == "ok";
     const Json& mean = get_or_null(row, mean_key);
-    o << "| " << row.value("label", row.value("method", "")) << " |";
+    o << "| " << row_label(row) << " |";
     for (const auto& c : cols) {
       Json paper = get_or_null(row["paper"], c);
       std::string mark;
@@ -230,18 +243,22 @@ std::string render_markdown(const Json& r) {
     o << "\n";
     for (const auto& row : r.value("rows", Json::array())) {
       Json m, msd;
+      std::string mark;
       for (const auto& s : row.value("sequences", Json::array()))
         if (s.value("sequence", "") == name) {
+          if (s.value("stale", Json()) == Json(true)) mark = " (stale config)";
           m = s.value("metrics", Json::object());
           msd = s.value("metrics_sd", Json::object());
           const Json pose = s.value("pose_metrics", Json());
           if (pose.is_object())
             for (auto it = pose.begin(); it != pose.end(); ++it) m[it.key()] = it.value();
         }
-      o << "| " << row.value("label", "") << " |";
+      o << "| " << row.value("label", "") << mark << " |";
+      const bool not_run = row.value("status", "") == "ok" && !m.is_object();
       for (const auto& c : all)
         o << " "
           << (m.is_object() ? format_mean_sd(c, get_or_null(m, c), get_or_null(msd, c))
+              : not_run     ? std::string("not run")
                             : status_cell(row))
           << " |";
       o << "\n";
@@ -271,8 +288,11 @@ std::string render_markdown(const Json& r) {
     o << "\n";
   }
 
+  o << render_provenance(r);
+
   // Context.
   o << "\n## Context\n\n";
+  if (r.contains("combined_from")) o << "- of the first input; each row's own: Provenance above\n";
   const Json& git = get_or_null(ctx, "git");
   if (git.is_object())
     o << "- git " << git.value("sha", "?").substr(0, 12)

@@ -11,5 +11,9 @@ namespace sgnlf::harness {
 // Formats a metric value with the table file's digits ("—" for null/missing).
 std::string format_metric(const std::string& key, const Json& v);
 std::string render_markdown(const Json& results);
+// A combined table's provenance (results/schema.md "Combined tables"): the source files and,
+// per row, which sequences came from which and whether their config is stale. "" for a
+// result that is not combined.
+std::string render_provenance(const Json& results);
 
 }  // namespace sgnlf::harness

@@ -69,6 +69,10 @@ struct BenchHooks {
                                  const std::string& dir)> prepare;
   // What the metrics mean (metrics::definitions()), recorded as "metric_definitions".
   std::function<Json()> metric_definitions;
+  // The resolved config hash a method's run at a scale has in this build (16 hex digits, as
+  // rows[].sequences[].config_hash; tests/pipeline/config_hashes.json), "" when unknown. Used
+  // by `sgnlf merge` of results tables to flag runs made with another config as stale.
+  std::function<std::string(const std::string& method, const std::string& scale)> config_hash;
 };
 
 // A cell: one independent run of a table (row × sequence × seed), the unit of

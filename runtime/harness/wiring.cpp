@@ -5,7 +5,11 @@
 #ifdef SGNLF_HARNESS_WIRED
 #include "harness/prepare.hpp"
 #include "metrics/evaluate.hpp"
+#include "pipeline/config/presets.hpp"
+#include "pipeline/config/train_config.hpp"
 #endif
+
+#include <cstdio>
 
 namespace sgnlf::harness {
 
@@ -20,6 +24,13 @@ BenchHooks default_hooks() {
     return prepare_sequence(s, o, dir);
   };
   h.metric_definitions = [] { return metrics::definitions(); };
+  h.config_hash = [](const std::string& method, const std::string& scale) -> std::string {
+    if (!pipeline::method_implemented(method)) return "";
+    char b[17];
+    std::snprintf(b, sizeof b, "%016llx",
+                  static_cast<unsigned long long>(pipeline::resolve_config(method, scale).hash()));
+    return b;
+  };
   return h;
 }
 #else

@@ -38,7 +38,7 @@ struct OdometryConfig {
   double inlier_distance = 0.5;
   // Coarse iterations each start of that search gets before the starts are compared (the kept
   // one then runs to convergence); 0: every start runs to convergence (slower, same choice on
-  // the sequences of results/odometry).
+  // the sequences of docs/studies/odometry).
   int initial_search_iterations = 20;
   // Failure checks: a registration with fewer source points, or whose final fraction of
   // source points with a correspondence (fitness) is lower, is reported as not converged.

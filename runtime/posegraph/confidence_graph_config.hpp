@@ -19,7 +19,7 @@ struct ConfidenceGraphConfig {
   // Candidates: other pairs whose sensor positions lie within this distance (candidate_pairs.hpp).
   double candidate_distance_m = 40.0;
   // Non-adjacent candidates need j − i ≥ min_index_gap (0: any non-sequential pair; a large gap
-  // keeps loop closures only). Measured on kitti360-loop (results/posegraph/README.md): edges to
+  // keeps loop closures only). Measured on kitti360-loop (docs/studies/posegraph/README.md): edges to
   // frames 3–9 apart (15–40 m at 2 Hz) raise the ATE; loop closures lower it.
   int min_index_gap = 10;
   // Points of each frame cloud used for matching (deterministic subsample; 0 = all). Feature
@@ -38,7 +38,7 @@ struct ConfidenceGraphConfig {
   // sequential edges (population std over those with ≥ min_matches matches).
   // κ = −6 admits the pairs that overlap by ≥ 30 % under the ground-truth poses of
   // kitti360-loop (tests/posegraph/test_loop_graph.cpp). Off by default: with the stand-in
-  // features it also rejects the drifted loop closures that lower the ATE (results/posegraph);
+  // features it also rejects the drifted loop closures that lower the ATE (docs/studies/posegraph);
   // to be measured again with f_hyb.
   double kappa = -6.0;
   bool compatibility_test = false;  // false: keep every valid candidate

@@ -6,7 +6,7 @@
 // weights on the point distances |q_k − m_k| (robust_weights). Why: between two sparse scans
 // metres apart (2 Hz keyframes) the nearest neighbour of a ring point lies on another ring, and
 // point-to-point pulls the scans together along the ground; the plane residual lets points slide
-// along the surface (measured: results/odometry/pose_free_from_odometry.md). Gradients, as
+// along the surface (measured: docs/studies/odometry/pose_free_from_odometry.md). Gradients, as
 // robust_chamfer.hpp, with matches and weights held fixed: with r = nᵀe and g = 2w·r·n
 // (dL/dq in dst's frame), dL/dθ_src = Σ p × R_dsᵀg, dL/dt_src = R_dst Σ g,
 // dL/dθ_dst = −Σ q × g, dL/dt_dst = −R_dst Σ g.

@@ -75,7 +75,7 @@ TEST_CASE("tight and loose tolerances", "[harness][compare]") {
 
 TEST_CASE("every loose tolerance covers 3 sd of the measured seed spread", "[harness][compare]") {
   // tables.json "loose_spread": the spread over training seeds of a quick row
-  // (results/hardening/seed-spread/). A loose tolerance below it fails a rerun on another
+  // (docs/studies/hardening/seed-spread/). A loose tolerance below it fails a rerun on another
   // device as often as not; this test fails if a tolerance is tightened below 3 sd, or a
   // metric loses its measured spread.
   const Json& spread = harness::tolerance_table().at("loose_spread");

@@ -4,7 +4,7 @@
 // axes on an HDL-64E scan; vehicle-like (yaw, roll and pitch ~5 % of it, translation mostly
 // horizontal) on an HDL-32E scan, whose 32 rings 1.3° apart made point-to-point ICP settle one
 // ring spacing off for large roll or pitch before the planar start search existed (see
-// results/odometry/README.md, "Ring aliasing"); and the failures that must be reported as such: too few points, no
+// docs/studies/odometry/README.md, "Ring aliasing"); and the failures that must be reported as such: too few points, no
 // overlap, an empty map.
 #include <catch2/catch.hpp>
 

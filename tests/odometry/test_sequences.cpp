@@ -60,7 +60,7 @@ TEST_CASE("odometry is deterministic, also with two threads", "[odometry]") {
 }
 
 TEST_CASE("probing the start search keeps the exhaustive search's choice", "[odometry]") {
-  // kitti360-low's second frame is the one that needs the planar start search (results/odometry
+  // kitti360-low's second frame is the one that needs the planar start search (docs/studies/odometry
   // README: 2.36 m ATE without it). Probing each start with a few coarse iterations must keep
   // the start the exhaustive search keeps, and end at the same pose within a centimetre.
   Dataset d = test::kitti360_low();

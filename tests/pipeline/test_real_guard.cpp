@@ -3,7 +3,7 @@
 // the fix of issue 30 failed. The twins cannot catch a change that breaks real scans (they are
 // boxy, static, and hold no returns of the vehicle itself); this scene can.
 //
-// Measured (results/real-scans/README.md):
+// Measured (docs/studies/real-scans/README.md):
 // - the coarse alignment below with 2000 points a frame and 200 steps: 3.193 m → 0.160 m
 //   (4000 points: 0.176 m); before the fix (the vehicle's own returns in the frame's points)
 //   the same schedule stopped at 1.66 m and 1000 points end at 0.38 m;

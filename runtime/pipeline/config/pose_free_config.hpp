@@ -31,7 +31,7 @@ struct PoseOptimConfig {
   bool optimize = true;        // false: the poses stay at their initial values (control row)
   // The photometric pose updates begin at this step (0: the published methods, from the first
   // step). From a good start (the odometry) a field still blurred moves the poses away
-  // (results/odometry/pose_free_from_odometry.md); later steps see a fitted field.
+  // (docs/studies/odometry/pose_free_from_odometry.md); later steps see a fitted field.
   long start_step = 0;
   double lr_rot = 5e-3, lr_trans = 1e-3, final_factor = 0.01, identity_lr_factor = 6.0;
   double beta1 = 0.9, beta2 = 0.999, eps = 1e-8;

@@ -22,7 +22,7 @@ struct PoseGraphConfig {
   // of 10, the learning rates decaying from lr_on_build to geometric.lr_final times the
   // geometric stage's rates. GeoNLF's refinement (a few steps per epoch at the final rates) moves
   // a drifted loop by centimetres per epoch: measured on kitti360-loop, 0.787 → 0.749 m ATE over
-  // the seven epochs after the first build (results/sgnlf-loop). 0: no such run.
+  // the seven epochs after the first build (docs/studies/sgnlf-loop). 0: no such run.
   int steps_on_build = 0;
   double lr_on_build = 0.25;
   posegraph::ConfidenceGraphConfig graph;  // its keys sit in the same "pose_graph" object

@@ -28,9 +28,9 @@ Json resolve_preset(const std::string& name, const PresetTexts& texts);
 Json preset_json(const std::string& method, const std::string& preset);
 // The preset's "from_odometry" section: config keys that replace the preset's when the poses
 // start from the built-in odometry (poses.init = "odometry"). A pose-free preset is tuned for the
-// protocol's noisy start (≈ 3 m, 20°); the odometry starts within decimetres (results/odometry),
+// protocol's noisy start (≈ 3 m, 20°); the odometry starts within decimetres (docs/studies/odometry),
 // where the coarse alignment and the full pose learning rates only add error (measured:
-// results/odometry/pose_free_from_odometry.md). Empty object when the preset has none.
+// docs/studies/odometry/pose_free_from_odometry.md). Empty object when the preset has none.
 Json odometry_start_json(const std::string& method, const std::string& preset);
 // Preset merged with `overrides`, read strictly and validated. When the merged poses.init is
 // "odometry", the preset's from_odometry section is applied between the preset and `overrides`

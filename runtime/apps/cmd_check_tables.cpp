@@ -1,0 +1,49 @@
+// `sgnlf check-tables [ROOT]`: the committed tables (ROOT, default results/tables:
+// <table>/<scale>/{results.json,table.md}) against this build's table definitions, methods and
+// config hashes, and each table.md against the rendering of its results.json
+// (runtime/harness/table_check.hpp). Exit 4 when a table differs. `--render` first rewrites
+// every table.md from its results.json (a change of the markdown renderer).
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include "apps/command.hpp"
+#include "harness/markdown.hpp"
+#include "harness/table_check.hpp"
+#include "harness/wiring.hpp"
+
+namespace sgnlf::app {
+namespace {
+namespace fs = std::filesystem;
+
+const Registrar reg("check-tables",
+                    "Check the committed tables (results/tables) against this build's table "
+                    "definitions (exit 4 when one differs)",
+                    [](CLI::App& sub) {
+  auto root = std::make_shared<std::string>("results/tables");
+  auto render = std::make_shared<bool>(false);
+  sub.add_option("ROOT", *root, "Folder of <table>/<scale>/ tables")->capture_default_str();
+  sub.add_flag("--render", *render, "Rewrite every table.md from its results.json first");
+  return std::function<int()>([=] {
+    if (*render && fs::is_directory(*root))
+      for (const auto& e : fs::recursive_directory_iterator(*root))
+        if (e.path().filename() == "results.json") {
+          const fs::path md = e.path().parent_path() / "table.md";
+          write_text_file(md.string(), harness::render_markdown(load_json_file(e.path().string())));
+          std::cout << "rendered " << md.string() << "\n";
+        }
+    size_t n = 0;
+    const auto problems = harness::check_committed_tables(*root, harness::default_hooks(), &n);
+    for (const auto& p : problems) std::cout << "DIFFERS " << p << "\n";
+    std::cout << n << " table(s) in " << *root << ", " << problems.size() << " problem(s)\n";
+    if (n == 0) {
+      std::cerr << "sgnlf check-tables: no table found under " << *root << "\n";
+      return 4;
+    }
+    return problems.empty() ? 0 : 4;
+  });
+});
+
+}  // namespace
+}  // namespace sgnlf::app

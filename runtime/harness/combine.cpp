@@ -1,0 +1,310 @@
+#include "harness/combine.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "harness/cells.hpp"
+#include "harness/clock.hpp"
+#include "harness/results.hpp"
+#include "harness/schema.hpp"
+#include "harness/stats.hpp"
+
+namespace sgnlf::harness {
+namespace {
+
+const Json& at_path(const Json& j, std::initializer_list<const char*> path) {
+  static const Json null_json;
+  const Json* p = &j;
+  for (const char* k : path) {
+    if (!p->is_object() || !p->contains(k)) return null_json;
+    p = &(*p)[k];
+  }
+  return *p;
+}
+
+std::vector<uint64_t> seeds_of(const Json& r) {
+  const Json& c = r["config"];
+  if (c.contains("seeds") && c["seeds"].is_array()) return c["seeds"].get<std::vector<uint64_t>>();
+  return {c.value("seed", uint64_t(1))};
+}
+
+// Where one input's runs come from: enough to find the commit and command that made them.
+Json describe(const std::string& path, const Json& r) {
+  return Json{{"file", path},
+              {"command", r.value("command", "")},
+              {"created_utc", r.value("created_utc", "")},
+              {"config_hash", r.value("config_hash", "")},
+              {"git", Json{{"sha", at_path(r, {"context", "git", "sha"})},
+                           {"dirty", at_path(r, {"context", "git", "dirty"})}}},
+              {"build_git_sha", at_path(r, {"context", "build", "git", "sha"})},
+              {"opencl", Json{{"device", at_path(r, {"context", "opencl", "device"})},
+                              {"driver_version", at_path(r, {"context", "opencl", "driver_version"})}}}};
+}
+
+// A run entry without what may differ between two equal runs, nor its provenance.
+Json comparable_entry(const Json& e) {
+  const Json wrapped{{"rows", Json::array({Json{{"sequences", Json::array({e})}}})}};
+  Json v = comparable_view(wrapped)["rows"][0]["sequences"][0];
+  for (const char* k : {"source", "stale"}) v.erase(k);
+  return v;
+}
+
+struct Claim {
+  size_t input = 0, source = 0;
+  Json entry;
+};
+
+// Config hashes of a run entry: its own, or each seed's run of a several-seed entry.
+std::vector<Json> run_hashes(const Json& e) {
+  std::vector<Json> v;
+  if (e.contains("runs") && e["runs"].is_array())
+    for (const auto& r : e["runs"]) v.push_back(r.value("config_hash", Json()));
+  else
+    v.push_back(e.value("config_hash", Json()));
+  return v;
+}
+
+}  // namespace
+
+bool is_results_table(const Json& r) {
+  return r.is_object() && r.value("schema", Json()) == Json(kSchemaName) &&
+         r.value("kind", Json()) == Json("table");
+}
+
+Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
+                    const CombineOptions& opt, const BenchHooks& hooks, const std::string& command,
+                    const std::string& out_dir) {
+  if (inputs.empty()) throw ConfigError("merge: no results given");
+  for (const auto& [path, r] : inputs) {
+    if (!is_results_table(r) || r.value("schema_version", Json()) != Json(kSchemaVersion))
+      throw ConfigError("merge: " + path + " is not an " + std::string(kSchemaName) + " v" +
+                        std::to_string(kSchemaVersion) + " table (sgnlf bench's results.json)");
+    for (const char* k : {"table", "scale", "data"})
+      if (!r.contains(k) || !r[k].is_string())
+        throw ConfigError("merge: " + path + ": field '" + k + "' is missing or not a string");
+    if (!r.contains("config") || !r["config"].is_object() || !r.contains("rows") ||
+        !r["rows"].is_array())
+      throw ConfigError("merge: " + path + ": 'config' or 'rows' is missing");
+  }
+  const auto& [ref_path, ref] = inputs.front();
+  for (const auto& [path, r] : inputs) {
+    for (const char* k : {"table", "scale", "data"})
+      if (r[k] != ref[k])
+        throw ConfigError("merge: " + ref_path + " and " + path + " are of different " + k + ": " +
+                          ref[k].dump() + " vs " + r[k].dump());
+    if (seeds_of(r) != seeds_of(ref))
+      throw ConfigError("merge: " + ref_path + " and " + path + " ran different seeds: " +
+                        Json(seeds_of(ref)).dump() + " vs " + Json(seeds_of(r)).dump());
+  }
+  const TableDef def = table_def(ref["table"].get<std::string>());
+  const std::string scale = ref["scale"].get<std::string>();
+  const bool real = ref["data"] == "real";
+  const auto def_seqs = table_sequences(def, scale, real);
+  const std::vector<uint64_t> seeds = seeds_of(ref);
+  const auto seq_known = [&](const std::string& n) {
+    return std::any_of(def_seqs.begin(), def_seqs.end(),
+                       [&](const SequenceDef& d) { return d.name == n; });
+  };
+
+  // Sources: one per plain input, and the sources a combined input already carries.
+  Json files = Json::array();
+  const auto add_source = [&](const Json& d) {
+    for (size_t i = 0; i < files.size(); ++i)
+      if (files[i] == d) return i;
+    files.push_back(d);
+    return files.size() - 1;
+  };
+  std::map<std::pair<std::string, std::string>, std::vector<Claim>> claims;
+  std::map<std::string, Json> failures;  // method -> [{source, error}]
+  Json superseded = Json::array();
+  for (size_t i = 0; i < inputs.size(); ++i) {
+    const auto& [path, r] = inputs[i];
+    const Json& earlier = at_path(r, {"combined_from", "files"});
+    std::vector<size_t> local;
+    if (earlier.is_array())
+      for (const auto& d : earlier) local.push_back(add_source(d));
+    const size_t own = earlier.is_array() ? 0 : add_source(describe(path, r));
+    const auto source_of = [&](const Json& j) {
+      if (!earlier.is_array()) return own;
+      const size_t k = j.value("source", size_t(0));
+      if (k >= local.size())
+        throw ConfigError("merge: " + path + ": source " + std::to_string(k) + " out of range");
+      return local[k];
+    };
+    for (const auto& s : at_path(r, {"combined_from", "superseded"})) {
+      Json x = s;
+      x["source"] = source_of(Json{{"source", s.value("source", 0)}});
+      x["by"] = source_of(Json{{"source", s.value("by", 0)}});
+      superseded.push_back(x);
+    }
+    for (const auto& row : r["rows"]) {
+      const std::string m = row.value("method", ""), st = row.value("status", "");
+      const bool data = st == "ok" || st == "failed" || row.contains("failures");
+      if (!data) continue;  // not run, not implemented: nothing to carry
+      if (std::none_of(def.rows.begin(), def.rows.end(), [&](const RowDef& d) { return d.method == m; }))
+        throw ConfigError("merge: " + path + ": row '" + m + "' is not a row of table " + def.name +
+                          " in this build (sgnlf bench --list)");
+      for (const auto& f : row.value("failures", Json::array()))
+        failures[m].push_back(Json{{"source", source_of(f)}, {"error", f.value("error", "")}});
+      if (st == "failed" && !earlier.is_array())
+        failures[m].push_back(Json{{"source", own}, {"error", row.value("error", "")}});
+      if (st != "ok") continue;
+      for (const auto& e : row.value("sequences", Json::array())) {
+        const std::string sq = e.value("sequence", "");
+        if (!seq_known(sq))
+          throw ConfigError("merge: " + path + ": row " + m + " ran sequence '" + sq +
+                            "', not a sequence of table " + def.name + " at scale " + scale +
+                            " in this build (sgnlf bench --list)");
+        claims[{m, sq}].push_back(Claim{i, source_of(e), e});
+      }
+    }
+  }
+  // One claim per row × sequence: equal duplicates are one run; different ones are refused
+  // unless the later input wins.
+  std::map<std::pair<std::string, std::string>, Claim> chosen;
+  for (const auto& [key, list] : claims) {
+    Claim c = list.front();
+    for (size_t k = 1; k < list.size(); ++k) {
+      if (comparable_entry(list[k].entry) == comparable_entry(c.entry)) continue;
+      if (!opt.later_wins)
+        throw ConfigError("merge: " + key.first + " / " + key.second + " is in both " +
+                          inputs[c.input].first + " and " + inputs[list[k].input].first +
+                          " with different results (order the inputs and give --later-wins to "
+                          "let the later one replace the earlier)");
+      superseded.push_back(Json{{"method", key.first}, {"sequence", key.second},
+                                {"source", c.source}, {"by", list[k].source}});
+      c = list[k];
+    }
+    chosen[key] = c;
+  }
+
+  std::vector<std::string> real_names;
+  for (const auto& sd : def_seqs)
+    if (!real && sd.is_real_dir()) real_names.push_back(sd.name);
+  Json rows = Json::array(), runs = Json::array();
+  std::set<std::string> ran;
+  for (const auto& rd : def.rows) {
+    const std::string current = hooks.config_hash ? hooks.config_hash(rd.method, scale) : "";
+    std::vector<Json> flat;
+    std::map<std::string, const Claim*> of_seq;
+    Json not_run = Json::array();
+    for (const auto& sd : def_seqs) {
+      const auto it = chosen.find({rd.method, sd.name});
+      if (it == chosen.end()) {
+        not_run.push_back(sd.name);
+        continue;
+      }
+      ran.insert(sd.name);
+      of_seq[sd.name] = &it->second;
+      const Json& e = it->second.entry;
+      for (const auto& run : e.contains("runs") ? e["runs"] : Json::array({e})) {
+        flat.push_back(run);
+        runs.push_back(Json{{"method", rd.method}, {"sequence", sd.name},
+                            {"seed", run.value("seed", Json())},
+                            {"dataset_seed", at_path(run, {"dataset", "seed"})}});
+      }
+    }
+    const Json fails = failures.count(rd.method) ? failures[rd.method] : Json::array();
+    std::string status = !flat.empty()      ? "ok"
+                         : !fails.empty()   ? "failed"
+                         : !hooks.implemented || hooks.implemented(rd.method) ? "not_run"
+                                                                              : "not_implemented";
+    const std::string error = status == "failed" ? fails.back().value("error", "") : "";
+    Json row = make_row(def.name, rd, status, flat, error, real_names, seeds);
+    // Provenance and staleness of each run kept.
+    Json stale_any = of_seq.empty() || current.empty() ? Json(nullptr) : Json(false);
+    std::set<size_t> srcs;
+    for (auto& e : row["sequences"]) {
+      const Claim& c = *of_seq.at(e.value("sequence", ""));
+      e["source"] = c.source;
+      srcs.insert(c.source);
+      if (current.empty()) {
+        e["stale"] = nullptr;
+        continue;
+      }
+      const auto hs = run_hashes(c.entry);
+      e["stale"] = std::any_of(hs.begin(), hs.end(), [&](const Json& h) { return h != Json(current); });
+      if (e["stale"] == Json(true)) stale_any = true;
+    }
+    row["sources"] = srcs;
+    row["sequences_not_run"] = not_run;
+    row["current_config_hash"] = current.empty() ? Json(nullptr) : Json(current);
+    row["stale"] = stale_any;
+    if (!fails.empty()) row["failures"] = fails;
+    rows.push_back(row);
+  }
+
+  // The table's sequences: those some row ran (as the first input holding them describes
+  // them), the others in skipped_sequences with the reason.
+  Json seq_list = Json::array(), skipped = Json::array();
+  for (const auto& sd : def_seqs) {
+    Json found, skip;
+    for (const auto& [path, r] : inputs) {
+      for (const auto& s : r.value("sequences", Json::array()))
+        if (found.is_null() && s.value("name", "") == sd.name) found = s;
+      for (const auto& s : r.value("skipped_sequences", Json::array()))
+        if (skip.is_null() && s.value("name", "") == sd.name) skip = s;
+    }
+    if (ran.count(sd.name) && !found.is_null()) {
+      seq_list.push_back(found);
+    } else {
+      if (skip.is_null()) {
+        skip = Json{{"name", sd.name}, {"path", ""}, {"reason", "not run: no input has a run of it"}};
+        if (sd.is_real_dir()) skip["real_dir"] = sd.real_dir;
+      }
+      skipped.push_back(skip);
+    }
+  }
+
+  Json config = ref["config"];
+  config.erase("rows");
+  config.erase("sequences");
+  std::vector<double> prepare;
+  double total = 0;
+  long rss = 0;
+  Json metric_definitions, real_root;
+  for (const auto& [path, r] : inputs) {
+    const Json& p = at_path(r, {"timings", "prepare_s"});
+    if (!p.is_null())
+      for (double x : repetitions(p)) prepare.push_back(x);
+    const Json& t = at_path(r, {"timings", "total_s"});
+    if (t.is_number()) total += t.get<double>();
+    rss = std::max(rss, r.value("peak_rss_kib", 0L));
+    if (metric_definitions.is_null()) metric_definitions = r.value("metric_definitions", Json());
+    if (real_root.is_null()) real_root = r.value("real_root", Json());
+  }
+  Json out;
+  out["schema"] = kSchemaName;
+  out["schema_version"] = kSchemaVersion;
+  out["kind"] = "table";
+  out["table"] = def.name;
+  out["title"] = def.title;
+  out["scale"] = scale;
+  out["data"] = ref["data"];
+  out["created_utc"] = utc_now();
+  out["command"] = command;
+  out["out_dir"] = out_dir;
+  out["config"] = config;
+  out["config_hash"] = config_hash(config);
+  out["seeds"] = Json{{"table_seed", seeds.front()}, {"runs", runs}};
+  if (seeds.size() > 1) out["seeds"]["table_seeds"] = seeds;
+  out["context"] = ref.value("context", Json::object());
+  out["columns"] = def.columns;
+  out["extra_columns"] = def.extra_columns;
+  out["metric_definitions"] = metric_definitions;
+  out["sequences"] = seq_list;
+  out["skipped_sequences"] = skipped;
+  if (!real_names.empty()) out["real_root"] = real_root.is_null() ? Json("") : real_root;
+  out["rows"] = rows;
+  out["timings"] = Json{{"total_s", total}};
+  if (!prepare.empty()) out["timings"]["prepare_s"] = summarize(prepare);
+  out["peak_rss_kib"] = rss;
+  Json in_paths = Json::array();
+  for (const auto& in : inputs) in_paths.push_back(in.first);
+  out["combined_from"] = Json{{"inputs", in_paths}, {"files", files},
+                              {"later_wins", opt.later_wins}, {"superseded", superseded}};
+  return out;
+}
+
+}  // namespace sgnlf::harness

@@ -1,0 +1,56 @@
+// The "Provenance" section of a combined table's markdown (results/schema.md "Combined
+// tables"): every source file with its commit, time and command, then per row which
+// sequences came from which source and whether their config is today's.
+#include <sstream>
+
+#include "harness/markdown.hpp"
+
+namespace sgnlf::harness {
+
+std::string render_provenance(const Json& r) {
+  if (!r.contains("combined_from") || !r["combined_from"].is_object()) return "";
+  const Json& cf = r["combined_from"];
+  const Json files = cf.value("files", Json::array());
+  std::ostringstream o;
+  o << "\n## Provenance\n\nThe rows were run apart and combined by `sgnlf merge`"
+    << (cf.value("later_wins", false) ? " (--later-wins: a later input replaces an earlier one)" : "")
+    << ". Sources:\n\n";
+  for (size_t i = 0; i < files.size(); ++i) {
+    const Json& f = files[i];
+    const Json sha = f.contains("git") ? f["git"].value("sha", Json()) : Json();
+    o << "- [" << i << "] `" << f.value("file", "") << "`: commit "
+      << (sha.is_string() ? sha.get<std::string>().substr(0, 7) : std::string("?"))
+      << (f.contains("git") && f["git"].value("dirty", Json()) == Json(true) ? " (dirty)" : "")
+      << ", " << f.value("created_utc", "") << ", harness config " << f.value("config_hash", "")
+      << "; `" << f.value("command", "") << "`\n";
+  }
+  o << "\n| method | status | sequences (source) | not run | config hash now | stale |\n"
+    << "|---|---|---|---|---|---|\n";
+  for (const auto& row : r.value("rows", Json::array())) {
+    std::string seqs, not_run;
+    for (const auto& s : row.value("sequences", Json::array())) {
+      seqs += (seqs.empty() ? "" : ", ") + s.value("sequence", "") + " [" +
+              s.value("source", Json()).dump() + "]";
+      if (s.value("stale", Json()) == Json(true))
+        seqs += " (" + s.value("config_hash", Json()).get<std::string>() + ")";
+    }
+    for (const auto& n : row.value("sequences_not_run", Json::array()))
+      not_run += (not_run.empty() ? "" : ", ") + n.get<std::string>();
+    const Json cur = row.value("current_config_hash", Json());
+    const Json stale = row.value("stale", Json());
+    o << "| " << row.value("label", "") << " | " << row.value("status", "") << " | "
+      << (seqs.empty() ? "—" : seqs) << " | " << (not_run.empty() ? "—" : not_run) << " | "
+      << (cur.is_string() ? cur.get<std::string>() : "—") << " | "
+      << (stale.is_boolean() ? (stale.get<bool>() ? "**stale**" : "no") : "—") << " |\n";
+  }
+  for (const auto& s : cf.value("superseded", Json::array()))
+    o << "\n- " << s.value("method", "") << " / " << s.value("sequence", "") << ": source ["
+      << s.value("source", Json()).dump() << "] replaced by [" << s.value("by", Json()).dump() << "]";
+  if (!cf.value("superseded", Json::array()).empty()) o << "\n";
+  o << "\nStale: a run whose config hash is not the one the method's preset resolves to in the "
+       "commit that combined the table (tests/pipeline/config_hashes.json); its numbers are "
+       "from an older config.\n";
+  return o.str();
+}
+
+}  // namespace sgnlf::harness
