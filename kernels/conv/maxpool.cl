@@ -3,7 +3,8 @@
 // an odd last row or column is dropped and receives zero gradient). The window's maximum is the
 // first one in the order (0,0), (0,1), (1,0), (1,1) (strict >), and the backward recomputes it
 // from the forward input, so no index buffer and no atomics. Memory-bound: work-item = one
-// output (forward) or input (backward) pixel × channel.
+// (pixel, channel) of the output (forward) or input (backward), channels fastest (flat index
+// p·C + c), so neighbouring work-items touch neighbouring floats.
 
 // Position (0..3) of the first maximum of the window whose top-left element is `a`.
 inline int conv_maxpool2_arg(__global const float* a, const int cs, const int row) {
@@ -19,9 +20,9 @@ __kernel void conv_maxpool2_fwd(const int n_img, const int H, const int W, const
                                 const int in_cs, const int out_cs, __global const float* in,
                                 __global float* out) {
   const int HO = H / 2, WO = W / 2;
-  const int p = get_global_id(0);  // (n·HO + oy)·WO + ox
-  const int c = get_global_id(1);
-  if (c >= C || p >= n_img * HO * WO) return;
+  const int i = get_global_id(0);
+  if (i >= n_img * HO * WO * C) return;
+  const int p = i / C, c = i - p * C;  // p = (n·HO + oy)·WO + ox
   const int ox = p % WO, r = p / WO;
   const int oy = r % HO, n = r / HO;
   __global const float* a = in + ((size_t)(n * H + 2 * oy) * W + 2 * ox) * in_cs + c;
@@ -37,9 +38,9 @@ __kernel void conv_maxpool2_bwd(const int n_img, const int H, const int W, const
                                 __global const float* in, __global const float* d_out,
                                 __global float* d_in) {
   const int HO = H / 2, WO = W / 2;
-  const int p = get_global_id(0);  // (n·H + y)·W + x
-  const int c = get_global_id(1);
-  if (c >= C || p >= n_img * H * W) return;
+  const int i = get_global_id(0);
+  if (i >= n_img * H * W * C) return;
+  const int p = i / C, c = i - p * C;  // p = (n·H + y)·W + x
   const int x = p % W, r = p / W;
   const int y = r % H, n = r / H;
   float g = 0.0f;

@@ -5,7 +5,8 @@
 // a target with channel stride out_cs: the skip concatenation needs no extra copy of this half.
 // Source coordinate of output row o: s = o · (H − 1) / (2H − 1) (0 when H = 1), taps floor(s)
 // and floor(s) + 1 (clamped), weights 1 − frac and frac, in float as PyTorch computes them.
-// Work-item = one output (forward) or input (backward) pixel × channel; memory-bound.
+// Work-item = one (pixel, channel) of the target (forward) or input (backward), channels fastest
+// (flat index p·C + c); memory-bound.
 
 // Scale (in − 1) / (out − 1) in float, 0 for out <= 1.
 inline float conv_up_scale(const int in, const int out) {
@@ -27,9 +28,9 @@ __kernel void conv_upsample2_fwd(const int n_img, const int H, const int W, cons
                                  const int in_cs, const int TH, const int TW, const int out_cs,
                                  const int dst_off, __global const float* in,
                                  __global float* out) {
-  const int p = get_global_id(0);  // (n·TH + ty)·TW + tx
-  const int c = get_global_id(1);
-  if (c >= C || p >= n_img * TH * TW) return;
+  const int i = get_global_id(0);
+  if (i >= n_img * TH * TW * C) return;
+  const int p = i / C, c = i - p * C;  // p = (n·TH + ty)·TW + tx
   const int tx = p % TW, r = p / TW;
   const int ty = r % TH, n = r / TH;
   const int HO = 2 * H, WO = 2 * W;
@@ -56,6 +57,8 @@ inline float conv_up_weight(const int o, const float scale, const int in, const 
   return (i0 == i ? l0 : 0.0f) + (i1 == i ? l1 : 0.0f);
 }
 
+#define CONV_UP_RANGE 16
+
 // Output indices that may read input index i: s = o · scale within (i − 1, i + 1), widened by
 // one on each side against rounding (their weights are computed exactly, zeros skipped).
 inline void conv_up_range(const int i, const float scale, const int out, int* lo, int* hi) {
@@ -74,9 +77,9 @@ __kernel void conv_upsample2_bwd(const int n_img, const int H, const int W, cons
                                  const int in_cs, const int TH, const int TW, const int out_cs,
                                  const int dst_off, const int accumulate,
                                  __global const float* d_out, __global float* d_in) {
-  const int p = get_global_id(0);  // (n·H + y)·W + x
-  const int c = get_global_id(1);
-  if (c >= C || p >= n_img * H * W) return;
+  const int i = get_global_id(0);
+  if (i >= n_img * H * W * C) return;
+  const int p = i / C, c = i - p * C;  // p = (n·H + y)·W + x
   const int x = p % W, r = p / W;
   const int y = r % H, n = r / H;
   const int HO = 2 * H, WO = 2 * W, py = (TH - HO) / 2, px = (TW - WO) / 2;
@@ -85,15 +88,19 @@ __kernel void conv_upsample2_bwd(const int n_img, const int H, const int W, cons
   conv_up_range(y, sy, HO, &oy0, &oy1);
   conv_up_range(x, sx, WO, &ox0, &ox1);
   __global const float* g = d_out + (size_t)n * TH * TW * out_cs + dst_off + c;
+  // The column weights once: the range has at most 2 / scale + 5 <= 11 entries (scale >= 1/3
+  // for W >= 2; 2 entries for W = 1), within CONV_UP_RANGE with room for rounding.
+  float wxs[CONV_UP_RANGE];
+  for (int k = 0; k < CONV_UP_RANGE; ++k)
+    wxs[k] = ox0 + k <= ox1 ? conv_up_weight(ox0 + k, sx, W, x) : 0.0f;
   float acc = 0.0f;
   for (int oy = oy0; oy <= oy1; ++oy) {
     const float wy = conv_up_weight(oy, sy, H, y);
     if (wy == 0.0f) continue;
+    __global const float* grow = g + ((size_t)(oy + py) * TW + ox0 + px) * out_cs;
     float row = 0.0f;
-    for (int ox = ox0; ox <= ox1; ++ox) {
-      const float wx = conv_up_weight(ox, sx, W, x);
-      if (wx != 0.0f) row += wx * g[((size_t)(oy + py) * TW + ox + px) * out_cs];
-    }
+    for (int k = 0; k <= ox1 - ox0; ++k)
+      if (wxs[k] != 0.0f) row += wxs[k] * grow[(size_t)k * out_cs];
     acc += wy * row;
   }
   __global float* dst = d_in + (size_t)p * in_cs + c;

@@ -30,7 +30,7 @@ void BoxMask::run(const BoxMaskShape& s, const cl::Buffer& scale, const cl::Buff
   check_floats(in, pix * s.in_cs, "BoxMask", "in");
   check_floats(out, pix * s.out_cs, "BoxMask", "out");
   k_.set_args(s.n, s.h, s.w, s.c, s.in_cs, s.out_cs, scale, n_boxes, box_off, boxes, in, out);
-  k_.launch({cl::round_up(pix, 64), size_t(s.c)}, {64, 1});
+  k_.launch({flat_global(pix * s.c, "BoxMask")}, {64});
 }
 
 }  // namespace sgnlf::conv

@@ -27,7 +27,7 @@ void ChannelCopy::run(const ChannelCopyShape& s, const cl::Buffer& src, cl::Buff
   check_floats(src, size_t(s.pixels) * s.src_cs, "ChannelCopy", "src");
   check_floats(dst, size_t(s.pixels) * s.dst_cs, "ChannelCopy", "dst");
   k_.set_args(s.pixels, s.c, s.src_cs, s.src_off, s.dst_cs, s.dst_off, int(accumulate), src, dst);
-  k_.launch({cl::round_up(size_t(s.pixels), 64), size_t(s.c)}, {64, 1});
+  k_.launch({flat_global(size_t(s.pixels) * s.c, "ChannelCopy")}, {64});
 }
 
 }  // namespace sgnlf::conv

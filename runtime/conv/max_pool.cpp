@@ -16,7 +16,7 @@ void MaxPool2x2::forward(const PoolShape& s, const cl::Buffer& in, cl::Buffer& o
   const size_t pix = size_t(s.n) * s.out_h() * s.out_w();
   check_floats(out, pix * s.out_cs, "MaxPool2x2", "out");
   fwd_.set_args(s.n, s.h, s.w, s.c, s.in_cs, s.out_cs, in, out);
-  fwd_.launch({cl::round_up(pix, 64), size_t(s.c)}, {64, 1});
+  fwd_.launch({flat_global(pix * s.c, "MaxPool2x2")}, {64});
 }
 
 void MaxPool2x2::backward(const PoolShape& s, const cl::Buffer& in, const cl::Buffer& d_out,
@@ -27,7 +27,7 @@ void MaxPool2x2::backward(const PoolShape& s, const cl::Buffer& in, const cl::Bu
   check_floats(d_out, size_t(s.n) * s.out_h() * s.out_w() * s.out_cs, "MaxPool2x2", "d_out");
   check_floats(d_in, pix * s.in_cs, "MaxPool2x2", "d_in");
   bwd_.set_args(s.n, s.h, s.w, s.c, s.in_cs, s.out_cs, int(accumulate), in, d_out, d_in);
-  bwd_.launch({cl::round_up(pix, 64), size_t(s.c)}, {64, 1});
+  bwd_.launch({flat_global(pix * s.c, "MaxPool2x2")}, {64});
 }
 
 }  // namespace sgnlf::conv

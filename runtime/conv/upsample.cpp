@@ -29,7 +29,7 @@ void Upsample2x::forward(const UpsampleShape& s, const cl::Buffer& in, cl::Buffe
   const size_t pix = size_t(s.n) * s.th * s.tw;
   check_floats(out, pix * s.out_cs, "Upsample2x", "out");
   fwd_.set_args(s.n, s.h, s.w, s.c, s.in_cs, s.th, s.tw, s.out_cs, s.dst_off, in, out);
-  fwd_.launch({cl::round_up(pix, 64), size_t(s.c)}, {64, 1});
+  fwd_.launch({flat_global(pix * s.c, "Upsample2x")}, {64});
 }
 
 void Upsample2x::backward(const UpsampleShape& s, const cl::Buffer& d_out, cl::Buffer& d_in,
@@ -40,7 +40,7 @@ void Upsample2x::backward(const UpsampleShape& s, const cl::Buffer& d_out, cl::B
   check_floats(d_in, pix * s.in_cs, "Upsample2x", "d_in");
   bwd_.set_args(s.n, s.h, s.w, s.c, s.in_cs, s.th, s.tw, s.out_cs, s.dst_off, int(accumulate),
                 d_out, d_in);
-  bwd_.launch({cl::round_up(pix, 64), size_t(s.c)}, {64, 1});
+  bwd_.launch({flat_global(pix * s.c, "Upsample2x")}, {64});
 }
 
 }  // namespace sgnlf::conv

@@ -120,7 +120,7 @@ TEST_CASE("Bilinear x2 upsampling into a padded concatenation matches the refere
   // channels written at an offset of a wider target.
   for (const conv::UpsampleShape s :
        {conv::UpsampleShape{2, 4, 5, 3, 3, 8, 10, 3, 0},
-        conv::UpsampleShape{1, 5, 3, 2, 4, 11, 7, 8, 5},
+        conv::UpsampleShape{1, 5, 2, 2, 4, 11, 5, 8, 5},  // w = 2: the widest tap range
         conv::UpsampleShape{1, 1, 4, 16, 16, 3, 9, 32, 16}}) {
     const auto in = uniform(size_t(s.n) * s.h * s.w * s.in_cs, -1.0f, 1.0f, 6);
     const size_t out_n = size_t(s.n) * s.th * s.tw * s.out_cs;
@@ -151,7 +151,7 @@ TEST_CASE("Bilinear x2 upsampling into a padded concatenation matches the refere
       up.forward(s, b_in, b_out);
       return dot_on(b_out.read_all<float>(), d_out, s.dst_off, s.dst_off + s.c, s.out_cs);
     }, &at);
-    REQUIRE(fd.size() > 20);
+    REQUIRE(fd.size() >= 12);
     CHECK(test::max_sym_rel_err(fd, pick(din, at), 1e-1) < 1e-3);
   }
   cl::Buffer b(rt, 4096);
