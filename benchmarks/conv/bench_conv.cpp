@@ -5,49 +5,18 @@
 // FMA peak measured in the same run (harness roofline probes); cpu_s = process CPU seconds per
 // iteration. Time per iteration = enqueue of the pass + clFinish (launch overheads included).
 // Medians: --benchmark_repetitions=5 --benchmark_report_aggregates_only=true.
-#include <algorithm>
-#include <chrono>
-#include <ctime>
 #include <string>
 #include <vector>
 
 #include "adversarial/patch_discriminator.hpp"
+#include "bench_timing.hpp"
 #include "conv/conv2d.hpp"
-#include "core/rng.hpp"
-#include "support/bench_support.hpp"
 
 using namespace sgnlf;
+using bench::run_timed;
+using bench::uniform;
 
 namespace {
-std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
-  Rng r(seed);
-  std::vector<float> v(n);
-  for (auto& x : v) x = r.uniform(lo, hi);
-  return v;
-}
-
-// Warm-up pass, then one pass + finish per iteration; returns the summed wall seconds.
-template <typename F>
-double run_timed(benchmark::State& state, F&& pass) {
-  auto& rt = bench::runtime();
-  bench::measured_roofline();  // probes run before the timed passes
-  pass();
-  rt.finish();
-  double total = 0;
-  const std::clock_t cpu0 = std::clock();
-  for (auto _ : state) {
-    const auto t0 = std::chrono::steady_clock::now();
-    pass();
-    rt.finish();
-    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    state.SetIterationTime(dt);
-    total += dt;
-  }
-  state.counters["cpu_s"] = double(std::clock() - cpu0) / CLOCKS_PER_SEC /
-                            std::max<double>(1, double(state.iterations()));
-  return total;
-}
-
 struct Image {
   const char* name;
   int h, w;
