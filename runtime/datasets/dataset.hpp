@@ -3,6 +3,7 @@
 // odometry, nuScenes, the synthetic layout) all produce this. Contract shared by datasets,
 // metrics and pipeline: extend it, do not change the meaning of existing fields.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -12,12 +13,26 @@
 
 namespace sgnlf {
 
+// A moving actor at one frame's time (synthetic data with actors, datasets/README.md): its
+// pose (x forward along its motion, z up, origin at the box centre) and half extents (a
+// pedestrian is an upright cylinder of radius half.x() inside that box).
+struct ActorBox {
+  int id = 0;              // the label its returns carry (1, 2, ...)
+  std::string kind;        // "vehicle" or "pedestrian"
+  Pose T_world_actor = Pose::Identity();
+  Vec3 half_extents = Vec3::Zero();
+};
+
 struct Frame {
   int id = 0;                 // frame number in the source sequence
   double timestamp_s = 0.0;   // seconds since the first frame of the sequence
   Pose T_world_lidar = Pose::Identity();  // ground truth (metres)
   std::vector<PointXYZI> points;          // scan in the LiDAR frame, intensity in [0, 1]
   RangeImage image;                       // projection of `points` (protocol §1)
+  // Synthetic sequences with moving actors only (else empty): per point of `points`, 0 for the
+  // static world, k for a return from actor k; and every actor's box at the frame's time.
+  std::vector<uint16_t> labels;
+  std::vector<ActorBox> actors;
 };
 
 struct Split {

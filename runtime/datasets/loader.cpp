@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "datasets/actor_truth.hpp"
 #include "datasets/loader_internal.hpp"
 #include "datasets/protocol.hpp"
 #include "io/scan_io.hpp"
@@ -156,9 +157,17 @@ Sensor resolve_sensor(const LoadOptions& opt, const Sensor& layout_default) {
 }
 
 void load_frame_scan(Frame& f, const std::string& scan_path, const Sensor& s, bool load_points,
-                     ProjectionStats& dropped) {
+                     ProjectionStats& dropped, const std::string& labels_path) {
   io::ScanReadStats rs;
   auto pts = io::read_scan(scan_path, &rs);
+  std::vector<uint16_t> labels;
+  if (!labels_path.empty()) {
+    labels = read_labels(labels_path);
+    if (labels.size() != rs.records || rs.non_finite > 0)
+      throw IoError(labels_path + ": " + std::to_string(labels.size()) + " labels for the " +
+                    std::to_string(rs.records) + " records of " + scan_path +
+                    (rs.non_finite > 0 ? " (some of them NaN/Inf)" : ""));
+  }
   ProjectionStats ps;
   f.image = project_points(s, pts, &ps);
   log::debug(scan_path, ": ", rs.records, " points; not projected: ", rs.non_finite, " NaN/Inf, ",
@@ -172,12 +181,17 @@ void load_frame_scan(Frame& f, const std::string& scan_path, const Sensor& s, bo
   dropped.occluded += ps.occluded;
   dropped.projected += ps.projected;
   if (!load_points) return;
-  pts.erase(std::remove_if(pts.begin(), pts.end(),
-                           [&](const PointXYZI& p) {
-                             return !s.in_range(std::sqrt(double(p.x) * p.x + double(p.y) * p.y +
-                                                          double(p.z) * p.z));
-                           }),
-            pts.end());
+  auto kept = [&](const PointXYZI& p) {
+    return s.in_range(std::sqrt(double(p.x) * p.x + double(p.y) * p.y + double(p.z) * p.z));
+  };
+  if (!labels.empty()) {  // the labels stay with their points
+    size_t n = 0;
+    for (size_t i = 0; i < pts.size(); ++i)
+      if (kept(pts[i])) labels[n++] = labels[i];
+    labels.resize(n);
+    f.labels = std::move(labels);
+  }
+  pts.erase(std::remove_if(pts.begin(), pts.end(), [&](const PointXYZI& p) { return !kept(p); }), pts.end());
   f.points = std::move(pts);
 }
 

@@ -21,9 +21,11 @@ Sensor resolve_sensor(const LoadOptions& opt, const Sensor& layout_default);
 // Reads the scan, projects it into `f.image` and keeps in `f.points` the returns within the
 // sensor's range (Sensor::in_range: the vehicle's own returns within min_range_m and those beyond
 // max_range_m are not scene geometry for any method); the points the projection drops (and
-// NaN/Inf records) are added to `dropped` and logged per frame at debug level.
+// NaN/Inf records) are added to `dropped` and logged per frame at debug level. With
+// `labels_path` (actor_truth.hpp) the per-point labels are read into `f.labels` and kept with
+// their points (IoError when their count is not the scan's).
 void load_frame_scan(Frame& f, const std::string& scan_path, const Sensor& s, bool load_points,
-                     ProjectionStats& dropped);
+                     ProjectionStats& dropped, const std::string& labels_path = "");
 // Fills timestamps relative to the first frame and the split; logs a summary with the totals
 // of dropped points.
 void finish_dataset(Dataset& d, const ProjectionStats& dropped);

@@ -9,7 +9,9 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "datasets/actor_truth.hpp"
 #include "datasets/loader_internal.hpp"
+#include "datasets/protocol.hpp"
 #include "io/trajectory_io.hpp"
 
 namespace sgnlf::detail {
@@ -91,6 +93,28 @@ std::string pick_drive(const fs::path& root, const std::string& requested) {
   return drives.front();
 }
 
+// A sequence's own test frames (sgnlf_dataset.json "test_frame_ids", e.g. the dynamic split)
+// replace the protocol split: the loaded frames among them are the test frames. A window
+// holding none of them (or only them) keeps the protocol split, with a warning.
+void apply_test_frame_ids(Dataset& d, const Json& meta, const std::string& where) {
+  const Json& v = meta.at("test_frame_ids");
+  if (!v.is_array()) throw IoError(where + ": key 'test_frame_ids' must be an array of frame ids");
+  std::vector<int> ids;
+  for (const auto& x : v) {
+    if (!x.is_number_integer()) throw IoError(where + ": key 'test_frame_ids' holds " + x.dump() + ", not a frame id");
+    ids.push_back(x.get<int>());
+  }
+  Split s;
+  for (int i = 0; i < int(d.frames.size()); ++i)
+    (std::find(ids.begin(), ids.end(), d.frames[size_t(i)].id) != ids.end() ? s.test : s.train).push_back(i);
+  if (s.test.empty() || s.train.empty()) {
+    log::warn(where, ": the loaded window holds ", s.test.size(), " of the sequence's test frames and ",
+              s.train.size(), " others; the protocol split stays");
+    return;
+  }
+  d.split = std::move(s);
+}
+
 }  // namespace
 
 Dataset load_kitti360(const std::string& root_s, const LoadOptions& opt, bool synthetic) {
@@ -159,15 +183,24 @@ Dataset load_kitti360(const std::string& root_s, const LoadOptions& opt, bool sy
   d.frequency = freq;
   d.sensor = sensor;
   ProjectionStats dropped;
+  // Moving actors' ground truth (synthetic sequences with actors, actor_truth.hpp).
+  const bool actors = synthetic && fs::exists(actor_truth_path(root_s));
+  const auto boxes = actors ? read_actor_boxes(actor_truth_path(root_s)) : std::map<int, std::vector<ActorBox>>{};
   for (int id : ids) {
     Frame f;
     f.id = id;
     f.timestamp_s = stamps.count(id) ? stamps.at(id) : id / sensor.rate_hz;
     f.T_world_lidar = poses.at(id) * T_imu_lidar;
-    load_frame_scan(f, frame_file(scan_dir, id, 10, ".bin"), sensor, opt.load_points, dropped);
+    load_frame_scan(f, frame_file(scan_dir, id, 10, ".bin"), sensor, opt.load_points, dropped,
+                    actors ? actor_labels_path(root_s, id) : "");
+    if (actors) {
+      if (!boxes.count(id)) throw IoError(actor_truth_path(root_s) + ": no entry for frame " + std::to_string(id));
+      f.actors = boxes.at(id);
+    }
     d.frames.push_back(std::move(f));
   }
   finish_dataset(d, dropped);
+  if (synthetic && meta.contains("test_frame_ids")) apply_test_frame_ids(d, meta, (root / "sgnlf_dataset.json").string());
   return d;
 }
 

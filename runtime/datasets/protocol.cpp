@@ -25,6 +25,19 @@ Split protocol_split(int n_frames, const std::string& frequency) {
   return s;
 }
 
+Split dynamic_split(int n_frames) {
+  if (n_frames <= 0) throw ConfigError("dynamic_split: n_frames = " + std::to_string(n_frames));
+  Split s;
+  for (int i = 0; i < n_frames; ++i) (i % 10 == 0 && i > 0 && i < n_frames - 1 ? s.test : s.train).push_back(i);
+  return s;
+}
+
+Split named_split(const std::string& split, int n_frames, const std::string& frequency) {
+  if (split == "protocol") return protocol_split(n_frames, frequency);
+  if (split == "dynamic") return dynamic_split(n_frames);
+  throw ConfigError("split '" + split + "' (expected protocol or dynamic)");
+}
+
 SceneNormalization compute_normalization(const Dataset& d, const std::vector<Pose>& T_world_lidar,
                                          const std::vector<int>& frames) {
   require(T_world_lidar.size() == d.frames.size(),

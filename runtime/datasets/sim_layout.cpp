@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "datasets/actor_truth.hpp"
 #include "datasets/simulate.hpp"
 #include "io/scan_io.hpp"
 #include "io/trajectory_io.hpp"
@@ -78,6 +79,7 @@ void write_synthetic(const SimResult& r, const std::string& dir) {
   io::write_kitti_poses((root / "ground_truth" / "T_world_lidar.txt").string(), lidar_poses);
   io::write_tum_poses((root / "ground_truth" / "T_world_lidar.tum").string(), stamps, lidar_poses);
   write_json_file((root / "sensor.json").string(), sensor_to_json(d.sensor));
+  if (!r.actors.empty()) write_actor_truth(dir, r.actors, r.actor_clock_offset_s, d.frames);
   write_json_file((root / "sgnlf_dataset.json").string(), r.metadata);
 }
 

@@ -115,6 +115,7 @@ RayReturn cast_pixel(const Scene& scene, const Sensor& s, const Pose& T, const L
   const Eigen::Vector3f p = d_l * float(r);
   out.ret = true;
   out.p = {p.x(), p.y(), p.z(), float(std::clamp(inten, 0.0, 0.99))};
+  out.label = h.label;
   ++st.returns;
   return out;
 }
@@ -170,9 +171,16 @@ std::vector<PointXYZI> collect_returns(const std::vector<RayReturn>& rays) {
   return pts;
 }
 
+std::vector<uint16_t> collect_labels(const std::vector<RayReturn>& rays) {
+  std::vector<uint16_t> labels;
+  for (const auto& p : rays)
+    if (p.ret) labels.push_back(p.label);
+  return labels;
+}
+
 std::vector<PointXYZI> cast_scan(const Scene& scene, const Sensor& s, const Pose& T_world_lidar,
                                  const LidarModel& model, uint64_t seed, uint32_t frame, int threads,
-                                 DropStats* stats) {
+                                 DropStats* stats, std::vector<uint16_t>* labels) {
   const BeamPattern bp = beam_pattern(s, model.beams);
   const int rows = int(bp.elevation_deg.size()), cols = bp.azimuth_steps;
   std::vector<RayReturn> px(size_t(rows) * cols);
@@ -182,6 +190,7 @@ std::vector<PointXYZI> cast_scan(const Scene& scene, const Sensor& s, const Pose
   cast_columns(scene, s, bp, model, seed, frame, columns, std::vector<Pose>(size_t(cols), T_world_lidar), threads,
                px, st);
   if (stats) stats->add(st);
+  if (labels) *labels = collect_labels(px);
   return collect_returns(px);
 }
 

@@ -70,15 +70,18 @@ struct DropStats {
 
 // Casts every beam of the pattern from T_world_lidar; returns the returns as points in the
 // LiDAR frame (laser-major order). Counts are per ray (the range image's drop rate is
-// measured on the projected image). `threads` ≤ 0 uses the hardware concurrency.
+// measured on the projected image). `threads` ≤ 0 uses the hardware concurrency. `labels`,
+// when given, receives each returned point's label (Hit::label: 0 static, k actor k).
 std::vector<PointXYZI> cast_scan(const Scene& scene, const Sensor& s, const Pose& T_world_lidar,
                                  const LidarModel& model, uint64_t seed, uint32_t frame,
-                                 int threads = 0, DropStats* stats = nullptr);
+                                 int threads = 0, DropStats* stats = nullptr,
+                                 std::vector<uint16_t>* labels = nullptr);
 
 // The building blocks of cast_scan and of the moving sweep (sim_sweep.hpp).
 struct RayReturn {
   bool ret = false;
   PointXYZI p{0, 0, 0, 0};  // in the LiDAR frame of the ray's own pose
+  uint16_t label = 0;       // what the return hit (Hit::label)
 };
 // Unit direction of laser `row` at azimuth step `col` in the LiDAR frame (protocol §1's β).
 Eigen::Vector3f beam_direction(const Sensor& s, const BeamPattern& bp, int row, int col);
@@ -89,7 +92,8 @@ void cast_columns(const Scene& scene, const Sensor& s, const BeamPattern& bp, co
                   uint64_t seed, uint32_t frame, const std::vector<int>& columns,
                   const std::vector<Pose>& T_world_lidar_of_column, int threads,
                   std::vector<RayReturn>& out, DropStats& stats);
-// The returns of `rays` in laser-major order.
+// The returns of `rays` in laser-major order, and their labels in the same order.
 std::vector<PointXYZI> collect_returns(const std::vector<RayReturn>& rays);
+std::vector<uint16_t> collect_labels(const std::vector<RayReturn>& rays);
 
 }  // namespace sgnlf::sim

@@ -138,6 +138,7 @@ bool intersect(const Primitive& p, const V3& o, const V3& d, float t_min, Hit& h
   if (ok) {
     h.reflectance = p.reflectance;
     h.material = p.material;
+    h.label = p.label;
     if (p.windows && std::abs(h.normal.z()) < 0.5f) {
       // Facade windows: 1.4 × 1.4 m panes on a 3 m × 3.2 m grid above the ground floor.
       const V3 q = o + h.t * d - p.center;
@@ -253,6 +254,7 @@ bool Scene::cast(const V3& o, const V3& d, float t_max, Hit& h) const {
       h.t = t;
       h.normal = V3::UnitZ();
       h.material = Material::asphalt;
+      h.label = 0;
       // Patchy asphalt: value noise on a 0.5 m lattice from Philox (deterministic).
       const float x = o.x() + t * d.x(), y = o.y() + t * d.y();
       const auto blk = philox_block(texture_seed, 77u,

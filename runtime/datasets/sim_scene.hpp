@@ -24,6 +24,7 @@ struct Primitive {
   float cos_yaw = 1.f, sin_yaw = 0.f;  // box rotation about z (local x → world)
   float reflectance = 0.3f;
   bool windows = false;  // facade with a grid of glass windows on its vertical faces
+  uint16_t label = 0;    // 0 static (or an unlabelled mover); k > 0: moving actor k (sim_actors.hpp)
 
   static Primitive make_box(V3 c, V3 half, float yaw, Material m, float refl);
   static Primitive make_cylinder(float x, float y, float z0, float z1, float r, Material m, float refl);
@@ -38,6 +39,7 @@ struct Hit {
   V3 normal = V3::UnitZ();
   float reflectance = 0.f;
   Material material = Material::asphalt;
+  uint16_t label = 0;  // the hit primitive's label (the ground: 0)
 };
 
 // Ray (origin o, unit direction d) against one primitive; true and `h` for the nearest t in

@@ -8,6 +8,24 @@ namespace sgnlf {
 namespace {
 // What the real-like sequences add (issue 30); the drop causes' rates are in simulate.cpp.
 const SimRealism kRealLike{true, 10, true, true, 6.0};
+
+// The moving actors of a dynamic twin: cars, people on the sidewalks, people crossing.
+sim::ActorsConfig actors(int vehicles, int pedestrians, int crossing) {
+  sim::ActorsConfig a;
+  a.vehicles = vehicles;
+  a.pedestrians = pedestrians;
+  a.crossing = crossing;
+  return a;
+}
+
+// Twins of LiDAR4D's dynamic KITTI-360 windows (2013_05_28_drive_0000, frames start..start+50).
+NamedSequence dynamic_twin(int start, sim::ActorsConfig a) {
+  const std::string s = std::to_string(start);
+  return {"kitti360-dyn-" + s, "kitti360", "standard", "straight", 51, 0,
+          "dynamic, twin of LiDAR4D's KITTI-360 window " + s + "-" + std::to_string(start + 50) +
+              ": 51 frames at 10 Hz, test frames 10, 20, 30, 40; labelled moving cars and pedestrians",
+          {}, a, "dynamic"};
+}
 }  // namespace
 
 Json SimRealism::to_json() const {
@@ -37,6 +55,12 @@ const std::vector<NamedSequence>& named_sequences() {
        kRealLike},
       {"kitti360-real-like-a", "kitti360", "low", "street", 36, 8,
        "KITTI-like, 2 Hz, with motion distortion, traffic, pedestrians, bushes, real-like ray drop", kRealLike},
+      dynamic_twin(2350, actors(4, 4, 1)),
+      dynamic_twin(4950, actors(6, 3, 1)),
+      dynamic_twin(8120, actors(3, 6, 2)),
+      dynamic_twin(10200, actors(5, 4, 1)),
+      dynamic_twin(10750, actors(4, 2, 2)),
+      dynamic_twin(11400, actors(6, 5, 1)),
   };
   return seqs;
 }
@@ -56,6 +80,8 @@ Json named_sequences_json() {
     Json j{{"name", s.name}, {"preset", s.preset}, {"frequency", s.frequency}, {"layout", s.layout},
            {"frames", s.frames}, {"moving_vehicles", s.moving_vehicles}, {"description", s.description}};
     if (s.realism.any()) j["realism"] = s.realism.to_json();
+    if (s.actors.any()) j["actors"] = s.actors.to_json();
+    if (s.split != "protocol") j["split"] = s.split;
     a.push_back(j);
   }
   return a;

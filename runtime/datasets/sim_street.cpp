@@ -45,6 +45,15 @@ Path make_open_path(Rng& rng, double needed) {
   return p;
 }
 
+// One straight road (the dynamic twins: actors on arcs of gentle curvature stay in their lanes).
+Path make_straight_path(double needed) {
+  Path p;
+  p.pts = {V2(0, 0)};
+  p.heading = {0.0};
+  append(p, needed, 0.0);
+  return p;
+}
+
 Path make_loop_path(double L, double W, double R) {
   Path p;
   p.closed = true;
@@ -220,6 +229,9 @@ StreetWorld generate_street(const StreetConfig& cfg) {
     const double loop_l = rng.uniform(24.f, 28.f) + 4 * w.road_half_width;
     w.path = make_loop_path(loop_l, loop_w, 10.0);
     w.ego_start_s = 0;
+  } else if (cfg.layout == "straight") {
+    w.path = make_straight_path(cfg.drive_length_m + 180.0);
+    w.ego_start_s = 90.0;
   } else {
     w.path = make_open_path(rng, cfg.drive_length_m + 180.0);
     w.ego_start_s = 90.0;

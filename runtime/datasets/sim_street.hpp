@@ -50,7 +50,8 @@ struct StreetWorld {
 };
 
 struct StreetConfig {
-  std::string layout = "street";  // "street" (open road with turns) or "loop" (block loop)
+  // "street" (open road with turns), "loop" (block loop) or "straight" (one straight road)
+  std::string layout = "street";
   double drive_length_m = 80;     // expected ego travel; the road extends 90 m beyond it
   int moving_vehicles = 0;
   int pedestrians = 0;      // opt-in (sim_street_life.cpp)

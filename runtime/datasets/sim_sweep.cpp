@@ -20,7 +20,7 @@ Vec6 SweepPoses::twist_per_s(double duration_s) const {
 std::vector<PointXYZI> cast_sweep(Scene& scene, const Sensor& s, const SweepPoses& poses,
                                   const LidarModel& model, uint64_t seed, uint32_t frame, int threads,
                                   DropStats* stats, const std::function<void(double)>& place_dynamic,
-                                  int slices) {
+                                  int slices, std::vector<uint16_t>* labels) {
   require(slices >= 1, "cast_sweep: slices = " + std::to_string(slices));
   const BeamPattern bp = beam_pattern(s, model.beams);
   const int rows = int(bp.elevation_deg.size()), cols = bp.azimuth_steps;
@@ -41,6 +41,7 @@ std::vector<PointXYZI> cast_sweep(Scene& scene, const Sensor& s, const SweepPose
     cast_columns(scene, s, bp, model, seed, frame, slice_cols[size_t(k)], T_col, threads, px, st);
   }
   if (stats) stats->add(st);
+  if (labels) *labels = collect_labels(px);
   return collect_returns(px);
 }
 

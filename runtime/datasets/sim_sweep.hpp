@@ -22,11 +22,12 @@ struct SweepPoses {
 // Casts one sweep of the sensor's beam pattern, column by column from the pose at the column's
 // sweep fraction (Sensor::sweep). `place_dynamic(fraction)`, when given, moves the scene's
 // dynamic primitives to that moment of the sweep; it is called once per slice (of `slices`
-// equal slices of the sweep, in time order) before the slice's columns are cast.
+// equal slices of the sweep, in time order) before the slice's columns are cast. `labels`,
+// when given, receives each returned point's label (as cast_scan).
 std::vector<PointXYZI> cast_sweep(Scene& scene, const Sensor& s, const SweepPoses& poses,
                                   const LidarModel& model, uint64_t seed, uint32_t frame,
                                   int threads = 0, DropStats* stats = nullptr,
                                   const std::function<void(double)>& place_dynamic = {},
-                                  int slices = 72);
+                                  int slices = 72, std::vector<uint16_t>* labels = nullptr);
 
 }  // namespace sgnlf::sim

@@ -53,6 +53,7 @@ void SimOptions::validate() const {
   if (realism.pedestrians < 0 || realism.pedestrians > 10000)
     throw ConfigError("simulate: pedestrians = " + std::to_string(realism.pedestrians));
   check_range("simulate", "extra_setback_m", realism.extra_setback_m, 0.0, 100.0);
+  actors.validate();
   lidar.validate();
 }
 
@@ -66,7 +67,7 @@ SimResult simulate(const SimOptions& opt) {
   if (opt.height > 0) sensor.height = opt.height;
   sensor.validate();
   const std::string freq = opt.frequency.empty() ? ns.frequency : opt.frequency;
-  const int n = opt.frames > 0 ? opt.frames : (freq == "low" ? 36 : 64);
+  const int n = opt.frames > 0 ? opt.frames : freq == ns.frequency ? ns.frames : (freq == "low" ? 36 : 64);
   const int stride = freq == "low" ? std::max(1, int(std::lround(sensor.rate_hz / 2.0))) : 1;  // 2 Hz
   const int movers = opt.moving_vehicles >= 0 ? opt.moving_vehicles : ns.moving_vehicles;
   const uint64_t world_seed = fnv1a64(ns.name + "#" + std::to_string(opt.seed));
@@ -108,6 +109,24 @@ SimResult simulate(const SimOptions& opt) {
     drive_times.push_back(start + sweep_s);
   }
   const auto poses = sim::drive(world, dc, drive_times);
+  // Moving actors on the world clock: each frame's reference moment is its timestamp + clock.
+  const sim::ActorsConfig actor_cfg = opt.actors.any() ? opt.actors : ns.actors;
+  std::vector<sim::ActorTrack> actors;
+  if (actor_cfg.any()) {
+    std::vector<double> world_times;
+    std::vector<Pose> ego;
+    for (int k = 0; k < n; ++k) {
+      world_times.push_back(times[size_t(k)] + clock);
+      ego.push_back(realism.motion_distortion
+                        ? sim::SweepPoses{poses[2 * size_t(k)], poses[2 * size_t(k) + 1]}.at(sensor.sweep.reference)
+                        : poses[size_t(k)]);
+    }
+    actors = sim::generate_actors(actor_cfg, world, world_times, ego, dc.v_max, world_seed);
+  }
+  auto place_all = [&](double t_world) {
+    world.place_movers(t_world);
+    sim::place_actors(world.scene, actors, t_world);
+  };
 
   SimResult res;
   Dataset& d = res.dataset;
@@ -124,20 +143,28 @@ SimResult simulate(const SimOptions& opt) {
     f.timestamp_s = times[size_t(k)];
     sim::DropStats st;
     Json sweep_json;
+    std::vector<uint16_t> labels;
+    std::vector<uint16_t>* want_labels = actors.empty() ? nullptr : &labels;
     if (realism.motion_distortion) {
       const sim::SweepPoses sp{poses[2 * size_t(k)], poses[2 * size_t(k) + 1]};
       const double start = drive_times[2 * size_t(k)];
       f.T_world_lidar = sp.at(sensor.sweep.reference);
       f.points = sim::cast_sweep(world.scene, sensor, sp, lidar, world_seed, uint32_t(f.id), opt.threads, &st,
-                                 [&](double fraction) { world.place_movers(start + fraction * sweep_s); });
+                                 [&](double fraction) { place_all(start + fraction * sweep_s); }, 72, want_labels);
       res.sweeps.push_back(sp);
       const Vec6 xi = sp.twist_per_s(sweep_s);
       sweep_json = Json::array({xi[0], xi[1], xi[2], xi[3], xi[4], xi[5]});
     } else {
-      world.place_movers(times[size_t(k)]);
+      place_all(times[size_t(k)]);
       f.T_world_lidar = poses[size_t(k)];
       f.points = sim::cast_scan(world.scene, sensor, f.T_world_lidar, lidar, world_seed, uint32_t(f.id),
-                                opt.threads, &st);
+                                opt.threads, &st, want_labels);
+    }
+    size_t actor_returns = 0;
+    if (!actors.empty()) {
+      for (const auto& a : actors) f.actors.push_back(a.box(f.timestamp_s + clock, world.scene.ground_z));
+      for (uint16_t l : labels) actor_returns += l != 0;
+      f.labels = std::move(labels);
     }
     ProjectionStats ps;
     f.image = project_points(sensor, f.points, &ps);
@@ -147,11 +174,14 @@ SimResult simulate(const SimOptions& opt) {
     per_frame.push_back(Json{{"frame", f.id}, {"points", f.points.size()}, {"ray_drop_rate", st.drop_rate()},
                              {"image_drop_rate", img_drop}});
     if (!sweep_json.is_null()) per_frame.back()["sweep_twist_per_s"] = sweep_json;
+    if (!actors.empty()) per_frame.back()["actor_returns"] = actor_returns;
     d.frames.push_back(std::move(f));
     prog.update(k + 1);
   }
   prog.finish();
-  d.split = protocol_split(n, freq);
+  // A sequence's own split applies at its own frequency (--frequency low: the protocol's).
+  const std::string split = freq == ns.frequency ? ns.split : "protocol";
+  d.split = named_split(split, n, freq);
   const auto& D = res.drops;
   res.metadata = Json{
       {"format", "sgnlf-synthetic"}, {"version", 1}, {"name", ns.name}, {"sequence", ns.name + "_sync"},
@@ -173,6 +203,20 @@ SimResult simulate(const SimOptions& opt) {
     rd["dark"] = D.dark;
     rd["burst"] = D.burst;
     rd["far"] = D.far;
+  }
+  // Only with them: the metadata of the other sequences stays as it was.
+  if (split != "protocol") {
+    Json ids = Json::array();
+    for (int i : d.split.test) ids.push_back(d.frames[size_t(i)].id);
+    res.metadata["split"] = split;
+    res.metadata["test_frame_ids"] = ids;
+  }
+  if (!actors.empty()) {
+    res.metadata["actors"] = actor_cfg.to_json();
+    res.metadata["actors"]["count"] = actors.size();
+    res.metadata["actors"]["clock_offset_s"] = clock;
+    res.actors = actors;
+    res.actor_clock_offset_s = clock;
   }
   log::info("simulated ", ns.name, ": ", n, " frames, ", D.rays, " rays, ray drop rate ", D.drop_rate(),
             ", range-image drop rate ", image_drop);

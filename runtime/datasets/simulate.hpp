@@ -29,6 +29,8 @@ struct SimOptions {
   // Realism on top of the sequence's (issue 30; simulate --motion-distortion, --real-drop,
   // --pedestrians, --vegetation): each switches a part on, never off.
   SimRealism realism;
+  // Moving actors (issue 32): when any(), replace the sequence's own (sim_actors.hpp).
+  sim::ActorsConfig actors;
 
   void validate() const;
 };
@@ -42,12 +44,18 @@ struct SimResult {
   // a deskewing can be checked against; metadata per_frame "sweep_twist_per_s" holds the
   // velocity). Empty otherwise.
   std::vector<sim::SweepPoses> sweeps;
+  // The moving actors' trajectories (empty without actors); each frame's boxes and per-point
+  // labels are in the dataset's frames. The actors' clock runs `actor_clock_offset_s` ahead of
+  // the frames' timestamps (one sweep with motion distortion, else 0).
+  std::vector<sim::ActorTrack> actors;
+  double actor_clock_offset_s = 0.0;
 };
 
 SimResult simulate(const SimOptions& opt);
 // simulate(opt).dataset
 Dataset simulate_dataset(const SimOptions& opt);
-// Writes the KITTI-360-like layout (scans, poses, calibration, sensor, metadata, GT).
+// Writes the KITTI-360-like layout (scans, poses, calibration, sensor, metadata, GT; with
+// actors also ground_truth/actors.json and ground_truth/labels/, datasets/README.md).
 void write_synthetic(const SimResult& r, const std::string& dir);
 
 }  // namespace sgnlf

@@ -190,7 +190,7 @@ std::string render_markdown(const Json& r) {
   bool any_unverified = false;
   const auto twins = sequence_names(r, false), reals = sequence_names(r, true);
   main_table(o, r, cols, extra, "mean", twins, any_unverified);
-  o << "\nΔ = ours − paper. Paper numbers: protocol §5 (results/paper_tables.json).";
+  o << "\nΔ = ours − paper. Paper numbers: " << paper_source(r.value("table", "")) << ".";
   if (any_unverified) o << " † from third-party notes, not verified.";
   o << " F-score compares squared distances with 0.05, i.e. a √0.05 ≈ 0.224 m threshold "
        "(protocol §4).";

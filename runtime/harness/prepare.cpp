@@ -75,6 +75,19 @@ PreparedSequence prepare_sequence(const SequenceDef& s, const BenchOptions& opt,
                       {"real_sequence", s.sequence}, {"source_frame_ids", source_ids},
                       {"description", "window of real data copied by sgnlf bench"}};
   }
+  // The table's test frames (SequenceDef::test_frames) replace the sequence's split; the
+  // loader reads them back from sgnlf_dataset.json ("test_frame_ids").
+  if (!s.test_frames.empty()) {
+    const int n = int(r.dataset.frames.size());
+    Json ids = Json::array();
+    for (int pos : s.test_frames) {
+      if (pos >= n)
+        throw ConfigError("bench: sequence " + s.name + ": test frame position " + std::to_string(pos) +
+                          " but the window holds " + std::to_string(n) + " frames");
+      ids.push_back(r.dataset.frames[size_t(pos)].id);
+    }
+    r.metadata["test_frame_ids"] = ids;
+  }
   write_synthetic(r, dir);
   LoadOptions check;
   check.load_points = false;

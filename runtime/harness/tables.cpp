@@ -49,12 +49,21 @@ SequenceDef parse_sequence_def(const Json& j, const std::string& where) {
   ConfigReader r(j, where);
   r.require("name", s.name).require("preset", s.preset).require("frequency", s.frequency);
   r.get("frames", s.frames).get("width", s.width).get("sequence", s.sequence);
-  r.get("start", s.start).get("stride", s.stride);
+  r.get("start", s.start).get("stride", s.stride).get("test_frames", s.test_frames);
   const bool has_real_dir = r.has("real_dir");
   r.get("real_dir", s.real_dir);
   r.finish();
   if (s.frequency != "standard" && s.frequency != "low")
     throw ConfigError(where + ": frequency '" + s.frequency + "' is not standard|low");
+  for (size_t k = 0; k < s.test_frames.size(); ++k) {
+    const int p = s.test_frames[k];
+    const bool twice = std::find(s.test_frames.begin(), s.test_frames.begin() + long(k), p) !=
+                       s.test_frames.begin() + long(k);
+    if (p < 0 || (s.frames > 0 && p >= s.frames) || twice)
+      throw ConfigError(where + ": test_frames[" + std::to_string(k) + "] = " + std::to_string(p) +
+                        (twice ? " is listed twice" : " is not a position in the window") +
+                        (s.frames > 0 ? " (0.." + std::to_string(s.frames - 1) + ")" : ""));
+  }
   if (has_real_dir) {
     const std::filesystem::path p(s.real_dir);
     bool up = false;
@@ -74,6 +83,7 @@ Json SequenceDef::to_json() const {
   if (!sequence.empty()) j["sequence"] = sequence;
   if (start >= 0) j["start"] = start;
   if (stride) j["stride"] = stride;
+  if (!test_frames.empty()) j["test_frames"] = test_frames;
   if (!real_dir.empty()) j["real_dir"] = real_dir;
   return j;
 }
@@ -156,6 +166,12 @@ const MetricInfo* metric_info(const std::string& key) {
 
 Json paper_numbers(const std::string& table, const std::string& method) {
   return lookup(paper_root(), "tables", table, method);
+}
+
+std::string paper_source(const std::string& table) {
+  const Json& src = paper_root().contains("sources") ? paper_root()["sources"] : Json::object();
+  if (src.contains(table) && src[table].is_string()) return src[table].get<std::string>();
+  return "protocol §5 (results/paper_tables.json)";
 }
 
 Json unverified_numbers(const std::string& table, const std::string& method) {

@@ -31,11 +31,15 @@ struct RowDef {
 // (BenchOptions::real_root) holding the dataset in its own layout; the window is chosen by
 // sequence/start/frames/stride as under --data-root. It runs only when that folder exists
 // and is averaged apart from the twins (results/schema.md).
+// `test_frames` (positions in the window, 0 = its first frame) replace the sequence's split,
+// e.g. LiDAR4D's dynamic windows (10, 20, 30, 40 of 51) read with --data-root; a twin's own
+// split comes from its named sequence (datasets/sequences.json) and needs none.
 struct SequenceDef {
   std::string name, preset, frequency;
   int frames = 0, width = 0;
   std::string sequence;
   int start = -1, stride = 0;
+  std::vector<int> test_frames;
   std::string real_dir;  // "" = a synthetic twin (or a --data-root window)
   bool is_real_dir() const { return !real_dir.empty(); }
   Json to_json() const;  // keys away from their defaults only (real_dir only when set)
@@ -65,6 +69,8 @@ std::vector<SequenceDef> table_sequences(const TableDef& t, const std::string& s
 const MetricInfo* metric_info(const std::string& key);
 // The paper's numbers for one row: {metric: value}; empty object when the paper has none.
 Json paper_numbers(const std::string& table, const std::string& method);
+// Where a table's paper numbers come from (paper_tables.json "sources"; default: protocol §5).
+std::string paper_source(const std::string& table);
 // Numbers from third-party notes (protocol §5, "not verified"): {metric: value}.
 Json unverified_numbers(const std::string& table, const std::string& method);
 // The "tolerances" block of tables.json (documented in results/schema.md).

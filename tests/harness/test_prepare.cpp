@@ -80,6 +80,26 @@ TEST_CASE("prepare a real KITTI-360 window", "[harness][data]") {
   CHECK(load_dataset(q.dataset_dir).sensor.width == 1030);
 }
 
+TEST_CASE("prepare a dynamic twin: LiDAR4D's split, and a table's own test frames", "[harness][data]") {
+  const std::string dir = test::temp_dir("harness-prepare-dyn");
+  harness::SequenceDef s = harness::table_sequences(harness::table_def("kitti360-dynamic"), "smoke", false)[0];
+  s.width = 96;
+  const auto p = harness::prepare_sequence(s, harness::BenchOptions{}, dir + "/seq");
+  CHECK(p.dataset["frames"] == 16);
+  CHECK(p.dataset["test"] == Json::array({10}));  // every 10th strictly inside the window
+  const Dataset d = load_dataset(p.dataset_dir);
+  CHECK(d.split.test == std::vector<int>{10});
+  CHECK(d.frames[0].labels.size() == d.frames[0].points.size());
+  CHECK_FALSE(d.frames[0].actors.empty());
+  // A table's test_frames replace it (as for the real windows of LiDAR4D's set).
+  s.test_frames = {3, 9};
+  const auto q = harness::prepare_sequence(s, harness::BenchOptions{}, dir + "/seq2");
+  CHECK(q.dataset["test"] == Json::array({3, 9}));
+  s.test_frames = {16};
+  CHECK_THROWS_WITH(harness::prepare_sequence(s, harness::BenchOptions{}, dir + "/seq3"),
+                    Catch::Contains("test frame position 16"));
+}
+
 TEST_CASE("prepare the nuscenes-low table's real scene from the real-data root",
           "[harness][data][real]") {
   const auto seqs = harness::table_sequences(harness::table_def("nuscenes-low"), "quick", false);

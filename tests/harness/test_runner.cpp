@@ -19,7 +19,7 @@ using namespace sgnlf;
 
 TEST_CASE("every table parses and its columns and paper numbers are consistent", "[harness]") {
   const auto names = harness::table_names();
-  REQUIRE(names.size() == 4);
+  REQUIRE(names.size() == 5);
   for (const auto& n : names) {
     const auto t = harness::table_def(n);
     CHECK_FALSE(t.rows.empty());
@@ -234,6 +234,53 @@ TEST_CASE("tables: real_dir is parsed and checked, unknown keys stay rejected", 
   Json unknown = base;
   unknown["real_folder"] = "x";
   CHECK_THROWS_WITH(harness::parse_sequence_def(unknown, "t"), Catch::Contains("real_folder"));
+}
+
+TEST_CASE("kitti360-dynamic: LiDAR4D's dynamic set, its rows, scales and reference numbers", "[harness]") {
+  const auto t = harness::table_def("kitti360-dynamic");
+  REQUIRE(t.rows.size() == 2);
+  CHECK(t.rows[0].method == "lidar-nerf");
+  CHECK(t.rows[1].method == "lidar4d");
+  CHECK(harness::table_sequences(t, "smoke", false).size() == 1);
+  const auto quick = harness::table_sequences(t, "quick", false);
+  CHECK((quick.size() >= 2 && quick.size() <= 4));
+  const auto paper = harness::table_sequences(t, "paper", false), real = harness::table_sequences(t, "paper", true);
+  REQUIRE(paper.size() == 6);
+  REQUIRE(real.size() == 6);
+  const int starts[] = {2350, 4950, 8120, 10200, 10750, 11400};
+  for (size_t k = 0; k < 6; ++k) {
+    CHECK(paper[k].name == "kitti360-dyn-" + std::to_string(starts[k]));
+    CHECK(real[k].start == starts[k]);
+    CHECK(real[k].frames == 51);
+    CHECK(real[k].test_frames == std::vector<int>{10, 20, 30, 40});
+  }
+  // LiDAR4D's released numbers on the real dynamic set, and where they come from.
+  const Json l4d = harness::paper_numbers("kitti360-dynamic", "lidar4d");
+  CHECK(l4d["cd"] == 0.1002);
+  CHECK(l4d["depth_rmse"] == 3.059);
+  CHECK(l4d["depth_psnr"] == 28.75);
+  CHECK(l4d["intensity_psnr"] == 20.09);
+  const Json nerf = harness::paper_numbers("kitti360-dynamic", "lidar-nerf");
+  CHECK(nerf["cd"] == 0.1438);
+  CHECK(nerf["depth_rmse"] == 4.175);
+  CHECK(nerf["depth_psnr"] == 25.99);
+  CHECK(nerf["intensity_psnr"] == 17.15);
+  CHECK_THAT(harness::paper_source("kitti360-dynamic"), Catch::Contains("LiDAR4D"));
+  CHECK(harness::paper_source("kitti360-standard") == "protocol §5 (results/paper_tables.json)");
+}
+
+TEST_CASE("tables: test_frames are positions in the window, checked", "[harness]") {
+  const Json base{{"name", "x"}, {"preset", "kitti360"}, {"frequency", "standard"}, {"frames", 51}};
+  CHECK(harness::parse_sequence_def(base, "t").test_frames.empty());
+  CHECK_FALSE(harness::parse_sequence_def(base, "t").to_json().contains("test_frames"));
+  Json ok = base;
+  ok["test_frames"] = {10, 20};
+  CHECK(harness::parse_sequence_def(ok, "t").to_json()["test_frames"] == Json::array({10, 20}));
+  for (const Json& bad : {Json::array({51}), Json::array({-1}), Json::array({3, 3}), Json::array({1.5}), Json("10")}) {
+    Json j = base;
+    j["test_frames"] = bad;
+    CHECK_THROWS_WITH(harness::parse_sequence_def(j, "t"), Catch::Contains("test_frames"));
+  }
 }
 
 TEST_CASE("run_table: a real sequence whose folder is missing is skipped and recorded",
