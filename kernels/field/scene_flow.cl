@@ -2,7 +2,8 @@
 // hash grid gives L levels × F features per point; each level's F features are B consecutive
 // chunks of G = F / B, chunk j the features at time node T_j = j / (B − 1), and the flow MLP's
 // input is their Lagrange interpolation at the point's time t:
-//   out[i, l·G + g] = Σ_j ℓ_j(t_i) · in[i, l·F + j·G + g],  ℓ_j(t) = Π_{m≠j} (t − T_m)/(T_j − T_m).
+//   out[i, l·G + g] = Σ_j ℓ_j(t_i) · in[i, l·F + j·G + g],
+//   ℓ_j(t) = Π_{m≠j} (t − T_m)/(T_j − T_m).
 // Time is an input, not differentiated. Defines: LEVELS, FEATURES, BASIS. Host reference:
 // tests/field/test_scene_flow.cpp.
 #define GROUP (FEATURES / BASIS)

@@ -41,7 +41,9 @@ struct Lidar4DEncoderConfig {
   static Lidar4DEncoderConfig from_json(const Json& j, const std::string& where);
 };
 
-// Where each module's parameters start within the encoder's slice.
+// Where each module's parameters start within the encoder's slice. LiDAR4D's learning rates
+// (model/lidar4d.py get_params): [planes, flow) are encodings (lr, 1e-2), [flow, end) the flow
+// field, grid and MLP alike (0.1·lr, 1e-3, as the density MLP and the heads).
 struct Lidar4DParamOffsets {
   size_t planes = 0, static_hash = 0, time_hash = 0, flow = 0, end = 0;
 };

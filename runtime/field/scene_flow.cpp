@@ -75,7 +75,8 @@ void SceneFlow::init_params(std::vector<float>& host_params, size_t offset, uint
   const int out_pad = Mlp::pad16(6);
   float* w = host_params.data() + m + mlp_.layer_offset(last);
   for (int i = 0; i < n_in; ++i)
-    for (int o = 0; o < 6; ++o) w[size_t(i) * out_pad + o] = float(cfg_.out_init_std * rng.normal());
+    for (int o = 0; o < 6; ++o)
+      w[size_t(i) * out_pad + o] = float(cfg_.out_init_std * rng.normal());
 }
 
 void SceneFlow::ensure(int n) {

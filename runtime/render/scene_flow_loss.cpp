@@ -30,7 +30,8 @@ SceneFlowLoss scene_flow_loss(const std::vector<Point3f>& points, const std::vec
       const ChamferLoss c = chamfer_loss(moved, *target, ChamferReduce::Sum);
       out.loss += c.loss;
       for (size_t i = 0; i < n; ++i)
-        for (int k = 0; k < 3; ++k) out.d_flow[6 * i + size_t(3 * side + k)] += float(s) * c.d_pred[i][k];
+        for (int k = 0; k < 3; ++k)
+          out.d_flow[6 * i + size_t(3 * side + k)] += float(s) * c.d_pred[i][k];
     }
   return out;
 }

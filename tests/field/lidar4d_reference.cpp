@@ -48,11 +48,12 @@ std::vector<float> lagrange_bwd(int levels, int features, int nodes,
   return d_in;
 }
 
-std::vector<float> scene_flow_fwd(const field::SceneFlowConfig& cfg, const std::vector<float>& slice,
+std::vector<float> scene_flow_fwd(const field::SceneFlowConfig& cfg,
+                                  const std::vector<float>& slice,
                                   const std::vector<float>& x, const std::vector<float>& t) {
   const auto gc = cfg.grid_config();
-  const size_t gn = field::hash_grid_levels(gc).back().offset + field::hash_grid_levels(gc).back().size;
-  const size_t grid_n = gn * size_t(gc.features);
+  const auto lv = field::hash_grid_levels(gc);
+  const size_t grid_n = (size_t(lv.back().offset) + lv.back().size) * size_t(gc.features);
   const std::vector<float> ones(size_t(gc.levels), 1.0f);
   const auto g = hashgrid_fwd(gc, slice_of(slice, 0, grid_n), x, ones);
   const auto in = lagrange_fwd(cfg.levels, cfg.features, cfg.time_nodes, g, t);
@@ -117,7 +118,8 @@ std::vector<float> lidar4d_fwd(const field::Lidar4DEncoderConfig& cfg,
   };
   auto d = dyn(x, ts.t);
   const size_t wd = d.size() / n;
-  const bool next = cfg.blend && ts.has_next && ts.dt > 0, prev = cfg.blend && ts.has_prev && ts.dt > 0;
+  const bool next = cfg.blend && ts.has_next && ts.dt > 0;
+  const bool prev = cfg.blend && ts.has_prev && ts.dt > 0;
   if (next || prev) {
     const auto flow = scene_flow_fwd(cfg.flow, flow_p, x, t);
     const double w1 = next ? 0.25 : 0.0, w2 = prev ? 0.25 : 0.0, w0 = 1.0 - w1 - w2;

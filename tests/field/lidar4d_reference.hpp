@@ -18,7 +18,8 @@ std::vector<float> lagrange_bwd(int levels, int features, int nodes,
 
 // The flow (N × 6) of `slice` (the module slice); with d_flow, fills grad (module slice) and
 // d_x (N × 3).
-std::vector<float> scene_flow_fwd(const field::SceneFlowConfig& cfg, const std::vector<float>& slice,
+std::vector<float> scene_flow_fwd(const field::SceneFlowConfig& cfg,
+                                  const std::vector<float>& slice,
                                   const std::vector<float>& x, const std::vector<float>& t);
 void scene_flow_bwd(const field::SceneFlowConfig& cfg, const std::vector<float>& slice,
                     const std::vector<float>& x, const std::vector<float>& t,

@@ -69,7 +69,10 @@ TEST_CASE("ray chamfer loss: endpoints along the rays, gradient per depth", "[re
   const size_t n = 120;
   std::vector<float> dir(3 * n), depth(n), gt(n);
   for (size_t i = 0; i < n; ++i) {
-    Point3f d(r.uniform(-1.f, 1.f), r.uniform(-1.f, 1.f), r.uniform(-0.2f, 0.2f));
+    Point3f d;
+    d.x() = r.uniform(-1.f, 1.f);  // one draw per statement (core/rng.hpp)
+    d.y() = r.uniform(-1.f, 1.f);
+    d.z() = r.uniform(-0.2f, 0.2f);
     d.normalize();
     for (int k = 0; k < 3; ++k) dir[3 * i + k] = d[k];
     gt[i] = i % 9 == 0 ? 0.0f : r.uniform(5.f, 40.f);  // some rays without a return

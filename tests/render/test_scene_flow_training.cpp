@@ -24,10 +24,16 @@ TEST_CASE("a scene-flow field trained with the flow loss learns a moving object'
   const Point3f v(0.04f, 0.015f, 0.0f);  // object displacement per frame (normalised box)
   Rng rng(3);
   std::vector<Point3f> base;
+  // One draw per statement: the order of a call's arguments is unspecified (core/rng.hpp).
+  auto draw = [&](const Point3f& lo, const Point3f& hi) {
+    Point3f p;
+    for (int k = 0; k < 3; ++k) p[k] = rng.uniform(lo[k], hi[k]);
+    base.push_back(p);
+  };
   for (int i = 0; i < n_static; ++i)  // static: a slab on the left
-    base.emplace_back(rng.uniform(-0.8f, -0.2f), rng.uniform(-0.6f, 0.6f), rng.uniform(-0.3f, 0.3f));
+    draw(Point3f(-0.8f, -0.6f, -0.3f), Point3f(-0.2f, 0.6f, 0.3f));
   for (int i = 0; i < n_obj; ++i)  // object: a box on the right, moving
-    base.emplace_back(rng.uniform(0.1f, 0.35f), rng.uniform(-0.2f, 0.1f), rng.uniform(-0.15f, 0.15f));
+    draw(Point3f(0.1f, -0.2f, -0.15f), Point3f(0.35f, 0.1f, 0.15f));
   std::vector<std::vector<Point3f>> seq(frames, base);
   for (int k = 0; k < frames; ++k)
     for (int i = n_static; i < n_static + n_obj; ++i) seq[size_t(k)][size_t(i)] += float(k) * v;
