@@ -14,7 +14,12 @@
 //   IN_OFFSET / DIN_OFFSET (first column of the input / of d_in within its row),
 //   GROUP_BIAS (1: the pre-activation starts from a per-group row gbias[point / group], or
 //   gbias[gidx[point]] when `indexed`, instead of the bias: layer 0 of an MLP with grouped
-//   inputs, see runtime/field/mlp.hpp).
+//   inputs, see runtime/field/mlp.hpp),
+//   HAS_BIAS (0: a bias-free layer: the bias row is neither read nor given a gradient; it
+//   stays in the layout, zero, so that bias-free and biased MLPs share one layout).
+#ifndef HAS_BIAS
+#define HAS_BIAS 1
+#endif
 #ifndef IN_OFFSET
 #define IN_OFFSET 0
 #endif
@@ -87,8 +92,10 @@ __kernel void field_mlp_fwd(const int n, __global const float* params, const uin
   __global const float* W = params + w_off;
   float16 acc[PTS];
   __global const float* rows[PTS];
-#if !GROUP_BIAS
+#if !GROUP_BIAS && HAS_BIAS
   const float16 b = vload16(0, W + N_IN * OUT_PAD + o0);
+#elif !GROUP_BIAS
+  const float16 b = (float16)(0.0f);
 #endif
 #pragma unroll
   for (int p = 0; p < PTS; ++p) {
@@ -159,7 +166,9 @@ __kernel void field_mlp_bwd_wgt(const int n, const int chunk, __global const flo
   __global float* dst = partial + (size_t)c * (N_IN + 1) * OUT_PAD;
   if (rb == ROW_BLOCKS) {
     float16 acc = (float16)(0.0f);
+#if HAS_BIAS
     for (int i = begin; i < end; ++i) acc += vload16(0, d_pre + (size_t)i * OUT_PAD + o0);
+#endif
     vstore16(acc, 0, dst + (size_t)N_IN * OUT_PAD + o0);
     return;
   }

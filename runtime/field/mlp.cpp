@@ -70,7 +70,8 @@ Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec) : rt_(rt), spec_(spec) {
                             d("ACT", int(L.act)) + d("STORE_PRE", L.store_pre) +
                             d("PREV_ACT", prev_act) + d("PREV_PRE", prev_pre) +
                             d("DIN_STRIDE", L.in_stride) + d("DIN_OFFSET", in_off) +
-                            d("GROUP_BIAS", group_bias) + d("PTS", kPts) + d("ROWS", kRows);
+                            d("GROUP_BIAS", group_bias) + d("PTS", kPts) + d("ROWS", kRows) +
+                            d("HAS_BIAS", spec_.bias);
     const std::string f = "field/mlp.cl";
     L.fwd = rt_.kernel(f, "field_mlp_fwd", opt);
     L.bwd_out = rt_.kernel(f, "field_mlp_bwd_out", opt);

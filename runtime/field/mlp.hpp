@@ -41,6 +41,9 @@ struct MlpSpec {
   int in_stride = 0;   // row stride of the per-point input, in floats (0: n_in)
   int in_offset = 0;   // first column of the per-point input within its row
   std::vector<MlpLayerSpec> layers;  // hidden layers then the output layer
+  // false: every layer is bias-free (LiDAR4D's flow MLP): the bias rows stay in the layout,
+  // are never read, keep their zero init and always receive a zero gradient.
+  bool bias = true;
   void validate() const;  // throws ConfigError
   int n_out() const { return layers.empty() ? 0 : layers.back().width; }
   // Multiply-adds per point of a forward pass (×2 for FLOPs; backward ≈ 2× forward); with

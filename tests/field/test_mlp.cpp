@@ -373,3 +373,51 @@ TEST_CASE("groups of varying size (a group index) compute the plain MLP on [x, y
   CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 5e-3);
   for (int c = 0; c < 5; ++c) CHECK(sdy[size_t(5) + c] == 0.0f);  // group 1 is empty
 }
+
+TEST_CASE("a bias-free MLP ignores its bias rows and gives them no gradient", "[field][mlp]") {
+  auto& rt = test::runtime();
+  auto spec = field::make_mlp_spec(16, 64, 2, 6, Activation::Relu);
+  spec.bias = false;
+  field::Mlp mlp(rt, spec);
+  const int n = 333;
+  std::vector<float> params(mlp.n_params());
+  mlp.init_params(params, 0, 3);
+  // Bias rows set to non-zero values: a biased MLP would read them.
+  std::vector<size_t> bias_rows;
+  for (size_t l = 0; l < spec.layers.size(); ++l) {
+    const int in_l = l == 0 ? spec.n_in : spec.layers[l - 1].width;
+    const int op = field::Mlp::pad16(spec.layers[l].width);
+    for (int o = 0; o < spec.layers[l].width; ++o) {
+      bias_rows.push_back(mlp.layer_offset(int(l)) + size_t(in_l) * op + o);
+      params[bias_rows.back()] = 0.3f;
+    }
+  }
+  auto zeroed = params;
+  for (size_t k : bias_rows) zeroed[k] = 0.0f;
+  const auto in = uniform(size_t(n) * 16, -1.0f, 1.0f, 4);
+  const auto d_out = uniform(size_t(n) * 6, -1.0f, 1.0f, 5);
+  auto b_p = cl::Buffer::from(rt, params), b_in = cl::Buffer::from(rt, in);
+  auto b_d = cl::Buffer::from(rt, d_out);
+  cl::Buffer b_out(rt, size_t(n) * 24), b_din(rt, size_t(n) * 64), b_g(rt, params.size() * 4);
+  field::MlpContext ctx;
+  mlp.forward(b_p, 0, b_in, n, b_out, ctx);
+  mlp.backward(b_p, 0, ctx, b_out, b_d, b_g, 0, &b_din);
+  const auto out = b_out.read_vec<float>(size_t(n) * 6);
+  auto grad = b_g.read_vec<float>(params.size());
+  std::vector<float> din_ref;
+  const auto out_ref = test::ref::mlp_fwd(spec, zeroed, in, n);
+  auto g_ref = test::ref::mlp_bwd(spec, zeroed, in, n, d_out, din_ref);
+  CHECK(norm_err(out, out_ref) < 1e-5);
+  CHECK(norm_err(b_din.read_vec<float>(size_t(n) * 16), din_ref) < 1e-5);
+  double bias_ref = 0;
+  for (size_t k : bias_rows) {
+    CHECK(grad[k] == 0.0f);
+    bias_ref += std::fabs(g_ref[k]);
+    g_ref[k] = 0.0f;
+  }
+  CHECK(bias_ref > 1e-3);  // a biased MLP's bias gradient would not be zero here
+  CHECK(norm_err(grad, g_ref) < 1e-5);
+  // The flag is what differs: the same parameters with biases read give another output.
+  spec.bias = true;
+  CHECK(norm_err(out, test::ref::mlp_fwd(spec, params, in, n)) > 1e-3);
+}

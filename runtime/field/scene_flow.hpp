@@ -1,0 +1,89 @@
+// LiDAR4D's scene-flow field (method.md §2; LiDAR4D model/flow_field.py, the grid version): a
+// 3D hash grid over x whose per-level features are B chunks at the time nodes j/(B − 1),
+// interpolated at t with Lagrange polynomials (kernels/field/scene_flow.cl), then a bias-free
+// ReLU MLP to 6 outputs: the forward flow (x at t → t + dt) and the backward flow (→ t − dt),
+// displacements in the normalised box. (x, t) is the 4D input; t is not differentiated.
+// LiDAR4D's sizes: 8 levels × 8 features, base 32, finest 8192, 2^18 entries, 4 time nodes,
+// 3 layers of 64, output weights N(0, 0.001²) so the flow starts near zero.
+// Layout of the module slice: the hash grid, then the MLP (runtime/field/mlp.hpp, bias rows
+// present and zero).
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "cl/runtime.hpp"
+#include "core/config.hpp"
+#include "core/config_fields.hpp"
+#include "field/hash_grid.hpp"
+#include "field/mlp.hpp"
+
+namespace sgnlf::field {
+
+struct SceneFlowConfig {
+  int levels = 8;
+  int features = 8;               // per level: 1, 2, 4 or 8; a multiple of time_nodes
+  int time_nodes = 4;             // B: features per level split into B chunks of F / B
+  float base_resolution = 32.0f;
+  float max_resolution = 8192.0f;  // finest level; growth (max / base)^(1/(levels − 1))
+  int log2_table_size = 18;
+  int hidden_width = 64;
+  int hidden_layers = 2;          // LiDAR4D's num_layers = 3: two hidden, one output
+  float out_init_std = 0.001f;
+
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("levels", s.levels, 1, 32);
+    v("features", s.features, 1, 8);
+    v("time_nodes", s.time_nodes, 2, 8);
+    v("base_resolution", s.base_resolution, 1.0f, 65536.0f);
+    v("max_resolution", s.max_resolution, 1.0f, 1048576.0f);
+    v("log2_table_size", s.log2_table_size, 4, 24);
+    v("hidden_width", s.hidden_width, 1, 128);
+    v("hidden_layers", s.hidden_layers, 0, 8);
+    v("out_init_std", s.out_init_std, 0.0f, 1.0f);
+  }
+  // Ranges, features divisible by time_nodes, max_resolution ≥ base_resolution.
+  void validate(const std::string& where = "scene_flow") const;  // throws ConfigError
+  static SceneFlowConfig from_json(const Json& j, const std::string& where);
+  Json to_json() const { return config::write_fields(*this); }
+  // The hash grid and MLP this configuration describes.
+  HashGridConfig grid_config() const;
+  MlpSpec mlp_spec() const;
+};
+
+class SceneFlow {
+ public:
+  SceneFlow(cl::Runtime& rt, const SceneFlowConfig& cfg);
+
+  const SceneFlowConfig& config() const { return cfg_; }
+  size_t n_params() const { return grid_.n_params() + mlp_.n_params(); }
+  size_t mlp_offset() const { return grid_.n_params(); }  // within the module slice
+  const HashGrid& grid() const { return grid_; }
+  const Mlp& mlp() const { return mlp_; }
+
+  // Grid ±1e-4 (instant-ngp), hidden layers Mlp's fan-in init, output weights N(0, std²).
+  void init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) const;
+
+  // flow (N × 6: forward then backward displacement) at x (N × 3) and times t (N).
+  // Keeps what backward needs; x, t and flow must stay unchanged until then. Enqueued.
+  void forward(const cl::Buffer& params, size_t offset, const cl::Buffer& x, const cl::Buffer& t,
+               int n, cl::Buffer& flow);
+  // From d_flow (N × 6): overwrites grad[grad_offset, + n_params()); writes dL/dx (N × 3)
+  // when d_x is given. Same x, t, flow as the preceding forward. Enqueued.
+  void backward(const cl::Buffer& params, size_t offset, const cl::Buffer& x, const cl::Buffer& t,
+                int n, const cl::Buffer& flow, const cl::Buffer& d_flow, cl::Buffer& grad,
+                size_t grad_offset, cl::Buffer* d_x = nullptr);
+
+ private:
+  cl::Runtime& rt_;
+  SceneFlowConfig cfg_;
+  HashGrid grid_;
+  Mlp mlp_;
+  MlpContext ctx_;
+  cl::Kernel time_fwd_, time_bwd_;
+  cl::Buffer grid_out_, mlp_in_, d_mlp_in_, d_grid_out_;
+  size_t capacity_ = 0;
+  void ensure(int n);
+};
+
+}  // namespace sgnlf::field

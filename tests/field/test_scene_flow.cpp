@@ -1,0 +1,143 @@
+// LiDAR4D's scene-flow field (runtime/field/scene_flow.hpp): config refusals, device vs host
+// reference (flow, dL/dparams, dL/dx) and finite differences of the device forward.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "core/error.hpp"
+#include "core/rng.hpp"
+#include "field/scene_flow.hpp"
+#include "lidar4d_reference.hpp"
+#include "support/test_device.hpp"
+
+SGNLF_DEVICE_TESTS;
+using namespace sgnlf;
+
+namespace {
+std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
+  Rng r(seed);
+  std::vector<float> v(n);
+  for (auto& x : v) x = r.uniform(lo, hi);
+  return v;
+}
+double dot(const std::vector<float>& a, const std::vector<float>& b) {
+  double s = 0;
+  for (size_t i = 0; i < a.size(); ++i) s += double(a[i]) * b[i];
+  return s;
+}
+// The small flow field with grid features of order 1 (the ±1e-4 init would hide the grid).
+std::vector<float> flow_params(const field::SceneFlow& sf, uint64_t seed) {
+  std::vector<float> p(sf.n_params());
+  sf.init_params(p, 0, seed);
+  const auto g = uniform(sf.mlp_offset(), -1.0f, 1.0f, seed + 9);
+  std::copy(g.begin(), g.end(), p.begin());
+  return p;
+}
+}  // namespace
+
+TEST_CASE("scene flow config: LiDAR4D's sizes and refusals naming the key", "[field][flow]") {
+  field::SceneFlowConfig c;
+  CHECK(c.grid_config().per_level_scale == Approx(std::pow(256.0, 1.0 / 7.0)).epsilon(1e-6));
+  CHECK(c.mlp_spec().n_in == 16);
+  CHECK_FALSE(c.mlp_spec().bias);
+  auto refused = [](const char* text, const char* key) {
+    try {
+      field::SceneFlowConfig::from_json(Json::parse(text), "flow");
+      FAIL("accepted " << text);
+    } catch (const ConfigError& e) {
+      CHECK_THAT(e.what(), Catch::Contains(key));
+    }
+  };
+  refused(R"({"time_nodes": 3})", "time_nodes");  // does not divide 8 features
+  refused(R"({"features": 6, "time_nodes": 2})", "features");
+  refused(R"({"max_resolution": 16})", "max_resolution");  // below base 32
+  refused(R"({"levelz": 8})", "levelz");
+  refused(R"({"hidden_width": 0})", "hidden_width");
+  CHECK(field::SceneFlowConfig::from_json(Json::parse(R"({"time_nodes": 2})"), "flow")
+            .time_nodes == 2);
+}
+
+TEST_CASE("scene flow forward and backward match the host reference", "[field][flow]") {
+  auto& rt = test::runtime();
+  const auto cfg = test::ref::small_lidar4d_config(0.3f).flow;
+  field::SceneFlow sf(rt, cfg);
+  const int n = 301;
+  const auto params = flow_params(sf, 3);
+  const auto x = uniform(size_t(n) * 3, -0.9f, 0.9f, 4);
+  const auto t = uniform(size_t(n), 0.0f, 1.0f, 5);
+  const auto d_flow = uniform(size_t(n) * 6, -1.0f, 1.0f, 6);
+  auto b_p = cl::Buffer::from(rt, params), b_x = cl::Buffer::from(rt, x);
+  auto b_t = cl::Buffer::from(rt, t), b_d = cl::Buffer::from(rt, d_flow);
+  cl::Buffer b_flow(rt, size_t(n) * 24), b_dx(rt, size_t(n) * 12), b_g(rt, params.size() * 4);
+  sf.forward(b_p, 0, b_x, b_t, n, b_flow);
+  sf.backward(b_p, 0, b_x, b_t, n, b_flow, b_d, b_g, 0, &b_dx);
+  const auto flow = b_flow.read_vec<float>(size_t(n) * 6);
+  const auto grad = b_g.read_vec<float>(params.size());
+  const auto dx = b_dx.read_vec<float>(size_t(n) * 3);
+  const auto flow_ref = test::ref::scene_flow_fwd(cfg, params, x, t);
+  std::vector<float> g_ref, dx_ref;
+  test::ref::scene_flow_bwd(cfg, params, x, t, d_flow, g_ref, dx_ref);
+  double mag = 0;
+  for (float v : flow_ref) mag = std::max(mag, double(std::fabs(v)));
+  REQUIRE(mag > 0.05);  // the flow is not trivially zero
+  CHECK(test::max_abs_err(flow, flow_ref) < 1e-5 * mag);
+  CHECK(test::max_sym_rel_err(grad, g_ref, 1e-2) < 1e-4);
+  CHECK(test::max_sym_rel_err(dx, dx_ref, 1e-2) < 1e-4);
+  // Bias-free: every bias row of the MLP has a zero gradient.
+  const auto& spec = sf.mlp().spec();
+  for (size_t l = 0; l < spec.layers.size(); ++l) {
+    const int in_l = l == 0 ? spec.n_in : spec.layers[l - 1].width;
+    const size_t b = sf.mlp_offset() + sf.mlp().layer_offset(int(l)) +
+                     size_t(in_l) * size_t(field::Mlp::pad16(spec.layers[l].width));
+    for (int o = 0; o < spec.layers[l].width; ++o) CHECK(grad[b + size_t(o)] == 0.0f);
+  }
+}
+
+TEST_CASE("scene flow gradients agree with finite differences of the device forward",
+          "[field][flow][fd]") {
+  auto& rt = test::runtime();
+  const auto cfg = test::ref::small_lidar4d_config(0.3f).flow;
+  field::SceneFlow sf(rt, cfg);
+  const int n = 40;
+  auto params = flow_params(sf, 7);
+  const auto x = uniform(size_t(n) * 3, -0.9f, 0.9f, 8);
+  const auto t = uniform(size_t(n), 0.0f, 1.0f, 9);
+  const auto r = uniform(size_t(n) * 6, -1.0f, 1.0f, 10);  // L = Σ r · flow
+  auto b_p = cl::Buffer::from(rt, params), b_x = cl::Buffer::from(rt, x);
+  auto b_t = cl::Buffer::from(rt, t), b_r = cl::Buffer::from(rt, r);
+  cl::Buffer b_flow(rt, size_t(n) * 24), b_dx(rt, size_t(n) * 12), b_g(rt, params.size() * 4);
+  sf.forward(b_p, 0, b_x, b_t, n, b_flow);
+  sf.backward(b_p, 0, b_x, b_t, n, b_flow, b_r, b_g, 0, &b_dx);
+  const auto grad = b_g.read_vec<float>(params.size());
+  const auto dx = b_dx.read_vec<float>(size_t(n) * 3);
+  auto loss = [&](const std::vector<float>& p, const std::vector<float>& xs) {
+    b_p.write_vec(p);
+    b_x.write_vec(xs);
+    sf.forward(b_p, 0, b_x, b_t, n, b_flow);
+    return dot(b_flow.read_vec<float>(size_t(n) * 6), r);
+  };
+  const float h = 1e-3f;
+  std::vector<float> fd, an;
+  for (size_t k = 0; k < grad.size() && fd.size() < 80; k += 5) {
+    if (grad[k] == 0.0f) continue;
+    auto pp = params, pm = params;
+    pp[k] += h;
+    pm[k] -= h;
+    fd.push_back(float((loss(pp, x) - loss(pm, x)) / (2.0 * h)));
+    an.push_back(grad[k]);
+  }
+  REQUIRE(fd.size() >= 40);
+  CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 2e-2);
+  fd.clear();
+  an.clear();
+  int agree = 0;
+  for (size_t k = 0; k < x.size(); ++k) {
+    auto xp = x, xm = x;
+    xp[k] += h;
+    xm[k] -= h;
+    const float f = float((loss(params, xp) - loss(params, xm)) / (2.0 * h));
+    agree += test::max_sym_rel_err({f}, {dx[k]}, 1e-1) < 2e-2;
+  }
+  // Trilinear corners and ReLUs are only piecewise smooth: a step may cross a cell face.
+  CHECK(agree >= int(x.size()) * 9 / 10);
+}
