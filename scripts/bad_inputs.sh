@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# scripts/bad_inputs.sh SGNLF OUT.md: the bad-input matrix (issue 18, item 4). Makes each kind of
+# scripts/bad_inputs.sh SGNLF OUT.md: the bad-input matrix. Makes each kind of
 # bad input a user can bring, runs the sgnlf command that reads it, and writes one table row:
 # the input, the command, the exit code, the first line of the message, and whether every file
 # already written (run.json, checkpoints, logs, the input itself) is byte-identical afterwards.

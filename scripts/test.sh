@@ -2,7 +2,7 @@
 # The README's test command (and CI's): installs dependencies, builds, and runs the whole test
 # suite, the real-data tests included (they fail when ../shared/data/real, or
 # $SGNLF_SHARED_DIR/data/real, is missing: SGNLF_REQUIRE_REAL_DATA=0 skips them with a warning);
-# then the hardening jobs (issue 18), sharing one clang build (build-ci-sanitize/): the host
+# then the hardening jobs, sharing one clang build (build-ci-sanitize/): the host
 # tests (without the label asan_slow) and the OpenCL test cl built with AddressSanitizer +
 # UndefinedBehaviorSanitizer (SCOPE=ci scripts/sanitize.sh), and every fuzz target for
 # SGNLF_FUZZ_SECONDS (default 20) from its seed corpus (scripts/fuzz.sh).

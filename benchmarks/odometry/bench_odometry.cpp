@@ -3,7 +3,7 @@
 // nuscenes-low-a and the real scene-0916 keyframes) and HDL-64E scans (simulated kitti360-1538
 // at 10 Hz, ~60 k points, and the real KITTI odometry slice, ~120 k points). Real data is read
 // from $SGNLF_SHARED_DIR/data/real (else ../shared beside the checkout) and skipped when absent.
-// Targets (issue 20): ≥ 20 scans/s nuScenes-size, ≥ 10 scans/s HDL-64E on 2 cores.
+// Targets: ≥ 20 scans/s nuScenes-size, ≥ 10 scans/s HDL-64E on 2 cores.
 // Arg: threads of the registration.
 #include <benchmark/benchmark.h>
 

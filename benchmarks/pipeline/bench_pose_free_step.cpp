@@ -4,8 +4,8 @@
 // [f_geo, λ·Ψ] at λ = 1 (Ψ evaluated forward and backward for dL/dx), and one spectral step of Ψ
 // (1024 surface samples × 5 evaluations, loss and moments on the host, Adam) as the schedule
 // runs it every `spectral.every` steps. Ratios of these are the cost of the hybrid field.
-// And one step of SG-NLF's adversarial cross-frame consistency at the quick preset (issue 17,
-// item 4: render frame i on the 16 × 64 sub-sensor with the backward pass, reprojection into
+// And one step of SG-NLF's adversarial cross-frame consistency at the quick preset (
+// render frame i on the 16 × 64 sub-sensor with the backward pass, reprojection into
 // frame j's 66 × 103 image, one discriminator step, generator gradient, pose gradients), paid
 // every `consistency.every` steps after the warm-up, against the quick pose-free step above.
 #include <benchmark/benchmark.h>

@@ -52,7 +52,7 @@ void BM_TrainStep(benchmark::State& state, const char* preset, bool reuse_coarse
 
 // Uniform samples of a batch that lie in known free space: on each ray with a return, the
 // stratified bins that end more than one cell of a 128³ grid over the normalised box [-1, 1]³
-// in front of the measured range. What an occupancy structure could skip at best (issue 19;
+// in front of the measured range. What an occupancy structure could skip at best (
 // rays without a return are not counted, the importance samples sit at the surface): as a
 // share of the live samples (free/live), it bounds the saving of the training pass.
 long free_space_samples(const RayBatch& b, const TrainConfig& c, float scene_scale) {
@@ -144,7 +144,7 @@ BENCHMARK_CAPTURE(BM_TrainStepTrained, quick_trained_exact, 0.0f)
     ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
 BENCHMARK_CAPTURE(BM_TrainStepTrained, quick_trained_terminate, 1e-4f)
     ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
-// Early termination of the coarse pass too (render.coarse_waves, issue 19); coarse/uniform is
+// Early termination of the coarse pass too (render.coarse_waves); coarse/uniform is
 // the fraction of the uniform samples the coarse pass evaluated.
 BENCHMARK_CAPTURE(BM_TrainStepTrained, quick_trained_waves4, 1e-4f, 4)
     ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);

@@ -1,4 +1,4 @@
-// Moving actors of the dynamic twins (issue 32): vehicles (one car-sized box each) and
+// Moving actors of the dynamic twins: vehicles (one car-sized box each) and
 // pedestrians (upright cylinders), each on its own trajectory, constant speed along a circular
 // arc of constant, gentle curvature, known in closed form at any time. The simulator places
 // them at each ray's time (per frame, or per slice of a sweep with motion distortion), every

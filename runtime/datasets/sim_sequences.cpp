@@ -6,7 +6,7 @@
 namespace sgnlf {
 
 namespace {
-// What the real-like sequences add (issue 30); the drop causes' rates are in simulate.cpp.
+// What the real-like sequences add; the drop causes' rates are in simulate.cpp.
 const SimRealism kRealLike{true, 10, true, true, 6.0};
 
 // The moving actors of a dynamic twin: cars, people on the sidewalks, people crossing.

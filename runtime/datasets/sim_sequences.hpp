@@ -1,7 +1,7 @@
 // The named synthetic sequences (`sgnlf simulate --list`, datasets/sequences.json) and the
-// opt-in realism a sequence may ask for (issue 30: what real scans have and the first twins
+// opt-in realism a sequence may ask for (what real scans have and the first twins
 // lacked). Sequences without realism are simulated exactly as before it existed; likewise
-// without moving actors (issue 32, sim_actors.hpp) and with the protocol's split.
+// without moving actors (sim_actors.hpp) and with the protocol's split.
 #pragma once
 #include <string>
 #include <utility>

@@ -62,7 +62,7 @@ struct StreetConfig {
 
 StreetWorld generate_street(const StreetConfig& cfg);
 
-// Opt-in street life (issue 30), each from its own Rng stream so the rest of the world is
+// Opt-in street life, each from its own Rng stream so the rest of the world is
 // unchanged: hedges and bushes (clusters of foliage ellipsoids) at the back of the sidewalks,
 // added before the scene is built; people walking along the sidewalks.
 void add_vegetation(StreetWorld& w, uint64_t seed);

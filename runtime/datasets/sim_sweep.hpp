@@ -1,4 +1,4 @@
-// A sweep cast from a moving sensor (motion distortion, issue 30): each azimuth step fires at
+// A sweep cast from a moving sensor (motion distortion): each azimuth step fires at
 // its own time within the sweep (the sensor's per-point time model, geometry/sweep_timing.hpp)
 // from the pose interpolated at that time, and its point is stored in the sensor frame of that
 // moment, uncompensated, as a real spinning LiDAR delivers it; the frame's pose is the pose at

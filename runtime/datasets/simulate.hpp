@@ -26,10 +26,10 @@ struct SimOptions {
   std::string sensor_json;   // user-defined sensor (overrides the preset)
   int threads = 0;
   sim::LidarModel lidar;
-  // Realism on top of the sequence's (issue 30; simulate --motion-distortion, --real-drop,
+  // Realism on top of the sequence's (simulate --motion-distortion, --real-drop,
   // --pedestrians, --vegetation): each switches a part on, never off.
   SimRealism realism;
-  // Moving actors (issue 32): when any(), replace the sequence's own (sim_actors.hpp).
+  // Moving actors: when any(), replace the sequence's own (sim_actors.hpp).
   sim::ActorsConfig actors;
 
   void validate() const;

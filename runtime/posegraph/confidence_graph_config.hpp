@@ -49,7 +49,7 @@ struct ConfidenceGraphConfig {
   // m; > 0: the graph's loss trims each edge's correspondences at this distance (RobustParams::
   // max_distance), so that a non-adjacent pair, which overlaps in part, does not pull its frames
   // together through the points without a counterpart. 0: off (written only when set, so the
-  // configs without it keep their hash). Measured on the real scene-0916 (issue 30): untrimmed,
+  // configs without it keep their hash). Measured on the real scene-0916: untrimmed,
   // the 81 non-adjacent edges of the first graph take the coarse alignment from 0.22 to 0.93 m.
   double edge_max_distance_m = 0.0;
   uint64_t seed = 1;               // match-point subsample and α pair draws

@@ -48,7 +48,7 @@ struct RenderConfig {
   // same samples, whose encodings the training pass reuses. 0: off, every sample evaluated
   // (exact). Applies to training and rendering.
   float stop_transmittance = 0.0f;
-  // Early termination of the coarse pass too (issue 19): the uniform samples are evaluated in
+  // Early termination of the coarse pass too: the uniform samples are evaluated in
   // this many waves front to back, and a ray whose coarse transmittance fell below
   // stop_transmittance (plus the termination's margin bin) takes no part in later waves. The
   // samples it skips lie behind the termination point: the merged samples' live prefix, its

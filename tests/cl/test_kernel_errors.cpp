@@ -1,5 +1,5 @@
 // A kernel that fails to build names the device, the kernel file (with the folder it was read
-// from when SGNLF_KERNEL_DIR is set) and the build log (issue 18, item 3).
+// from when SGNLF_KERNEL_DIR is set) and the build log.
 #include <catch2/catch.hpp>
 
 #include <cstdlib>

@@ -1,4 +1,4 @@
-// Regression tests for loader defects found by reading the code (issue 18, item 6): a stride of
+// Regression tests for loader defects found by reading the code: a stride of
 // 0 or below, over-long numeric scan names, non-rigid KITTI-360 calibrations, zero quaternions
 // and JSON type errors in the nuScenes tables, sensors with gigabyte range images, and test
 // folders that two checkouts shared.

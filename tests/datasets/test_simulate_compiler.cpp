@@ -50,7 +50,7 @@ TEST_CASE("the simulator's output does not depend on the compiler", "[datasets][
   const Case cases[] = {
       {"kitti360-low-a", 3, 360, "grid", "9ca81befd098744f"},
       {"nuscenes-low-a", 2, 256, "native", "bc834ce40842f5a1"},
-      // The moving actors' draws (Rng stream 6) and their labels (issue 32).
+      // The moving actors' draws (Rng stream 6) and their labels.
       {"kitti360-dyn-8120", 3, 360, "grid", "d3fb86ea7fcade21"},
   };
   for (const Case& c : cases) {

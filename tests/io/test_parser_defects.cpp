@@ -1,4 +1,4 @@
-// Parser defects found by reading the code and by the fuzz targets (issue 18): a KITTI-360
+// Parser defects found by reading the code and by the fuzz targets: a KITTI-360
 // frame id beyond int, .npy headers claiming huge shapes (allocated before the size check),
 // scan files too large to be scans (read whole before), the first NaN point named.
 #include <catch2/catch.hpp>

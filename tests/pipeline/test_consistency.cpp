@@ -1,4 +1,4 @@
-// SG-NLF's adversarial cross-frame consistency in pose-free training (issue 17, item 4): the
+// SG-NLF's adversarial cross-frame consistency in pose-free training: the
 // external gradient joins the range loss's Adam step; the gradient of L_con with respect to a
 // frame's ξ through render → reprojection → discriminator against finite differences; a run
 // folder of `sg-nlf` (L_D/L_con logged, exact resume of field, discriminator and poses); the

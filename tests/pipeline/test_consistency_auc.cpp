@@ -1,4 +1,4 @@
-// Can the PatchGAN discriminator see a misalignment? (issue 17, item 6.) Frame i's OBSERVED
+// Can the PatchGAN discriminator see a misalignment? Frame i's OBSERVED
 // range image reprojected into frame j (render::CrossFrameReprojection) under the ground-truth
 // poses gives aligned pairs [D_ij, D_j]; under frame i's pose moved by 0.5 m (random direction)
 // or turned by 2° (random axis), misaligned ones. A discriminator trained briefly with the

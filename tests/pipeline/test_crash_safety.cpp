@@ -1,4 +1,4 @@
-// Crash safety of training (issue 18, items 3 and 6): the rotating checkpoint pair and its
+// Crash safety of training: the rotating checkpoint pair and its
 // fallback when latest.ckpt is corrupt, clear errors that keep the last good checkpoint when the
 // output folder cannot be written or the disk is full, and train_log.jsonl continuing from the
 // resumed step instead of repeating steps.

@@ -1,4 +1,4 @@
-// Kill and resume (issue 18, item 3): `sgnlf train` killed with SIGKILL at three points (after a
+// Kill and resume: `sgnlf train` killed with SIGKILL at three points (after a
 // step between checkpoints, half-way through writing a checkpoint, between the renames of a
 // checkpoint) and once at a random time, then resumed, ends with a checkpoint byte-identical to
 // an uninterrupted run of the same seed, and with the same train_log.jsonl steps. The kills at

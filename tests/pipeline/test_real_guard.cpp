@@ -1,6 +1,6 @@
-// Real-data guard (issue 30, item 6): the geometric stage alone and the built-in odometry on the
+// Real-data guard: the geometric stage alone and the built-in odometry on the
 // real nuScenes scene-0916 (first 36 keyframes at 2 Hz), each held to a bound that the code before
-// the fix of issue 30 failed. The twins cannot catch a change that breaks real scans (they are
+// the real-scan fix failed. The twins cannot catch a change that breaks real scans (they are
 // boxy, static, and hold no returns of the vehicle itself); this scene can.
 //
 // Measured (docs/studies/real-scans/README.md):

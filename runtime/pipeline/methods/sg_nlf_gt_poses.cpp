@@ -1,6 +1,6 @@
 // Control row (not in the paper): SG-NLF's field (hybrid encoder, cross-frame consistency) trained
 // on the ground-truth poses, held fixed. Beside SG-NLF it measures the paper's claim that the
-// pose-free run is as good as one on the true poses (issue 30: on the real scene too).
+// pose-free run is as good as one on the true poses (on the real scene too).
 #include "pipeline/methods/methods.hpp"
 
 namespace sgnlf::pipeline::methods {

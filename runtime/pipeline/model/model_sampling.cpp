@@ -1,4 +1,4 @@
-// LidarNerfModel: which samples the field evaluates (method.md §0; issue 19): the uniform and
+// LidarNerfModel: which samples the field evaluates (method.md §0): the uniform and
 // importance samples, the coarse pass (in waves with render.coarse_waves), early ray
 // termination's compaction of the live samples, and the LiDAR head's weight band, each mode
 // through its launcher (EncodingReuse, CoarseWaves, SampleCompaction, HeadBand).

@@ -195,7 +195,7 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
     if (ck_due) save(done);
     if (eval_due) {
       // train_seconds: this session's wall time up to here without the evaluations (the
-      // time-to-quality clock of issue 19).
+      // time-to-quality clock).
       const auto e0 = std::chrono::steady_clock::now();
       const double train_s = std::chrono::duration<double>(e0 - t0).count() - eval_s;
       Json m = opt.evaluate(done);
