@@ -100,7 +100,7 @@ TEST_CASE("the in-repo real sample: every scan listed in its README, with its sh
 TEST_CASE("the in-repo real sample's scans are byte-identical to the large real data", "[real][real_sample]") {
   for (const auto& [path, sha] : listed_scans()) {
     const std::string top = path.substr(0, path.find('/'));
-    const test::RealData r = test::full_real_data(top, "the large data to compare the sample with");
+    const test::RealData r = test::full_real_data(top, "the larger data to compare the in-repo sample with");
     if (!r) return;
     INFO(path);
     CHECK(test::sha256_file(r.path + path.substr(top.size())) == sha);
@@ -110,8 +110,8 @@ TEST_CASE("the in-repo real sample's scans are byte-identical to the large real 
 TEST_CASE("the in-repo real sample's text files and nuScenes records are the large data's",
           "[real][real_sample]") {
   const std::string s = test::real_sample_root();
-  const auto k = test::full_real_data("kitti-odometry-00-slice", "the large data to compare the sample with");
-  const auto n = test::full_real_data("nuscenes-mini-scene-0916", "the large data to compare the sample with");
+  const auto k = test::full_real_data("kitti-odometry-00-slice", "the larger data to compare the in-repo sample with");
+  const auto n = test::full_real_data("nuscenes-mini-scene-0916", "the larger data to compare the in-repo sample with");
   if (!k || !n) return;
   // KITTI: calib.txt as is; times and poses (line i = frame i) up to the last frame, 47.
   CHECK(lines(s + "/kitti-odometry-00-slice/sequences/00/calib.txt") == lines(k.path + "/sequences/00/calib.txt"));

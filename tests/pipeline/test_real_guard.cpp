@@ -28,7 +28,7 @@ namespace {
 
 const std::string kScene = "nuscenes-mini-scene-0916";
 // The in-repo sample holds 2 of the scene's keyframes: these bounds are for the protocol's 36.
-const std::string kNeeds = "the protocol's 36 keyframes of scene-0916 (the sample holds 2)";
+const std::string kNeeds = "the protocol's 36 keyframes of scene-0916; the in-repo sample holds 2";
 
 Dataset load_scene(const std::string& dir) {
   LoadOptions o;

@@ -44,8 +44,7 @@ RealData full_real_data(const std::string& name, const std::string& needs) {
   const std::string full = real_data_root() + "/" + name;
   if (fs::exists(full)) return {full, true};
   if (real_data_required()) FAIL(missing_message(full));
-  WARN(missing_message(full) + "; skipped: this test needs " + needs +
-       " (the in-repo sample datasets/real-sample is too small for it)");
+  WARN(missing_message(full) + "; skipped: this test needs " + needs);
   return {};
 }
 

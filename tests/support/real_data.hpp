@@ -23,7 +23,8 @@ std::string real_sample_root();  // source_dir() + "/datasets/real-sample"
 // else (not required) the in-repo sample, with a warning naming both; neither: a warning, empty.
 RealData real_data(const std::string& name);
 // For a test that needs more than the sample holds: the large data, else (not required) a warning
-// saying why (`needs`, e.g. "the protocol's 36 keyframes; the sample holds 2") and an empty path.
+// saying why (`needs`, e.g. "the protocol's 36 keyframes; the in-repo sample holds 2") and an
+// empty path.
 RealData full_real_data(const std::string& name, const std::string& needs);
 
 }  // namespace sgnlf::test
