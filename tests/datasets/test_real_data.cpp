@@ -75,12 +75,14 @@ TEST_CASE("KITTI odometry slice: 10 frames (sample: 2), LiDAR poses inv(Tr)·P·
   const auto P = io::read_kitti_poses(root + "/poses/00.txt");
   REQUIRE(P.size() == size_t(k.last) + 1);  // line i is frame i
   const size_t last = d.frames.size() - 1;
-  CHECK(((Tr.inverse() * P[size_t(k.last)] * Tr).matrix() - d.frames[last].T_world_lidar.matrix()).norm() < 1e-9);
+  const Pose T_last = Tr.inverse() * P[size_t(k.last)] * Tr;
+  CHECK((T_last.matrix() - d.frames[last].T_world_lidar.matrix()).norm() < 1e-9);
   // Step length per frame. The ground truth of rows 40-49 steps 1.00-1.06 m; 0.86 m is the
   // step of rows 0-14 (an alignment of scans 40 and 41 also finds ~1.0 m, see the README).
   double mean = 0;
   for (size_t i = 1; i < d.frames.size(); ++i) {
-    const double step = (d.frames[i].T_world_lidar.translation() - d.frames[i - 1].T_world_lidar.translation()).norm();
+    const double step =
+        (d.frames[i].T_world_lidar.translation() - d.frames[i - 1].T_world_lidar.translation()).norm();
     CHECK(step > 0.95);
     CHECK(step < 1.10);
     mean += step / double(last);
@@ -148,7 +150,8 @@ TEST_CASE("nuScenes scene-0916: keyframes in time order, poses as the independen
   }
   // 2 Hz: the first step is 0.50 s and 1.6-3.1 m (README of the large data).
   CHECK(d.frames[1].timestamp_s == Approx(0.5).margin(0.01));
-  const double step = (d.frames[1].T_world_lidar.translation() - d.frames[0].T_world_lidar.translation()).norm();
+  const double step =
+      (d.frames[1].T_world_lidar.translation() - d.frames[0].T_world_lidar.translation()).norm();
   CHECK(step > 1.6);
   CHECK(step < 3.1);
 }

@@ -90,17 +90,20 @@ TEST_CASE("the in-repo real sample: every scan listed in its README, with its sh
   }
   const auto readme = lines(test::real_sample_root() + "/README.md");
   auto mentions = [&](const std::string& s) {
-    return std::any_of(readme.begin(), readme.end(), [&](const std::string& l) { return l.find(s) != std::string::npos; });
+    return std::any_of(readme.begin(), readme.end(),
+                       [&](const std::string& l) { return l.find(s) != std::string::npos; });
   };
   CHECK(mentions("CC BY-NC-SA 3.0"));
   CHECK(mentions("CC BY-NC-SA 4.0"));
-  CHECK(fs::file_size(test::real_sample_root() + "/nuscenes-mini-scene-0916/nuScenes_TERMS_OF_USE.txt") > 20000);
+  const std::string terms = "/nuscenes-mini-scene-0916/nuScenes_TERMS_OF_USE.txt";
+  CHECK(fs::file_size(test::real_sample_root() + terms) > 20000);
 }
 
-TEST_CASE("the in-repo real sample's scans are byte-identical to the large real data", "[real][real_sample]") {
+TEST_CASE("the in-repo real sample's scans are byte-identical to the large real data",
+          "[real][real_sample]") {
   for (const auto& [path, sha] : listed_scans()) {
     const std::string top = path.substr(0, path.find('/'));
-    const test::RealData r = test::full_real_data(top, "the larger data to compare the in-repo sample with");
+    const test::RealData r = test::full_real_data(top, "the larger data to compare the sample with");
     if (!r) return;
     INFO(path);
     CHECK(test::sha256_file(r.path + path.substr(top.size())) == sha);
@@ -110,11 +113,13 @@ TEST_CASE("the in-repo real sample's scans are byte-identical to the large real 
 TEST_CASE("the in-repo real sample's text files and nuScenes records are the large data's",
           "[real][real_sample]") {
   const std::string s = test::real_sample_root();
-  const auto k = test::full_real_data("kitti-odometry-00-slice", "the larger data to compare the in-repo sample with");
-  const auto n = test::full_real_data("nuscenes-mini-scene-0916", "the larger data to compare the in-repo sample with");
+  const std::string why = "the larger data to compare the in-repo sample with";
+  const auto k = test::full_real_data("kitti-odometry-00-slice", why);
+  const auto n = test::full_real_data("nuscenes-mini-scene-0916", why);
   if (!k || !n) return;
   // KITTI: calib.txt as is; times and poses (line i = frame i) up to the last frame, 47.
-  CHECK(lines(s + "/kitti-odometry-00-slice/sequences/00/calib.txt") == lines(k.path + "/sequences/00/calib.txt"));
+  CHECK(lines(s + "/kitti-odometry-00-slice/sequences/00/calib.txt") ==
+        lines(k.path + "/sequences/00/calib.txt"));
   check_prefix(s + "/kitti-odometry-00-slice/sequences/00/times.txt", k.path + "/sequences/00/times.txt", 48);
   check_prefix(s + "/kitti-odometry-00-slice/poses/00.txt", k.path + "/poses/00.txt", 48);
   // nuScenes: every record of every table is the large table's record of the same token.
@@ -126,7 +131,8 @@ TEST_CASE("the in-repo real sample's text files and nuScenes records are the lar
     REQUIRE(a.is_array());
     CHECK_FALSE(a.empty());
     for (const Json& rec : a) {
-      const auto it = std::find_if(b.begin(), b.end(), [&](const Json& x) { return x["token"] == rec["token"]; });
+      const auto it =
+          std::find_if(b.begin(), b.end(), [&](const Json& x) { return x["token"] == rec["token"]; });
       REQUIRE(it != b.end());
       CHECK(*it == rec);
     }
@@ -135,7 +141,8 @@ TEST_CASE("the in-repo real sample's text files and nuScenes records are the lar
   const Json sd = load_json_file(ns + "/v1.0-mini/sample_data.json");
   std::vector<std::pair<int64_t, std::string>> keys;
   for (const Json& rec : load_json_file(n.path + "/v1.0-mini/sample_data.json"))
-    if (rec["is_key_frame"] == true) keys.emplace_back(rec["timestamp"].get<int64_t>(), rec["filename"].get<std::string>());
+    if (rec["is_key_frame"] == true)
+      keys.emplace_back(rec["timestamp"].get<int64_t>(), rec["filename"].get<std::string>());
   std::sort(keys.begin(), keys.end());
   REQUIRE(sd.size() == 2);
   std::set<std::string> want = {keys.at(0).second, keys.at(1).second}, have;
