@@ -3,7 +3,7 @@
 // exactly the protocol window. The "real" tree is a simulated one with its sgnlf metadata
 // removed, which is KITTI-360's raw layout. The same window read as a real sequence of a
 // synthetic scale (<real_root>/<real_dir>), and nuscenes-low's real scene-0916 from
-// ../shared/data/real when present.
+// ../shared/data/real when present, else from the in-repo sample (its first 2 keyframes).
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -11,6 +11,7 @@
 #include "datasets/loader.hpp"
 #include "harness/prepare.hpp"
 #include "harness/tables.hpp"
+#include "support/real_data.hpp"
 #include "support/test_device.hpp"
 
 using namespace sgnlf;
@@ -105,20 +106,26 @@ TEST_CASE("prepare the nuscenes-low table's real scene from the real-data root",
   const auto seqs = harness::table_sequences(harness::table_def("nuscenes-low"), "quick", false);
   const harness::SequenceDef& s = seqs.back();
   REQUIRE(s.is_real_dir());
-  const std::string real_root = test::shared_dir() + "/data/real";
-  if (!test::have_real_data(real_root + "/" + s.real_dir)) return;
+  const test::RealData r = test::real_data(s.real_dir);
+  if (!r) return;
+  const std::string real_root = r.full ? test::real_data_root() : test::real_sample_root();
   harness::BenchOptions o;
   o.real_root = real_root;
   const std::string dir = test::temp_dir("harness-prepare-nuscenes-real");
   const auto p = harness::prepare_sequence(s, o, dir + "/seq");
-  // The protocol window: the first 36 of scene-0916's 2 Hz keyframes, test views 4, 12, 20.
-  CHECK(p.dataset["frames"] == 36);
+  // The protocol window: the first 36 of scene-0916's 2 Hz keyframes, test views 4, 12, 20
+  // (the sample: its 2 keyframes, no test view).
+  const int n = r.full ? 36 : 2;
+  CHECK(p.dataset["frames"] == n);
+  Json ids = Json::array();
+  for (int i = 0; i < n; ++i) ids.push_back(i);  // keyframe positions in the scene
+  CHECK(p.dataset["frame_ids"] == ids);
   CHECK(p.dataset["frequency"] == "low");
-  CHECK(p.dataset["test"] == Json::array({4, 12, 20}));
+  CHECK(p.dataset["test"] == (r.full ? Json::array({4, 12, 20}) : Json::array()));
   CHECK(p.dataset["seed"].is_null());
   CHECK(p.dataset["generator"]["real_source"] == "nuscenes");
   CHECK(p.dataset["generator"]["real_path"] == real_root + "/" + s.real_dir);
   const Dataset d = load_dataset(p.dataset_dir);
-  REQUIRE(d.frames.size() == 36);
+  REQUIRE(d.frames.size() == size_t(n));
   CHECK_FALSE(d.frames[0].points.empty());
 }

@@ -27,20 +27,6 @@ std::string shared_dir() {
   return env && *env ? std::string(env) : std::string(SGNLF_SHARED_DIR);
 }
 
-bool have_real_data(const std::string& path) {
-  if (std::filesystem::exists(path)) return true;
-  const char* ci = std::getenv("CI");
-  const char* req = std::getenv("SGNLF_REQUIRE_REAL_DATA");
-  const std::string msg = "real data not found: " + path +
-                          " (set SGNLF_SHARED_DIR to the folder holding data/real, or "
-                          "SGNLF_REQUIRE_REAL_DATA=0 to skip the real-data tests)";
-  // Required under CI and under scripts/test.sh (which sets SGNLF_REQUIRE_REAL_DATA=1).
-  const bool required = (ci && std::string(ci) == "true") || (req && std::string(req) == "1");
-  if (required) FAIL(msg);
-  WARN(msg + "; skipped");
-  return false;
-}
-
 std::string temp_dir(const std::string& name) {
   namespace fs = std::filesystem;
   // Under this build tree (SGNLF_TEST_TMP_DIR): two checkouts, or two build folders of one

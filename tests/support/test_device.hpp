@@ -21,11 +21,7 @@ cl::Runtime& runtime();
 
 std::string source_dir();
 std::string shared_dir();  // $SGNLF_SHARED_DIR, else ../shared beside the checkout
-// True when the real-data folder or file `path` exists. When it does not, the calling test is
-// to return early: a warning names the path, except under CI=true or SGNLF_REQUIRE_REAL_DATA=1
-// (scripts/test.sh sets it), where the test fails, so that the real-data tests cannot silently
-// stop running where the data belongs.
-bool have_real_data(const std::string& path);
+// The real-data tests' paths (the large data, else the in-repo sample): support/real_data.hpp.
 std::string temp_dir(const std::string& name);  // fresh empty folder under the build tree
 
 // max_i |a_i − b_i| / max(|a_i| + |b_i|, floor): symmetric relative error.
