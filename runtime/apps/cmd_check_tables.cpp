@@ -2,14 +2,18 @@
 // <table>/<scale>/{results.json,table.md}) against this build's table definitions, methods and
 // config hashes, and each table.md against the rendering of its results.json
 // (runtime/harness/table_check.hpp). Exit 4 when a table differs. `--render` first rewrites
-// every table.md from its results.json (a change of the markdown renderer).
+// every table.md from its results.json (a change of the markdown renderer). `--readme FILE`
+// also checks FILE's generated tables section (runtime/harness/summary_table.hpp) against the
+// committed quick tables; with `--render` it rewrites that section.
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <memory>
 
 #include "apps/command.hpp"
 #include "harness/markdown.hpp"
+#include "harness/summary_table.hpp"
 #include "harness/table_check.hpp"
 #include "harness/wiring.hpp"
 
@@ -25,6 +29,10 @@ const Registrar reg("check-tables",
   auto render = std::make_shared<bool>(false);
   sub.add_option("ROOT", *root, "Folder of <table>/<scale>/ tables")->capture_default_str();
   sub.add_flag("--render", *render, "Rewrite every table.md from its results.json first");
+  auto readme = std::make_shared<std::string>();
+  sub.add_option("--readme", *readme,
+                 "Also check this file's generated tables section (the quick tables' means) "
+                 "against ROOT; with --render, rewrite it");
   return std::function<int()>([=] {
     if (*render && fs::is_directory(*root))
       for (const auto& e : fs::recursive_directory_iterator(*root))
@@ -34,7 +42,21 @@ const Registrar reg("check-tables",
           std::cout << "rendered " << md.string() << "\n";
         }
     size_t n = 0;
-    const auto problems = harness::check_committed_tables(*root, harness::default_hooks(), &n);
+    auto problems = harness::check_committed_tables(*root, harness::default_hooks(), &n);
+    if (!readme->empty()) {
+      std::ifstream in(*readme, std::ios::binary);
+      if (!in) throw IoError(*readme + ": cannot open for reading");
+      const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      const std::string want = harness::replace_marked_section(
+          text, harness::summary_tables(*root, "quick", "results/tables"), *readme);
+      if (*render && want != text) {
+        write_text_file(*readme, want);
+        std::cout << "rendered the tables of " << *readme << "\n";
+      } else if (want != text) {
+        problems.push_back(*readme + ": its tables differ from the committed quick tables "
+                           "(sgnlf check-tables --render --readme " + *readme + ")");
+      }
+    }
     for (const auto& p : problems) std::cout << "DIFFERS " << p << "\n";
     std::cout << n << " table(s) in " << *root << ", " << problems.size() << " problem(s)\n";
     if (n == 0) {

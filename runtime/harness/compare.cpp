@@ -271,6 +271,10 @@ CompareReport compare_results(const Json& fresh, const Json& base, const Compare
       continue;
     }
     const std::string bs = str(brow, "status"), ns = str(*nrow, "status");
+    if (opt.subset && ns == "skipped") {  // left out by --rows: nothing of it ran
+      c.add("note", false, m, "row not run (subset comparison)");
+      continue;
+    }
     if (bs == "ok" && ns != "ok") {
       c.add("regression", true, m, "row was ok in the baseline, now " + ns +
                                        (at(*nrow, "error").is_string() ? ": " + (*nrow)["error"].get<std::string>() : ""));
