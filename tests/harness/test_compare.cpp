@@ -260,3 +260,18 @@ TEST_CASE("a subset run compares only the rows and sequences it ran", "[harness]
   none["rows"][1]["sequences"][0]["sequence"] = "no-such-sequence";
   CHECK(compare_results(none, base, sub).regression());
 }
+
+TEST_CASE("the Chamfer halves are lower-better: a smaller one is an improvement, not a regression",
+          "[harness][compare]") {
+  Json base = test::fake_results();
+  auto& seq = test::row(base, "sg-nlf")["sequences"][0]["metrics"];
+  seq["cd_pred_to_gt"] = 0.10;
+  seq["cd_gt_to_pred"] = 0.10;
+  Json better = base, worse = base;
+  test::row(better, "sg-nlf")["sequences"][0]["metrics"]["cd_pred_to_gt"] = 0.05;
+  test::row(worse, "sg-nlf")["sequences"][0]["metrics"]["cd_gt_to_pred"] = 0.20;
+  harness::CompareOptions tight;
+  tight.mode = "tight";
+  CHECK_FALSE(compare_results(better, base, tight).regression());
+  CHECK(compare_results(worse, base, tight).regression());
+}
