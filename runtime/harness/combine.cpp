@@ -119,7 +119,10 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
   std::map<std::string, Json> failures;  // method -> [{source, error}]
   Json superseded = Json::array();
   for (size_t i = 0; i < inputs.size(); ++i) {
-    const auto& [path, r] = inputs[i];
+    // Named references, not a structured binding: the lambda below captures them (C++17 does
+    // not let a lambda capture a structured binding; clang refuses it).
+    const std::string& path = inputs[i].first;
+    const Json& r = inputs[i].second;
     const Json& earlier = at_path(r, {"combined_from", "files"});
     std::vector<size_t> local;
     if (earlier.is_array())

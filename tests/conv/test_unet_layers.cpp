@@ -191,7 +191,8 @@ TEST_CASE("Sigmoid + BCE matches the reference and finite differences", "[conv][
   auto& rt = test::runtime();
   conv::BceWithLogits bce(rt);
   // One chunk, a padded layout, and several chunks (600 pixels, 256 per chunk).
-  for (const auto& [count, cs] : {std::pair{37, 1}, std::pair{41, 16}, std::pair{600, 3}}) {
+  for (const auto& shape : {std::pair{37, 1}, std::pair{41, 16}, std::pair{600, 3}}) {
+    const int count = shape.first, cs = shape.second;  // a lambda below captures them
     auto logits = uniform(size_t(count) * cs, -4.0f, 4.0f, 13);
     auto target = uniform(size_t(count), 0.0f, 1.0f, 14);
     for (size_t i = 0; i < target.size(); i += 2) target[i] = target[i] < 0.5f ? 0.0f : 1.0f;
