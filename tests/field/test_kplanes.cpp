@@ -8,6 +8,7 @@
 #include "core/rng.hpp"
 #include "field/frame_time.hpp"
 #include "field/kplanes.hpp"
+#include "fd_4d.hpp"
 #include "reference_4d.hpp"
 #include "support/test_device.hpp"
 
@@ -30,11 +31,6 @@ std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
   std::vector<float> v(n);
   for (auto& x : v) x = r.uniform(lo, hi);
   return v;
-}
-double dot(const std::vector<float>& a, const std::vector<float>& b) {
-  double s = 0;
-  for (size_t i = 0; i < a.size(); ++i) s += double(a[i]) * b[i];
-  return s;
 }
 const char* name(PlaneGroups g) {
   return g == PlaneGroups::Both ? "both" : g == PlaneGroups::Static ? "static" : "dynamic";
@@ -183,45 +179,7 @@ TEST_CASE("kplanes gradients agree with finite differences of the device forward
     }
     if (ok) x.insert(x.end(), p, p + 3);
   }
-  auto b_params = cl::Buffer::from(rt, params), b_x = cl::Buffer::from(rt, x);
-  auto b_t = cl::Buffer::from(rt, t), b_r = cl::Buffer::from(rt, r);
-  cl::Buffer b_enc(rt, size_t(n) * w * 4), b_grad(rt, params.size() * 4), b_dx(rt, size_t(n) * 12);
-  kp.backward(b_params, 0, b_x, b_t, n, b_r, b_grad, 0, &b_dx);
-  const auto grad = b_grad.read_vec<float>(params.size());
-  const auto dx = b_dx.read_vec<float>(size_t(n) * 3);
-  auto loss = [&](const std::vector<float>& p, const std::vector<float>& xs) {
-    b_params.write_vec(p);
-    b_x.write_vec(xs);
-    kp.forward(b_params, 0, b_x, b_t, n, b_enc);
-    return dot(b_enc.read_vec<float>(size_t(n) * w), r);
-  };
-  SECTION("parameters") {
-    // L is linear in each single parameter (one plane of a product): central differences are
-    // exact up to rounding. Static and time planes both sampled.
-    std::vector<float> fd, an;
-    for (size_t k = 0; k < grad.size() && fd.size() < 60; k += 7) {
-      if (grad[k] == 0.0f) continue;
-      auto p = params;
-      p[k] += 0.25f;
-      const double lp = loss(p, x);
-      p[k] -= 0.5f;
-      fd.push_back(float((lp - loss(p, x)) / 0.5));
-      an.push_back(grad[k]);
-    }
-    REQUIRE(fd.size() >= 30);
-    CHECK(test::max_sym_rel_err(fd, an, 1e-3) < 1e-3);
-  }
-  SECTION("positions") {
-    std::vector<float> fd, an;
-    for (size_t k = 0; k < x.size(); ++k) {
-      auto xp = x, xm = x;
-      xp[k] += h;
-      xm[k] -= h;
-      fd.push_back(float((loss(params, xp) - loss(params, xm)) / (2.0 * h)));
-      an.push_back(dx[k]);
-    }
-    CHECK(test::max_sym_rel_err(fd, an, 1e-1) < 1e-2);
-  }
+  test::check_4d_gradients(rt, kp, params, x, t, r, w, h, 7);
 }
 
 TEST_CASE("kplanes launcher refuses bad shapes; frame times", "[field][kplanes]") {
