@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's main command (about 20 minutes on 2 CPU cores after the build): installs the
+# The README's main command (about 36 minutes on 2 CPU cores after the build): installs the
 # dependencies, builds, checks the OpenCL device, trains SG-NLF pose-free from the protocol's
 # noisy start on one low-frequency KITTI-360 twin (kitti360-low-a, 36 frames at 2 Hz) at the
 # quick scale, renders its test views, prints its table beside the paper's and checks it against
