@@ -14,35 +14,6 @@ namespace {
 constexpr size_t kChunk = 256;  // = CHUNK in kernels/field/hashgrid.cl
 }  // namespace
 
-void HashGridConfig::validate() const {
-  const std::string w = "hash_grid";
-  check_range(w, "levels", levels, 1, 32);
-  if (features != 1 && features != 2 && features != 4 && features != 8)
-    throw ConfigError(w + ": 'features' = " + std::to_string(features) + " must be 1, 2, 4 or 8");
-  check_range(w, "log2_table_size", log2_table_size, 4, 24);
-  check_range(w, "base_resolution", base_resolution, 1.0f, 8192.0f);
-  check_range(w, "per_level_scale", per_level_scale, 1.0f, 4.0f);
-  if (schedule != "auto" && schedule != "chunked" && schedule != "per_point")
-    throw ConfigError(w + ": 'schedule' = '" + schedule + "' is not auto, chunked or per_point");
-  const double finest = base_resolution * std::pow(double(per_level_scale), levels - 1);
-  if (finest > 1.0e6)
-    throw ConfigError(w + ": finest resolution " + std::to_string(finest) + " exceeds 1e6");
-}
-
-HashGridConfig HashGridConfig::from_json(ConfigReader& r) {
-  HashGridConfig c;
-  r.get("levels", c.levels)
-      .get("features", c.features)
-      .get("log2_table_size", c.log2_table_size)
-      .get("base_resolution", c.base_resolution)
-      .get("per_level_scale", c.per_level_scale)
-      .get("deterministic", c.deterministic)
-      .get("half_table", c.half_table)
-      .get("schedule", c.schedule);
-  c.validate();
-  return c;
-}
-
 std::vector<HashGridLevel> hash_grid_levels(const HashGridConfig& cfg) {
   cfg.validate();
   const uint64_t table = uint64_t(1) << cfg.log2_table_size;

@@ -15,31 +15,9 @@
 
 #include "cl/runtime.hpp"
 #include "core/config.hpp"
+#include "field/hash_grid_config.hpp"
 
 namespace sgnlf::field {
-
-struct HashGridConfig {
-  int levels = 16;
-  int features = 2;          // per level: 1, 2, 4 or 8
-  int log2_table_size = 19;  // entries per level (upper bound)
-  float base_resolution = 16.0f;
-  float per_level_scale = 1.6625f;
-  // true: level-partitioned, bit-reproducible backward (one work-item per level: the fast
-  // path on CPUs, too little parallelism for GPUs); false: atomic compare-and-swap adds per
-  // (point, level) (summation order varies; the GPU path, and the cost comparison on CPU).
-  bool deterministic = true;
-  // true: forward and d_x read an fp16 copy of the table (4-byte gathers at F = 2), refreshed
-  // from the fp32 parameters on the first forward after params_changed(). Gradients and Adam
-  // stay fp32 (fp32 master copy).
-  bool half_table = false;
-  // Forward/d_x scheduling: "per_point" = one work-item per (point, level) (GPU);
-  // "chunked" = one work-item per (256 points, level) with a serial loop (faster on PoCL CPU);
-  // "auto" = chunked on CPU devices, per_point otherwise. Results are identical.
-  std::string schedule = "auto";
-
-  void validate() const;  // throws ConfigError
-  static HashGridConfig from_json(ConfigReader& r);  // reads known keys; caller calls finish()
-};
 
 struct HashGridLevel {
   float scale;    // grid scale (base · growth^l − 1)

@@ -8,42 +8,6 @@
 
 namespace sgnlf::field {
 
-void Lidar4DEncoderConfig::validate(const std::string& where) const {
-  planes.validate(where + ".planes");
-  static_hash.validate();
-  time_hash.validate(where + ".time_hash");
-  flow.validate(where + ".flow");
-}
-
-Lidar4DEncoderConfig Lidar4DEncoderConfig::from_json(const Json& j, const std::string& where) {
-  Lidar4DEncoderConfig c;
-  ConfigReader r(j, where);
-  if (r.has("planes")) {
-    ConfigReader s = r.child("planes");
-    config::read_fields_here(s, c.planes);
-    s.finish();
-  }
-  if (r.has("static_hash")) {
-    ConfigReader s = r.child("static_hash");
-    c.static_hash = HashGridConfig::from_json(s);
-    s.finish();
-  }
-  if (r.has("time_hash")) {
-    ConfigReader s = r.child("time_hash");
-    config::read_fields_here(s, c.time_hash);
-    s.finish();
-  }
-  if (r.has("flow")) {
-    ConfigReader s = r.child("flow");
-    config::read_fields_here(s, c.flow);
-    s.finish();
-  }
-  r.get("blend", c.blend);
-  r.finish();
-  c.validate(where);
-  return c;
-}
-
 Lidar4DEncoder::Lidar4DEncoder(cl::Runtime& rt, const Lidar4DEncoderConfig& cfg)
     : rt_(rt),
       cfg_(cfg),

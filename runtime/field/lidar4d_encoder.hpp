@@ -24,22 +24,11 @@
 #include "field/encoder.hpp"
 #include "field/hash_grid.hpp"
 #include "field/kplanes.hpp"
+#include "field/lidar4d_encoder_config.hpp"
 #include "field/scene_flow.hpp"
 #include "field/time_hash_grid.hpp"
 
 namespace sgnlf::field {
-
-struct Lidar4DEncoderConfig {
-  KPlanesConfig planes;
-  HashGridConfig static_hash = lidar4d_static_hash_config();
-  TimeHashGridConfig time_hash;
-  SceneFlowConfig flow;
-  bool blend = true;  // false: the dynamic block is f(x, t) alone and the flow is unused
-
-  void validate(const std::string& where = "lidar4d_encoder") const;  // throws ConfigError
-  // Keys "planes", "static_hash", "time_hash", "flow" (objects), "blend"; unknown keys refused.
-  static Lidar4DEncoderConfig from_json(const Json& j, const std::string& where);
-};
 
 // Where each module's parameters start within the encoder's slice. LiDAR4D's learning rates
 // (model/lidar4d.py get_params): [planes, flow) are encodings (lr, 1e-2), [flow, end) the flow

@@ -9,51 +9,16 @@
 
 namespace sgnlf::field {
 
-void SceneFlowConfig::validate(const std::string& where) const {
-  config::check_fields(*this, where);
-  if (features != 1 && features != 2 && features != 4 && features != 8)
-    throw ConfigError(where + ": 'features' = " + std::to_string(features) +
-                      " must be 1, 2, 4 or 8");
-  if (features % time_nodes != 0)
-    throw ConfigError(where + ": 'time_nodes' = " + std::to_string(time_nodes) +
-                      " must divide 'features' = " + std::to_string(features));
-  if (max_resolution < base_resolution)
-    throw ConfigError(where + ": 'max_resolution' = " + std::to_string(max_resolution) +
-                      " is below 'base_resolution' = " + std::to_string(base_resolution));
-}
-
-SceneFlowConfig SceneFlowConfig::from_json(const Json& j, const std::string& where) {
-  SceneFlowConfig c;
-  ConfigReader r(j, where);
-  config::read_fields_here(r, c);
-  r.finish();
-  c.validate(where);
-  return c;
-}
-
-HashGridConfig SceneFlowConfig::grid_config() const {
-  validate();
-  HashGridConfig g;
-  g.levels = levels;
-  g.features = features;
-  g.log2_table_size = log2_table_size;
-  g.base_resolution = base_resolution;
-  g.per_level_scale =
-      levels > 1 ? float(std::exp2(std::log2(double(max_resolution) / base_resolution) /
-                                   double(levels - 1)))
-                 : 1.0f;
-  return g;
-}
-
-MlpSpec SceneFlowConfig::mlp_spec() const {
-  MlpSpec s = make_mlp_spec(levels * features / time_nodes, hidden_width, hidden_layers, 6,
+MlpSpec scene_flow_mlp_spec(const SceneFlowConfig& cfg) {
+  MlpSpec s = make_mlp_spec(cfg.levels * cfg.features / cfg.time_nodes, cfg.hidden_width,
+                            cfg.hidden_layers, 6,
                             Activation::Relu);
   s.bias = false;
   return s;
 }
 
 SceneFlow::SceneFlow(cl::Runtime& rt, const SceneFlowConfig& cfg)
-    : rt_(rt), cfg_(cfg), grid_(rt, cfg.grid_config()), mlp_(rt, cfg.mlp_spec()) {
+    : rt_(rt), cfg_(cfg), grid_(rt, cfg.grid_config()), mlp_(rt, scene_flow_mlp_spec(cfg)) {
   const std::string opt = "-DLEVELS=" + std::to_string(cfg_.levels) +
                           " -DFEATURES=" + std::to_string(cfg_.features) +
                           " -DBASIS=" + std::to_string(cfg_.time_nodes);

@@ -11,26 +11,6 @@
 
 namespace sgnlf::field {
 
-void TimeHashGridConfig::validate(const std::string& where) const {
-  config::check_fields(*this, where);
-  if (features != 1 && features != 2 && features != 4 && features != 8)
-    throw ConfigError(where + ": 'features' = " + std::to_string(features) +
-                      " must be 1, 2, 4 or 8");
-  const double finest = base_resolution * std::pow(double(per_level_scale), levels - 1);
-  if (finest > 1.0e6)
-    throw ConfigError(where + ": finest resolution " + std::to_string(finest) +
-                      " ('base_resolution' · 'per_level_scale'^('levels' − 1)) exceeds 1e6");
-}
-
-TimeHashGridConfig TimeHashGridConfig::from_json(const Json& j, const std::string& where) {
-  TimeHashGridConfig c;
-  ConfigReader r(j, where);
-  config::read_fields_here(r, c);
-  r.finish();
-  c.validate(where);
-  return c;
-}
-
 std::vector<TimeHashPlane> time_hash_grid_planes(const TimeHashGridConfig& cfg) {
   cfg.validate();
   const int log2_table[3] = {cfg.log2_table_xy, cfg.log2_table_xz, cfg.log2_table_yz};
@@ -58,16 +38,6 @@ std::vector<TimeHashPlane> time_hash_grid_planes(const TimeHashGridConfig& cfg) 
       throw ConfigError("time_hash_grid: parameter count exceeds 2^31 floats");
   }
   return out;
-}
-
-HashGridConfig lidar4d_static_hash_config() {
-  HashGridConfig c;
-  c.levels = 8;
-  c.features = 4;
-  c.log2_table_size = 19;
-  c.base_resolution = 512.0f;
-  c.per_level_scale = float(std::exp2(std::log2(32768.0 / 512.0) / 7.0));
-  return c;
 }
 
 TimeHashGrid::TimeHashGrid(cl::Runtime& rt, const TimeHashGridConfig& cfg)

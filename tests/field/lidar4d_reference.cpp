@@ -57,7 +57,7 @@ std::vector<float> scene_flow_fwd(const field::SceneFlowConfig& cfg,
   const std::vector<float> ones(size_t(gc.levels), 1.0f);
   const auto g = hashgrid_fwd(gc, slice_of(slice, 0, grid_n), x, ones);
   const auto in = lagrange_fwd(cfg.levels, cfg.features, cfg.time_nodes, g, t);
-  return mlp_fwd(cfg.mlp_spec(), slice_of(slice, grid_n, slice.size() - grid_n), in,
+  return mlp_fwd(field::scene_flow_mlp_spec(cfg), slice_of(slice, grid_n, slice.size() - grid_n), in,
                  int(t.size()));
 }
 
@@ -73,7 +73,7 @@ void scene_flow_bwd(const field::SceneFlowConfig& cfg, const std::vector<float>&
   const auto g = hashgrid_fwd(gc, table, x, ones);
   const auto in = lagrange_fwd(cfg.levels, cfg.features, cfg.time_nodes, g, t);
   std::vector<float> d_in;
-  const auto spec = cfg.mlp_spec();
+  const auto spec = field::scene_flow_mlp_spec(cfg);
   auto g_mlp = mlp_bwd(spec, slice_of(slice, grid_n, slice.size() - grid_n), in, int(t.size()),
                        d_flow, d_in);
   // Bias-free: the bias rows (after each layer's n_in rows) receive no gradient.

@@ -38,8 +38,8 @@ std::vector<float> flow_params(const field::SceneFlow& sf, uint64_t seed) {
 TEST_CASE("scene flow config: LiDAR4D's sizes and refusals naming the key", "[field][flow]") {
   field::SceneFlowConfig c;
   CHECK(c.grid_config().per_level_scale == Approx(std::pow(256.0, 1.0 / 7.0)).epsilon(1e-6));
-  CHECK(c.mlp_spec().n_in == 16);
-  CHECK_FALSE(c.mlp_spec().bias);
+  CHECK(field::scene_flow_mlp_spec(c).n_in == 16);
+  CHECK_FALSE(field::scene_flow_mlp_spec(c).bias);
   auto refused = [](const char* text, const char* key) {
     try {
       field::SceneFlowConfig::from_json(Json::parse(text), "flow");

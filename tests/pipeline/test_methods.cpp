@@ -25,6 +25,7 @@ class RecordingParts : public StepParts {
   StepPolicy& pose_free() override { return record("pose_free"); }
   StepPolicy& consistency(StepPolicy&) override { return record("consistency"); }
   StepPolicy& spectral(StepPolicy&) override { return record("spectral"); }
+  StepPolicy& scene_flow(StepPolicy&) override { return record("scene_flow"); }
 
  private:
   StepPolicy& record(const std::string& what) {
@@ -64,6 +65,7 @@ TEST_CASE("every method is described once and composes its step from the parts",
       CHECK(c.spectral.has_value() == m.sections.spectral);
       CHECK(c.pose_graph.has_value() == m.sections.pose_graph);
       CHECK(c.consistency.has_value() == m.sections.consistency);
+      CHECK(c.lidar4d.has_value() == m.sections.lidar4d);
     }
   }
   CHECK(error_of([] { find_method("lidar5d"); }).find("known: lidar-nerf") != std::string::npos);
@@ -74,6 +76,8 @@ TEST_CASE("every method is described once and composes its step from the parts",
   };
   using V = std::vector<std::string>;
   CHECK(composed("lidar-nerf") == V{"ground_truth_poses"});
+  // The flow supervision wraps the ground-truth-pose step (its gradient joins that update).
+  CHECK(composed("lidar4d") == V{"ground_truth_poses", "scene_flow"});
   CHECK(composed("geonlf") == V{"pose_free"});
   CHECK(composed("geonlf-frozen") == V{"pose_free"});
   // Ψ's schedule wraps the consistency, which wraps the pose-free step (it sets λ(t) first).

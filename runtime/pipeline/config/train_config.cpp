@@ -27,6 +27,7 @@ void TrainConfig::validate() const {
   if (pose_free) pose_free->validate(w);
   if (spectral) spectral->validate(w);
   if (pose_graph) pose_graph->validate(w);
+  if (lidar4d) lidar4d->validate(w);
   if (consistency) {
     consistency->validate(w);
     const long rays = long(consistency->render_rows) * consistency->render_cols;
@@ -77,6 +78,7 @@ TrainConfig train_config_from_json(const Json& j, const std::string& where) {
   if (sections.spectral) c.spectral = SpectralFieldConfig::from_json(r);
   if (sections.pose_graph) c.pose_graph = PoseGraphConfig::from_json(r);
   if (sections.consistency) c.consistency = ConsistencyConfig::from_json(r);
+  if (sections.lidar4d) c.lidar4d = Lidar4DConfig::from_json(r);
   r.finish();
   c.validate();
   return c;
@@ -93,6 +95,7 @@ Json train_config_to_json(const TrainConfig& c) {
   if (c.spectral) c.spectral->to_json(j);
   if (c.pose_graph) c.pose_graph->to_json(j);
   if (c.consistency) c.consistency->to_json(j);
+  if (c.lidar4d) c.lidar4d->to_json(j);
   return j;
 }
 
@@ -105,7 +108,8 @@ Json train_config_schema() {
          {"schedule", config::describe_fields<ScheduleConfig>()},
          {"spectral", config::describe_fields<SpectralFieldConfig>()},
          {"pose_graph", pose_graph},
-         {"consistency", config::describe_fields<ConsistencyConfig>()}};
+         {"consistency", config::describe_fields<ConsistencyConfig>()},
+         {"lidar4d", config::describe_fields<Lidar4DConfig>()}};
   j.update(config::describe_fields<PoseFreeConfig>());  // poses, pose_optim, ..., geometric
   return j;
 }

@@ -10,6 +10,7 @@
 #include "core/config.hpp"
 #include "core/config_fields.hpp"
 #include "pipeline/config/consistency_config.hpp"
+#include "pipeline/config/lidar4d_config.hpp"
 #include "pipeline/config/pose_free_config.hpp"
 #include "pipeline/config/pose_graph_config.hpp"
 #include "pipeline/config/spectral_field_config.hpp"
@@ -105,11 +106,14 @@ struct TrainConfig {
   std::optional<SpectralFieldConfig> spectral;      // SG-NLF's hybrid field
   std::optional<PoseGraphConfig> pose_graph;        // SG-NLF's confidence-aware pose graph
   std::optional<ConsistencyConfig> consistency;     // SG-NLF's adversarial consistency
+  std::optional<Lidar4DConfig> lidar4d;             // LiDAR4D's 4D field and its losses
 
   bool is_pose_free() const { return pose_free.has_value(); }
   bool hybrid_encoder() const { return spectral && spectral->enabled; }
   bool confidence_graph() const { return pose_graph && pose_graph->enabled; }
   bool consistency_term() const { return consistency && consistency->enabled; }
+  bool four_d_encoder() const { return lidar4d.has_value(); }
+  bool flow_supervision() const { return lidar4d && lidar4d->flow.enabled; }
 
   void validate() const;
   // Hash of the resolved config (checkpoints refuse to resume under a different config); the

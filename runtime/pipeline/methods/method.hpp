@@ -23,6 +23,7 @@ struct ConfigSections {
   bool spectral = false;     // SG-NLF's hybrid field
   bool pose_graph = false;   // SG-NLF's confidence-aware pose graph
   bool consistency = false;  // SG-NLF's adversarial cross-frame consistency
+  bool lidar4d = false;      // LiDAR4D's 4D field (encoder, Chamfer term, flow supervision)
 };
 
 // The parts a step policy is built from. Each part reads its own config section: one whose
@@ -39,6 +40,9 @@ class StepParts {
   virtual StepPolicy& consistency(StepPolicy& inner) = 0;
   // SG-NLF's hybrid field: Ψ trains on the current surface around `inner` (needs pose_free()).
   virtual StepPolicy& spectral(StepPolicy& inner) = 0;
+  // LiDAR4D's scene-flow supervision around `inner` (needs the config's lidar4d section): the
+  // flow field's loss on the batch frame's ground-removed points joins inner's update.
+  virtual StepPolicy& scene_flow(StepPolicy& inner) = 0;
 };
 
 struct Method {

@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "field/hash_grid_encoder.hpp"
+#include "field/lidar4d_encoder.hpp"
 #include "spectral/hybrid_encoder.hpp"
 
 namespace sgnlf::pipeline {
@@ -50,7 +51,15 @@ field::MlpSpec head_spec(const FieldSizes& f) {
 
 // The position encoder of `c`; `hybrid` points at it when it is SG-NLF's hybrid one.
 std::unique_ptr<field::Encoder> make_encoder(cl::Runtime& rt, const TrainConfig& c,
-                                             spectral::HybridEncoder*& hybrid) {
+                                             spectral::HybridEncoder*& hybrid,
+                                             field::Lidar4DEncoder*& four_d) {
+  if (c.four_d_encoder()) {
+    if (c.hybrid_encoder())
+      throw ConfigError("config: the 'lidar4d' and 'spectral' encoders exclude each other");
+    auto e = std::make_unique<field::Lidar4DEncoder>(rt, c.lidar4d->encoder);
+    four_d = e.get();
+    return e;
+  }
   if (c.hybrid_encoder()) {
     auto e = std::make_unique<spectral::HybridEncoder>(rt, grid_config(c.field), c.spectral->psi,
                                                        c.spectral->loss);
@@ -67,7 +76,7 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
     : rt_(rt),
       cfg_(c),
       max_rays_(max_rays),
-      encoder_(make_encoder(rt, c, hybrid_)),
+      encoder_(make_encoder(rt, c, hybrid_, four_d_)),
       density_(rt, field::make_mlp_spec(encoder_->width(),
                                         c.field.density_hidden, 1, 1 + c.field.geo_features,
                                         field::Activation::Relu)),
@@ -121,6 +130,8 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
       band_ = std::make_unique<HeadBand>(rt, max_rays, int(M), rc.head_weight_threshold);
   }
   loss_buf_.fill_zero();
+  scene_scale_ = scene_scale;
+  set_reuse_coarse_encodings(reuse_coarse_);  // off for the 4D encoder (see model.hpp)
 }
 
 void LidarNerfModel::init_params(uint64_t seed) {
@@ -182,6 +193,7 @@ void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long ste
     const int per_patch = cfg_.render.patch_rows * cfg_.render.patch_cols;
     loss_.patch_gradient(out_, target_, R / per_patch, grad_out_, terms_, loss_buf_);
   }
+  if (cfg_.lidar4d && cfg_.lidar4d->chamfer_weight > 0.0) add_chamfer_term(b);
   backward_chain(R, M, grad_, ray_grads);
 }
 
@@ -260,6 +272,7 @@ void LidarNerfModel::backward_external(const std::vector<float>& grad_out, bool 
   }
   grad_out_.write_vec(grad_out);
   backward_chain(fwd_rays_, fwd_samples_, grad_ext_, ray_grads);
+  ext_full_ = true;
   fwd_rays_ = 0;  // the activations belong to this forward only
   ext_pending_ = true;
 }
@@ -272,6 +285,13 @@ void LidarNerfModel::update(float lr) {
     ext_pending_ = false;
   }
   adam_->begin_step();
+  if (four_d_) {  // LiDAR4D's groups: the encodings at lr, the flow field and the MLPs scaled
+    const size_t enc_end = off_grid_ + four_d_->offsets().flow;
+    adam_->update(params_, grad_, 0, enc_end, lr);
+    adam_->update(params_, grad_, enc_end, layout_.total() - enc_end,
+                  float(double(lr) * cfg_.lidar4d->network_lr_scale));
+    return;
+  }
   adam_->update(params_, grad_, 0, layout_.total(), lr);
 }
 

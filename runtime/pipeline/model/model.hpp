@@ -11,6 +11,7 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -33,6 +34,9 @@
 
 namespace sgnlf::spectral {
 class HybridEncoder;
+}
+namespace sgnlf::field {
+class Lidar4DEncoder;
 }
 
 namespace sgnlf::pipeline {
@@ -108,6 +112,23 @@ class LidarNerfModel {
   field::Encoder& encoder() { return *encoder_; }
   // The same encoder as SG-NLF's hybrid one when the config's hybrid_encoder() is on, else null.
   spectral::HybridEncoder* hybrid_encoder() { return hybrid_; }
+  // LiDAR4D's 4D encoder when the config's four_d_encoder() is on, else null.
+  field::Lidar4DEncoder* four_d_encoder() { return four_d_; }
+  // The time of the following passes for a 4D encoder: dataset frame `frame` of `frames`
+  // (field::frame_time); a no-op for the other encoders, which have no time.
+  void set_frame(int frame, int frames);
+  bool temporal() const { return four_d_ != nullptr; }
+  // LiDAR4D's flow supervision (model_four_d.cpp): the flow field at n points x (n × 3,
+  // normalised box) at the time set_frame() set; `loss` maps the flow (n × 6: forward, backward)
+  // to its loss and writes dL/dflow (n × 6). The flow field's parameter gradient is pending
+  // like an external one (backward_external) and joins the next update(). Returns the loss.
+  // Blocking (one read of the flow). Needs the 4D encoder.
+  using FlowLoss = std::function<double(const std::vector<float>& flow, std::vector<float>& d_flow)>;
+  double flow_supervision(const std::vector<float>& x, int n, const FlowLoss& loss);
+  // LiDAR4D's Chamfer term (config lidar4d.chamfer_weight) of the last forward_backward, 0 when
+  // off; read back with the step (the term needs the batch's depths on the host).
+  double last_chamfer() const { return last_chamfer_; }
+
   // Encodings f (N × encoder().width()) at n points (N × 3, normalised box): the per-point
   // features of the pose graph's matching (method.md §4.2). Blocking; chunks of max_rays.
   std::vector<float> encode_points(const std::vector<float>& x, int n);
@@ -122,8 +143,10 @@ class LidarNerfModel {
 
   // With importance sampling the coarse samples' hash encodings are reused in the merged pass
   // (default, exact). Off: the merged pass encodes every sample again (the reference path,
-  // for tests and benchmarks); the results are bit-identical.
-  void set_reuse_coarse_encodings(bool on) { reuse_coarse_ = on; }
+  // for tests and benchmarks); the results are bit-identical. Always off with the 4D encoder:
+  // its backward differentiates the state of its last forward (the flowed neighbours), so the
+  // rows the backward runs on are encoded last, in one pass.
+  void set_reuse_coarse_encodings(bool on) { reuse_coarse_ = on && four_d_ == nullptr; }
 
   // Early ray termination (render.stop_transmittance > 0 with importance sampling): merged
   // samples behind the point where the coarse pass's transmittance fell below the threshold
@@ -153,6 +176,8 @@ class LidarNerfModel {
   // The head on the band of samples with weight above render.head_weight_threshold (after the
   // density on the live rows): fills h0_, weights_ and head_out_ (full layout).
   void head_band(int n_rays, int M);
+  // LiDAR4D's Chamfer term on the batch's ray endpoints, added to grad_out_ (blocking).
+  void add_chamfer_term(const RayBatch& b);
   // The backward chain of the last forward (R rays, M samples per ray) from grad_out_ into
   // `grad` (every slice overwritten), and the ray gradients when `ray_grads`.
   void backward_chain(int R, int M, cl::Buffer& grad, bool ray_grads);
@@ -162,6 +187,15 @@ class LidarNerfModel {
   int max_rays_;
   field::ParamLayout layout_;
   spectral::HybridEncoder* hybrid_ = nullptr;  // encoder_ when it is the hybrid one (set first)
+  field::Lidar4DEncoder* four_d_ = nullptr;    // encoder_ when it is LiDAR4D's (set first)
+  float scene_scale_ = 1.0f;
+  double last_chamfer_ = 0.0;
+  // Flow supervision: points, times, flow and its gradient (capacity flow_cap_ points).
+  cl::Buffer fx_, ft_, fflow_, fdflow_;
+  int flow_cap_ = 0;
+  // grad_ext_ holds only the flow slice's gradient (zero elsewhere) unless backward_external
+  // wrote every slice since it was last cleared.
+  bool ext_full_ = false;
   std::unique_ptr<field::Encoder> encoder_;
   field::Mlp density_, head_;
   field::DirEncoding dirs_;

@@ -7,11 +7,25 @@
 
 namespace sgnlf::pipeline {
 
+int nearest_frame(const Scene& scene, const Pose& T_world_lidar) {
+  const Pose T = normalize_pose(T_world_lidar, scene.norm);
+  int best = 0;
+  double best_d = -1.0;
+  for (size_t k = 0; k < scene.T_world_lidar.size(); ++k) {
+    const double d = (scene.T_world_lidar[k].translation() - T.translation()).squaredNorm();
+    if (best_d < 0.0 || d < best_d) best = int(k), best_d = d;
+  }
+  return best;
+}
+
 RangeImage render_view(LidarNerfModel& model, const Scene& scene, const Pose& T_world_lidar,
-                       int chunk_rays) {
+                       int chunk_rays, int frame) {
   const int H = scene.sensor.height, W = scene.sensor.width;
   RangeImage img(H, W);
   const Pose T = normalize_pose(T_world_lidar, scene.norm);
+  if (model.temporal())
+    model.set_frame(frame >= 0 ? frame : nearest_frame(scene, T_world_lidar),
+                    int(scene.T_world_lidar.size()));
   const size_t n = img.size();
   std::vector<float> o, d;
   for (size_t begin = 0; begin < n; begin += size_t(chunk_rays)) {

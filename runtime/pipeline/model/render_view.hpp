@@ -8,8 +8,13 @@
 namespace sgnlf::pipeline {
 
 // `T_world_lidar` in metres (dataset frame); chunk = rays per device call (≤ model capacity).
+// A model with a time (LiDAR4D's 4D field) renders at dataset frame `frame`'s time; with
+// frame < 0, at the time of the frame whose pose is nearest to T_world_lidar (nearest_frame).
 RangeImage render_view(LidarNerfModel& model, const Scene& scene, const Pose& T_world_lidar,
-                       int chunk_rays);
+                       int chunk_rays, int frame = -1);
+
+// The dataset frame whose scene pose lies nearest to `T_world_lidar` (metres).
+int nearest_frame(const Scene& scene, const Pose& T_world_lidar);
 
 // The prediction as the metrics see it: range and intensity multiplied by (prob > 0.5).
 RangeImage masked_prediction(const RangeImage& pred);

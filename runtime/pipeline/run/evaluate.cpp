@@ -29,7 +29,7 @@ ViewSet evaluate_model(LidarNerfModel& model, const Dataset& d, const Scene& sce
   ViewSet vs;
   std::vector<Json> views;
   for (int f : d.split.test)
-    add_view(vs, views, d, f, render_view(model, scene, T_world_lidar[size_t(f)], chunk_rays));
+    add_view(vs, views, d, f, render_view(model, scene, T_world_lidar[size_t(f)], chunk_rays, f));
   vs.mean = metrics::mean_metrics(views);
   return vs;
 }

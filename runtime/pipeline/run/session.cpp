@@ -138,7 +138,8 @@ Json render_run(LoadedRun& run, const std::string& out_dir) {
   for (size_t k = 0; k < d.split.test.size(); ++k) {
     const Frame& fr = d.frames[size_t(d.split.test[k])];
     const RangeImage pred = render_view(*run.model, *run.scene, run.T_world_lidar[size_t(d.split.test[k])],
-                                        run.manifest.config.schedule.render_chunk_rays);
+                                        run.manifest.config.schedule.render_chunk_rays,
+                                        d.split.test[k]);
     const std::string stem = (fs::path(out_dir) / std::to_string(fr.id)).string();
     io::write_range_npy(stem + "_pred.npy", pred);
     io::write_range_npy(stem + "_gt.npy", fr.image);

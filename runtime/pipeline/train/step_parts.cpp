@@ -52,4 +52,11 @@ StepPolicy& RunStepParts::spectral(StepPolicy& inner) {
   return *spectral_step_;
 }
 
+StepPolicy& RunStepParts::scene_flow(StepPolicy& inner) {
+  if (!c_.flow_supervision()) return inner;
+  require(model_.temporal(), "the scene-flow supervision needs the 4D encoder (config 'lidar4d')");
+  flow_step_ = std::make_unique<FlowSupervisionStep>(inner, d_, scene_, c_, seed_);
+  return *flow_step_;
+}
+
 }  // namespace sgnlf::pipeline

@@ -9,6 +9,7 @@
 #include "cl/runtime.hpp"
 #include "datasets/dataset.hpp"
 #include "pipeline/train/consistency_schedule.hpp"
+#include "pipeline/train/flow_supervision.hpp"
 #include "pipeline/methods/method.hpp"
 #include "pipeline/train/pose_free_step.hpp"
 #include "pipeline/train/spectral_schedule.hpp"
@@ -24,11 +25,13 @@ class RunStepParts : public StepParts {
   StepPolicy& pose_free() override;
   StepPolicy& consistency(StepPolicy& inner) override;
   StepPolicy& spectral(StepPolicy& inner) override;
+  StepPolicy& scene_flow(StepPolicy& inner) override;
 
   // What was built (null when not).
   PoseFreeStep* pose_step() { return pose_step_.get(); }
   ConsistencySchedule* consistency_step() { return consistency_step_.get(); }
   SpectralSchedule* spectral_step() { return spectral_step_.get(); }
+  FlowSupervisionStep* flow_step() { return flow_step_.get(); }
 
  private:
   cl::Runtime& rt_;
@@ -43,6 +46,7 @@ class RunStepParts : public StepParts {
   std::unique_ptr<PoseFreeStep> pose_step_;
   std::unique_ptr<ConsistencySchedule> consistency_step_;
   std::unique_ptr<SpectralSchedule> spectral_step_;
+  std::unique_ptr<FlowSupervisionStep> flow_step_;
 };
 
 }  // namespace sgnlf::pipeline

@@ -36,12 +36,15 @@ class StepPolicy {
   virtual void load_state(const Checkpoint& ck, LidarNerfModel& model) { (void)ck, (void)model; }
 };
 
-// The ground-truth-pose methods (LiDAR-NeRF): batches from scene.T_world_lidar, one fused step.
+// The ground-truth-pose methods (LiDAR-NeRF, LiDAR4D): batches from scene.T_world_lidar, one
+// fused step; a 4D encoder takes the batch frame's time (LidarNerfModel::set_frame).
 class GroundTruthPoseStep : public StepPolicy {
  public:
   GroundTruthPoseStep(const Scene& scene, const TrainConfig& cfg) : scene_(scene), cfg_(cfg) {}
   void step(LidarNerfModel& model, uint64_t seed, long step, float lr) override {
-    model.train_step(draw_ray_batch(scene_, cfg_, seed, step), seed, step, lr);
+    const RayBatch b = draw_ray_batch(scene_, cfg_, seed, step);
+    model.set_frame(b.frame, int(scene_.T_world_lidar.size()));
+    model.train_step(b, seed, step, lr);
   }
 
  private:

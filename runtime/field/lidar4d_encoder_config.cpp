@@ -1,0 +1,77 @@
+// Lidar4DEncoderConfig (lidar4d_encoder_config.hpp): checks and JSON reading and writing.
+#include "field/lidar4d_encoder_config.hpp"
+
+#include <string>
+
+#include "core/error.hpp"
+
+namespace sgnlf::field {
+
+void Lidar4DEncoderConfig::validate(const std::string& where) const {
+  planes.validate(where + ".planes");
+  static_hash.validate();
+  time_hash.validate(where + ".time_hash");
+  flow.validate(where + ".flow");
+}
+
+namespace {
+// HashGridConfig's keys onto `g` (keys left out keep their values in `g`).
+void read_hash_keys(ConfigReader& r, HashGridConfig& g) {
+  r.get("levels", g.levels)
+      .get("features", g.features)
+      .get("log2_table_size", g.log2_table_size)
+      .get("base_resolution", g.base_resolution)
+      .get("per_level_scale", g.per_level_scale)
+      .get("deterministic", g.deterministic)
+      .get("half_table", g.half_table)
+      .get("schedule", g.schedule);
+}
+}  // namespace
+
+Lidar4DEncoderConfig Lidar4DEncoderConfig::from_json(const Json& j, const std::string& where) {
+  Lidar4DEncoderConfig c;
+  ConfigReader r(j, where);
+  if (r.has("planes")) {
+    ConfigReader s = r.child("planes");
+    config::read_fields_here(s, c.planes);
+    s.finish();
+  }
+  if (r.has("static_hash")) {
+    ConfigReader s = r.child("static_hash");
+    read_hash_keys(s, c.static_hash);
+    s.finish();
+  }
+  if (r.has("time_hash")) {
+    ConfigReader s = r.child("time_hash");
+    config::read_fields_here(s, c.time_hash);
+    s.finish();
+  }
+  if (r.has("flow")) {
+    ConfigReader s = r.child("flow");
+    config::read_fields_here(s, c.flow);
+    s.finish();
+  }
+  r.get("blend", c.blend);
+  r.finish();
+  c.validate(where);
+  return c;
+}
+
+Json Lidar4DEncoderConfig::to_json() const {
+  const HashGridConfig& g = static_hash;
+  return Json{{"planes", planes.to_json()},
+              {"static_hash",
+               {{"levels", g.levels},
+                {"features", g.features},
+                {"log2_table_size", g.log2_table_size},
+                {"base_resolution", g.base_resolution},
+                {"per_level_scale", g.per_level_scale},
+                {"deterministic", g.deterministic},
+                {"half_table", g.half_table},
+                {"schedule", g.schedule}}},
+              {"time_hash", time_hash.to_json()},
+              {"flow", flow.to_json()},
+              {"blend", blend}};
+}
+
+}  // namespace sgnlf::field

@@ -1,0 +1,31 @@
+// TimeHashGridConfig (time_hash_grid_config.hpp): checks and JSON reading.
+#include "field/time_hash_grid_config.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+
+namespace sgnlf::field {
+
+void TimeHashGridConfig::validate(const std::string& where) const {
+  config::check_fields(*this, where);
+  if (features != 1 && features != 2 && features != 4 && features != 8)
+    throw ConfigError(where + ": 'features' = " + std::to_string(features) +
+                      " must be 1, 2, 4 or 8");
+  const double finest = base_resolution * std::pow(double(per_level_scale), levels - 1);
+  if (finest > 1.0e6)
+    throw ConfigError(where + ": finest resolution " + std::to_string(finest) +
+                      " ('base_resolution' · 'per_level_scale'^('levels' − 1)) exceeds 1e6");
+}
+
+TimeHashGridConfig TimeHashGridConfig::from_json(const Json& j, const std::string& where) {
+  TimeHashGridConfig c;
+  ConfigReader r(j, where);
+  config::read_fields_here(r, c);
+  r.finish();
+  c.validate(where);
+  return c;
+}
+
+}  // namespace sgnlf::field

@@ -1,0 +1,76 @@
+// LidarNerfModel's LiDAR4D parts (model.hpp): the frame time of the 4D encoder, the flow
+// supervision's pass through the flow field, and the Chamfer term on the batch's ray endpoints
+// (method.md §2).
+#include <algorithm>
+#include <string>
+
+#include "core/error.hpp"
+#include "field/lidar4d_encoder.hpp"
+#include "pipeline/model/model.hpp"
+#include "pipeline/model/model_detail.hpp"
+#include "render/chamfer_loss.hpp"
+
+namespace sgnlf::pipeline {
+using namespace model_detail;
+
+void LidarNerfModel::set_frame(int frame, int frames) {
+  if (four_d_) four_d_->set_frame(frame, 0, frames);
+}
+
+double LidarNerfModel::flow_supervision(const std::vector<float>& x, int n, const FlowLoss& loss) {
+  if (!four_d_) throw Error("LidarNerfModel::flow_supervision: the model has no 4D encoder");
+  require(n > 0 && x.size() == size_t(n) * 3,
+          "LidarNerfModel::flow_supervision: " + std::to_string(x.size()) + " floats for " +
+              std::to_string(n) + " points");
+  if (n > flow_cap_) {
+    fx_ = floats(rt_, size_t(n) * 3), ft_ = floats(rt_, size_t(n));
+    fflow_ = floats(rt_, size_t(n) * 6), fdflow_ = floats(rt_, size_t(n) * 6);
+    flow_cap_ = n;
+  }
+  if (!grad_ext_) {
+    grad_ext_ = floats(rt_, layout_.total());
+    add_k_ = rt_.kernel("field/accumulate.cl", "field_accumulate");
+    ext_full_ = true;
+  }
+  if (ext_pending_)
+    throw Error("LidarNerfModel::flow_supervision: an external gradient is already pending");
+  if (ext_full_) {  // backward_external wrote every slice: only the flow slice may be non-zero
+    grad_ext_.fill_zero();
+    ext_full_ = false;
+  }
+  field::SceneFlow& flow = four_d_->flow();
+  const size_t off = off_grid_ + four_d_->offsets().flow;
+  fx_.write_vec(x);
+  ft_.write_vec(std::vector<float>(size_t(n), four_d_->time()));
+  flow.forward(params_, off, fx_, ft_, n, fflow_);
+  const std::vector<float> f = fflow_.read_vec<float>(size_t(n) * 6);
+  std::vector<float> d_flow(size_t(n) * 6, 0.0f);
+  const double value = loss(f, d_flow);
+  require(d_flow.size() == size_t(n) * 6, "LidarNerfModel::flow_supervision: the loss wrote " +
+                                              std::to_string(d_flow.size()) + " gradients");
+  fdflow_.write_vec(d_flow);
+  flow.backward(params_, off, fx_, ft_, n, fflow_, fdflow_, grad_ext_, off);
+  ext_pending_ = true;
+  return value;
+}
+
+void LidarNerfModel::add_chamfer_term(const RayBatch& b) {
+  const int R = b.n_rays;
+  const std::vector<float> out = out_.read_vec<float>(size_t(R) * 3);
+  std::vector<float> grad = grad_out_.read_vec<float>(size_t(R) * 3);
+  // Rays without a return carry depth 0 in both sets, as LiDAR4D masks them.
+  std::vector<float> depth(static_cast<size_t>(R)), gt(static_cast<size_t>(R));
+  for (size_t i = 0; i < size_t(R); ++i) {
+    const float mask = b.label[i] > 0.5f ? 1.0f : 0.0f;
+    depth[i] = out[3 * i] * mask;
+    gt[i] = b.range[i] * mask;
+  }
+  const render::RayChamferLoss c = render::ray_chamfer_loss(
+      b.directions, depth, gt, scene_scale_, float(cfg_.lidar4d->chamfer_weight));
+  for (size_t i = 0; i < size_t(R); ++i)
+    if (b.label[i] > 0.5f) grad[3 * i] += c.d_depth[i];
+  grad_out_.write_vec(grad);
+  last_chamfer_ = c.loss;
+}
+
+}  // namespace sgnlf::pipeline

@@ -1,0 +1,223 @@
+// LiDAR4D as a method (method.md §2): its config section (read, written, refused), the ground
+// split of the flow supervision's points, and the model on the 4D field: training bit-identical
+// from one seed with a decreasing loss, the flow supervision's gradient reaching only the flow
+// field, the Chamfer term, and renders that follow the frame's time.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "field/lidar4d_encoder.hpp"
+#include "pipeline/config/presets.hpp"
+#include "pipeline/model/ray_batch.hpp"
+#include "pipeline/model/render_view.hpp"
+#include "pipeline/train/flow_points.hpp"
+#include "pipeline/train/flow_supervision.hpp"
+#include "pipeline/train/trainer.hpp"
+#include "support/test_device.hpp"
+#include "tiny_scene.hpp"
+
+SGNLF_DEVICE_TESTS;
+using namespace sgnlf;
+using namespace sgnlf::pipeline;
+
+namespace {
+
+// The LiDAR4D smoke preset shrunk to the tiny scene.
+TrainConfig tiny_lidar4d(const Json& extra = Json::object()) {
+  Json o{{"schedule", {{"iterations", 16}, {"checkpoint_every", 8}, {"log_every", 2},
+                       {"rays_per_batch", 128}, {"render_chunk_rays", 512}}},
+         {"render", {{"n_samples", 16}, {"n_importance", 4}}}};
+  return resolve_config("lidar4d", "smoke", merge_config_json(o, extra));
+}
+
+std::string config_error(const Json& overrides) {
+  try {
+    resolve_config("lidar4d", "smoke", overrides);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+struct Trained {
+  std::vector<float> params;
+  render::LossValues first, last;
+  double flow_loss = 0.0;
+};
+
+Trained train_lidar4d(const Scene& scene, const TrainConfig& c, uint64_t seed,
+                      const std::string& dir) {
+  LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), model_capacity(c));
+  GroundTruthPoseStep gt(scene, c);
+  FlowSupervisionStep flow(gt, test::tiny_dataset(), scene, c, seed);
+  TrainOptions opt;
+  opt.run_dir = test::temp_dir(dir);
+  opt.seed = seed;
+  opt.show_progress = false;
+  opt.policy = &flow;
+  const TrainSummary s = train(model, scene, c, opt);
+  return {model.state().params, s.first_loss, s.last_loss, flow.last_flow_loss()};
+}
+
+}  // namespace
+
+TEST_CASE("lidar4d config: presets resolve, the section round-trips, bad keys are refused",
+          "[pipeline][config][lidar4d]") {
+  for (const char* scale : {"smoke", "quick", "paper"}) {
+    const TrainConfig c = resolve_config("lidar4d", scale);
+    REQUIRE(c.four_d_encoder());
+    CHECK(c.flow_supervision());
+    const TrainConfig back = train_config_from_json(train_config_to_json(c), "round trip");
+    CHECK(train_config_to_json(back) == train_config_to_json(c));
+    CHECK(back.hash() == c.hash());
+  }
+  // The paper preset keeps LiDAR4D's encoder sizes.
+  const TrainConfig p = resolve_config("lidar4d", "paper");
+  CHECK(p.lidar4d->encoder.static_hash.levels == 8);
+  CHECK(p.lidar4d->encoder.static_hash.features == 4);
+  CHECK(p.lidar4d->encoder.static_hash.base_resolution == 512.0f);
+  CHECK(p.lidar4d->encoder.planes.scales == 4);
+  CHECK(p.lidar4d->network_lr_scale == Approx(0.1));
+  // A static_hash object that names one key keeps LiDAR4D's other values.
+  const TrainConfig one = resolve_config(
+      "lidar4d", "paper", Json{{"lidar4d", {{"encoder", {{"static_hash", {{"log2_table_size", 15}}}}}}}});
+  CHECK(one.lidar4d->encoder.static_hash.log2_table_size == 15);
+  CHECK(one.lidar4d->encoder.static_hash.levels == 8);
+  CHECK(config_error(Json{{"lidar4d", {{"encoder", {{"planes", {{"resolutoin", 8}}}}}}}})
+            .find("resolutoin") != std::string::npos);
+  CHECK(config_error(Json{{"lidar4d", {{"flow", {{"steps", 3}}}}}}).find("steps") !=
+        std::string::npos);
+  CHECK(config_error(Json{{"lidar4d", {{"chamfer", 1.0}}}}).find("chamfer") != std::string::npos);
+  // Other methods' configs carry no lidar4d section and refuse one.
+  CHECK_FALSE(resolve_config("lidar-nerf", "smoke").lidar4d.has_value());
+  CHECK_THROWS_AS(resolve_config("lidar-nerf", "smoke", Json{{"lidar4d", Json::object()}}),
+                  ConfigError);
+}
+
+TEST_CASE("flow points: the ground is the densest low height bin, split and subsampled",
+          "[pipeline][lidar4d]") {
+  FlowSupervisionConfig c;
+  // A road at z = −1.73 m (a grid of returns), a wall at x = 8 m up to +3 m and a car roof at
+  // z = −0.3 m: the ground is found at the road whatever the mounting height.
+  std::vector<PointXYZI> scan;
+  for (int i = -20; i <= 20; ++i)
+    for (int j = -20; j <= 20; ++j) scan.push_back({0.5f * i, 0.5f * j, -1.73f, 0.1f});
+  for (int i = 0; i < 200; ++i) scan.push_back({8.0f, 0.05f * i - 5.0f, -1.7f + 0.0235f * i, 0.2f});
+  for (int i = 0; i < 300; ++i) scan.push_back({3.0f + 0.01f * i, 2.0f, -0.3f, 0.3f});
+  const double z = ground_height(scan, c, "scan");
+  CHECK(z == Approx(-1.73).margin(c.ground_bin_m));
+  for (auto& p : scan) p.z += 0.5f;  // the same street seen from a sensor 0.5 m lower
+  CHECK(ground_height(scan, c, "scan") == Approx(-1.23).margin(c.ground_bin_m));
+  CHECK_THROWS_WITH(ground_height({{100.0f, 0.0f, -1.0f, 0.0f}}, c, "far scan"),
+                    Catch::Contains("far scan"));
+
+  const Dataset& d = test::tiny_dataset();
+  const Scene scene = make_scene(d);
+  c.points = 300;
+  c.ground_points = 50;
+  const auto a = flow_points(d, scene, c, 5), b = flow_points(d, scene, c, 5);
+  REQUIRE(a.size() == d.frames.size());
+  size_t ground = 0;
+  for (size_t k = 0; k < a.size(); ++k) {
+    CHECK(a[k].moving.size() <= 300);
+    CHECK(a[k].ground.size() <= 50);
+    CHECK(a[k].moving == b[k].moving);  // same seed, same points
+    ground += a[k].ground.size();
+  }
+  CHECK(ground > 0);
+  // Ground points lie below the moving ones on average (the normalised world's z is up).
+  double zg = 0, zm = 0;
+  for (const auto& p : a[0].ground) zg += p.z() / double(a[0].ground.size());
+  for (const auto& p : a[0].moving) zm += p.z() / double(a[0].moving.size());
+  CHECK(zg < zm);
+  CHECK(flow_points(d, scene, c, 6)[0].moving != a[0].moving);
+}
+
+TEST_CASE("lidar4d model: bit-identical training, decreasing loss, flow gradient in its slice",
+          "[pipeline][lidar4d]") {
+  const Scene scene = make_scene(test::tiny_dataset());
+  const TrainConfig c = tiny_lidar4d();
+  const Trained a = train_lidar4d(scene, c, 9, "l4d_a"), b = train_lidar4d(scene, c, 9, "l4d_b");
+  CHECK(a.params == b.params);
+  CHECK(a.flow_loss > 0.0);
+  CHECK(a.last.total() < a.first.total());
+  const Trained other = train_lidar4d(scene, c, 10, "l4d_c");
+  CHECK(other.params != a.params);
+
+  // The flow supervision's gradient reaches the flow field's parameters only: from a fresh
+  // model (zero gradient, zero moments) one update moves nothing else.
+  LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), model_capacity(c));
+  model.init_params(3);
+  const std::vector<float> before = model.state().params;
+  model.set_frame(4, int(scene.T_world_lidar.size()));
+  const std::vector<float> x = {0.1f, 0.2f, -0.1f, -0.3f, 0.0f, 0.05f};
+  const double value = model.flow_supervision(x, 2, [](const std::vector<float>& f,
+                                                       std::vector<float>& d) {
+    double l = 0;  // pull every flow component to 0.01
+    for (size_t i = 0; i < f.size(); ++i) {
+      l += double(f[i] - 0.01f) * double(f[i] - 0.01f);
+      d[i] = 2.0f * (f[i] - 0.01f);
+    }
+    return l;
+  });
+  CHECK(value > 0.0);
+  CHECK(model.external_gradient_pending());
+  model.update(1e-2f);
+  const std::vector<float> after = model.state().params;
+  const auto& off = model.four_d_encoder()->offsets();
+  const size_t lo = off.flow, hi = off.end;  // the encoder's slice starts at 0
+  size_t moved_in = 0, moved_out = 0;
+  for (size_t i = 0; i < after.size(); ++i)
+    ((i >= lo && i < hi) ? moved_in : moved_out) += after[i] != before[i] ? 1 : 0;
+  CHECK(moved_in > 0);
+  CHECK(moved_out == 0);
+  // Repeated steps pull the flow toward the target: the loss falls.
+  double last = value;
+  for (int it = 0; it < 20; ++it) {
+    last = model.flow_supervision(x, 2, [](const std::vector<float>& f, std::vector<float>& d) {
+      double l = 0;
+      for (size_t i = 0; i < f.size(); ++i) {
+        l += double(f[i] - 0.01f) * double(f[i] - 0.01f);
+        d[i] = 2.0f * (f[i] - 0.01f);
+      }
+      return l;
+    });
+    model.update(1e-2f);
+  }
+  CHECK(last < 0.5 * value);
+}
+
+TEST_CASE("lidar4d model: the Chamfer term and renders at the frame's time",
+          "[pipeline][lidar4d]") {
+  const Scene scene = make_scene(test::tiny_dataset());
+  const TrainConfig c = tiny_lidar4d();
+  LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), model_capacity(c));
+  model.init_params(4);
+  const RayBatch b = draw_ray_batch(scene, c, 4, 1);
+  model.set_frame(b.frame, int(scene.T_world_lidar.size()));
+  model.forward_backward(b, 4, 1);
+  CHECK(model.last_chamfer() > 0.0);
+  const TrainConfig off = tiny_lidar4d(Json{{"lidar4d", {{"chamfer_weight", 0.0}}}});
+  LidarNerfModel plain(test::runtime(), off, float(scene.norm.scale), model_capacity(off));
+  plain.init_params(4);
+  plain.forward_backward(b, 4, 1);
+  CHECK(plain.last_chamfer() == 0.0);
+  // The Chamfer term changes the parameter gradient (it adds dL/d depth per ray).
+  CHECK(model.read_gradient() != plain.read_gradient());
+
+  // A trained 4D field renders one pose differently at two frames' times, and the same at the
+  // same time; a model without a time ignores the frame.
+  const Pose& T = test::tiny_dataset().frames[3].T_world_lidar;
+  const Trained t = train_lidar4d(scene, c, 2, "l4d_render");
+  ModelState st = model.state();
+  st.params = t.params;
+  model.set_state(st);
+  const RangeImage r3 = render_view(model, scene, T, 512, 3);
+  const RangeImage r3b = render_view(model, scene, T, 512, 3);
+  const RangeImage r10 = render_view(model, scene, T, 512, 10);
+  CHECK(r3.range == r3b.range);
+  CHECK(r3.range != r10.range);
+  CHECK(render_view(model, scene, T, 512) .range == r3.range);  // frame 3 is nearest to its pose
+  CHECK(nearest_frame(scene, T) == 3);
+}
