@@ -23,16 +23,20 @@ void HashGridConfig::validate() const {
     throw ConfigError(w + ": finest resolution " + std::to_string(finest) + " exceeds 1e6");
 }
 
+void HashGridConfig::read_keys(ConfigReader& r) {
+  r.get("levels", levels)
+      .get("features", features)
+      .get("log2_table_size", log2_table_size)
+      .get("base_resolution", base_resolution)
+      .get("per_level_scale", per_level_scale)
+      .get("deterministic", deterministic)
+      .get("half_table", half_table)
+      .get("schedule", schedule);
+}
+
 HashGridConfig HashGridConfig::from_json(ConfigReader& r) {
   HashGridConfig c;
-  r.get("levels", c.levels)
-      .get("features", c.features)
-      .get("log2_table_size", c.log2_table_size)
-      .get("base_resolution", c.base_resolution)
-      .get("per_level_scale", c.per_level_scale)
-      .get("deterministic", c.deterministic)
-      .get("half_table", c.half_table)
-      .get("schedule", c.schedule);
+  c.read_keys(r);
   c.validate();
   return c;
 }

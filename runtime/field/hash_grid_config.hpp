@@ -28,6 +28,8 @@ struct HashGridConfig {
 
   void validate() const;  // throws ConfigError
   static HashGridConfig from_json(ConfigReader& r);  // reads known keys; caller calls finish()
+  // The keys present in r onto this config (the others keep their values); no validation.
+  void read_keys(ConfigReader& r);
 };
 
 // LiDAR4D's static 3D hash grid with the existing HashGrid: 8 levels × 4 features, base 512,

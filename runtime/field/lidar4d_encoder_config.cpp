@@ -14,20 +14,6 @@ void Lidar4DEncoderConfig::validate(const std::string& where) const {
   flow.validate(where + ".flow");
 }
 
-namespace {
-// HashGridConfig's keys onto `g` (keys left out keep their values in `g`).
-void read_hash_keys(ConfigReader& r, HashGridConfig& g) {
-  r.get("levels", g.levels)
-      .get("features", g.features)
-      .get("log2_table_size", g.log2_table_size)
-      .get("base_resolution", g.base_resolution)
-      .get("per_level_scale", g.per_level_scale)
-      .get("deterministic", g.deterministic)
-      .get("half_table", g.half_table)
-      .get("schedule", g.schedule);
-}
-}  // namespace
-
 Lidar4DEncoderConfig Lidar4DEncoderConfig::from_json(const Json& j, const std::string& where) {
   Lidar4DEncoderConfig c;
   ConfigReader r(j, where);
@@ -38,7 +24,7 @@ Lidar4DEncoderConfig Lidar4DEncoderConfig::from_json(const Json& j, const std::s
   }
   if (r.has("static_hash")) {
     ConfigReader s = r.child("static_hash");
-    read_hash_keys(s, c.static_hash);
+    c.static_hash.read_keys(s);  // keys left out keep LiDAR4D's values
     s.finish();
   }
   if (r.has("time_hash")) {
