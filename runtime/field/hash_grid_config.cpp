@@ -5,14 +5,14 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "field/feature_count.hpp"
 
 namespace sgnlf::field {
 
 void HashGridConfig::validate() const {
   const std::string w = "hash_grid";
   check_range(w, "levels", levels, 1, 32);
-  if (features != 1 && features != 2 && features != 4 && features != 8)
-    throw ConfigError(w + ": 'features' = " + std::to_string(features) + " must be 1, 2, 4 or 8");
+  check_feature_count(w, features);
   check_range(w, "log2_table_size", log2_table_size, 4, 24);
   check_range(w, "base_resolution", base_resolution, 1.0f, 8192.0f);
   check_range(w, "per_level_scale", per_level_scale, 1.0f, 4.0f);

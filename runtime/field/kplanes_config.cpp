@@ -4,14 +4,13 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "field/feature_count.hpp"
 
 namespace sgnlf::field {
 
 void KPlanesConfig::validate(const std::string& where) const {
   config::check_fields(*this, where);
-  if (features != 1 && features != 2 && features != 4 && features != 8)
-    throw ConfigError(where + ": 'features' = " + std::to_string(features) +
-                      " must be 1, 2, 4 or 8");
+  check_feature_count(where, features);
   if (!(init_lo <= init_hi))
     throw ConfigError(where + ": 'init_lo' = " + std::to_string(init_lo) + " exceeds 'init_hi' = " +
                       std::to_string(init_hi));

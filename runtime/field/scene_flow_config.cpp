@@ -5,14 +5,13 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "field/feature_count.hpp"
 
 namespace sgnlf::field {
 
 void SceneFlowConfig::validate(const std::string& where) const {
   config::check_fields(*this, where);
-  if (features != 1 && features != 2 && features != 4 && features != 8)
-    throw ConfigError(where + ": 'features' = " + std::to_string(features) +
-                      " must be 1, 2, 4 or 8");
+  check_feature_count(where, features);
   if (features % time_nodes != 0)
     throw ConfigError(where + ": 'time_nodes' = " + std::to_string(time_nodes) +
                       " must divide 'features' = " + std::to_string(features));

@@ -5,14 +5,13 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "field/feature_count.hpp"
 
 namespace sgnlf::field {
 
 void TimeHashGridConfig::validate(const std::string& where) const {
   config::check_fields(*this, where);
-  if (features != 1 && features != 2 && features != 4 && features != 8)
-    throw ConfigError(where + ": 'features' = " + std::to_string(features) +
-                      " must be 1, 2, 4 or 8");
+  check_feature_count(where, features);
   const double finest = base_resolution * std::pow(double(per_level_scale), levels - 1);
   if (finest > 1.0e6)
     throw ConfigError(where + ": finest resolution " + std::to_string(finest) +
