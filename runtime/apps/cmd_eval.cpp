@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "apps/command.hpp"
+#include "apps/fast_render_options.hpp"
 #include "pipeline/run/session.hpp"
 
 namespace sgnlf::app {
@@ -14,6 +15,7 @@ namespace {
 struct EvalArgs {
   std::string run, data, device;
   pipeline::RenderSampling sampling;
+  FastRenderOptions fast;
   bool json = false;
 };
 
@@ -39,10 +41,14 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
                  "render.eval_depth, else expected")
       ->check(CLI::IsMember({"expected", "median"}));
   sub.add_flag("--json", a->json, "Print the metrics JSON");
+  a->fast.add(sub, "protocol",
+              " (the tables'); fast writes <run>/metrics-fast.json, to compare with metrics.json");
   return std::function<int()>([a] {
+    const render::FastRenderConfig fcfg = a->fast.config();
     cl::Runtime rt(a->device);
     auto run = pipeline::load_run(rt, a->run, a->data, a->sampling);
-    const Json j = pipeline::eval_run(run, a->run);
+    const auto fast = a->fast.make(rt, run, fcfg);
+    const Json j = pipeline::eval_run(run, a->run, fast.get());
     if (a->json) {
       std::cout << j.dump(2) << "\n";
       return 0;
@@ -59,6 +65,16 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
     for (auto it = m.begin(); it != m.end(); ++it)
       std::printf("%-18s %12s %12s\n", it.key().c_str(), num(it.value()).c_str(),
                   num(n.contains(it.key()) ? n.at(it.key()) : Json()).c_str());
+    if (j.contains("renderer")) {
+      const Json& r = j.at("renderer");
+      std::printf("\nfast renderer: %.1f s rendering (%.1f s occupancy grid), %.1f density and %.1f "
+                  "head rows per ray (protocol: every sample)\n",
+                  r.at("render_seconds").get<double>(), r.at("grid_seconds").get<double>(),
+                  r.at("density_rows_per_ray").get<double>(), r.at("head_rows_per_ray").get<double>());
+    } else {
+      std::printf("\nprotocol renderer: %.1f s rendering the test views\n",
+                  j.at("render_eval_seconds").get<double>());
+    }
     if (j.contains("pose_metrics")) {
       const Json& p = j.at("pose_metrics");
       const Json& i = j.at("initial_pose_metrics");

@@ -1,10 +1,13 @@
-// `sgnlf render --run <run dir> [--out <dir>] [--data <dataset>] [--device SPEC] [--poses FILE]`:
-// renders the test frames of a trained run (npy arrays and PNGs of the rendering above the
-// ground truth), or novel views at the poses of a KITTI-format trajectory file.
+// `sgnlf render --run <run dir> [--out <dir>] [--data <dataset>] [--device SPEC] [--poses FILE]
+// [--renderer fast|protocol] [--fast-config FILE]`: renders the test frames of a trained run
+// (npy arrays and PNGs of the rendering above the ground truth), or novel views at the poses of
+// a KITTI-format trajectory file (npy, PNG and PCD per pose), and prints rays/s and frames/s.
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 
 #include "apps/command.hpp"
+#include "apps/fast_render_options.hpp"
 #include "io/trajectory_io.hpp"
 #include "pipeline/run/session.hpp"
 
@@ -13,10 +16,11 @@ namespace {
 
 struct RenderArgs {
   std::string run, out, data, device, poses;
+  FastRenderOptions fast;
   pipeline::RenderSampling sampling;
 };
 
-const Registrar reg("render", "Render the test frames of a trained run", [](CLI::App& sub) {
+const Registrar reg("render", "Render the test frames of a trained run, or novel views", [](CLI::App& sub) {
   auto a = std::make_shared<RenderArgs>();
   sub.add_option("--run", a->run, "Run folder")->required();
   sub.add_option("--out", a->out, "Output folder (default <run>/renders)");
@@ -25,6 +29,7 @@ const Registrar reg("render", "Render the test frames of a trained run", [](CLI:
   sub.add_option("--poses", a->poses,
                  "Render these views instead of the test frames: KITTI trajectory file, one "
                  "T_world_lidar per line (12 numbers, the dataset's world frame, metres)");
+  a->fast.add(sub, "fast", "");
   sub.add_option("--samples", a->sampling.n_samples,
                  "Uniform samples per ray when rendering (default: the config's render.eval_samples, else as trained)");
   sub.add_option("--importance", a->sampling.n_importance,
@@ -35,17 +40,42 @@ const Registrar reg("render", "Render the test frames of a trained run", [](CLI:
                  "render.eval_depth, else expected")
       ->check(CLI::IsMember({"expected", "median"}));
   return std::function<int()>([a] {
-    // Poses first: a bad trajectory file fails before the run is loaded.
+    // Poses and settings first: bad input fails before the run is loaded.
     const std::vector<Pose> poses =
         a->poses.empty() ? std::vector<Pose>{} : io::read_kitti_poses(a->poses);
+    const render::FastRenderConfig fcfg = a->fast.config();
     cl::Runtime rt(a->device);
     auto run = pipeline::load_run(rt, a->run, a->data, a->sampling);
     const std::string out =
         a->out.empty() ? (std::filesystem::path(a->run) / "renders").string() : a->out;
+    const auto fast = a->fast.make(rt, run, fcfg);
+    const auto t0 = std::chrono::steady_clock::now();
     const Json files = a->poses.empty()
-                           ? pipeline::render_run(run, out)
-                           : pipeline::render_poses(run, poses, out);
-    std::cout << files.dump(2) << "\n";
+                           ? pipeline::render_run(run, out, fast.get())
+                           : pipeline::render_poses(run, poses, out, fast.get());
+    const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const long frames = long(files.size());
+    const long rays = frames * long(run.scene->sensor.height) * long(run.scene->sensor.width);
+    // Render time without writing files and (fast) without the grid builds.
+    const double render_s = fast ? fast->counts().render_seconds : total_s;
+    Json summary{{"renderer", a->fast.renderer}, {"frames", frames}, {"rays", rays},
+                 {"render_s", render_s}, {"wall_s", total_s},
+                 {"rays_per_s", render_s > 0 ? double(rays) / render_s : 0.0},
+                 {"frames_per_s", render_s > 0 ? double(frames) / render_s : 0.0}};
+    if (fast) {
+      const auto& c = fast->counts();
+      summary["grid_s"] = c.grid_seconds;
+      summary["grids"] = c.grids;
+      summary["density_rows_per_ray"] = rays > 0 ? double(c.evaluated) / double(rays) : 0.0;
+      summary["head_rows_per_ray"] = rays > 0 ? double(c.head_rows) / double(rays) : 0.0;
+      summary["fast_config"] = fcfg.to_json();
+    }
+    std::cerr << "render: " << frames << " frame(s) of " << run.scene->sensor.height << " x "
+              << run.scene->sensor.width << " in " << render_s << " s ("
+              << summary["rays_per_s"].get<double>() << " rays/s, "
+              << summary["frames_per_s"].get<double>() << " frames/s, " << a->fast.renderer
+              << " renderer)\n";
+    std::cout << Json{{"files", files}, {"speed", summary}}.dump(2) << "\n";
     return 0;
   });
 });

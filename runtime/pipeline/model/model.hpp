@@ -24,6 +24,7 @@
 #include "pipeline/config/train_config.hpp"
 #include "pipeline/model/coarse_waves.hpp"
 #include "pipeline/model/encoding_reuse.hpp"
+#include "pipeline/model/fast_march.hpp"
 #include "pipeline/model/head_band.hpp"
 #include "pipeline/model/ray_batch.hpp"
 #include "pipeline/model/sample_compaction.hpp"
@@ -141,6 +142,26 @@ class LidarNerfModel {
   std::vector<float> render_rays(const std::vector<float>& origins,
                                  const std::vector<float>& directions, int n);
 
+  // The fast renderer (model_fast_render.cpp, pipeline::FastMarch): the same samples as
+  // render_rays(), but only those in occupied cells of `grid` are evaluated, front to back
+  // until the transmittance falls below cfg.stop_transmittance, and the head only where a
+  // sample's weight exceeds cfg.head_weight_threshold. With importance sampling both the
+  // coarse and the merged pass march. Same output as render_rays(). Blocking.
+  std::vector<float> render_rays_fast(const std::vector<float>& origins,
+                                      const std::vector<float>& directions, int n,
+                                      const render::OccupancyGrid& grid,
+                                      const render::FastRenderConfig& cfg);
+  // Samples the last render_rays_fast() evaluated with the density MLP, and head rows.
+  long fast_evaluated() const { return fast_evaluated_; }
+  long fast_head_rows() const { return fast_head_; }
+  // σ logits (σ = exp(h0)) of the field at n points (n × 3, normalised box), at the time
+  // set_frame() set for a 4D encoder: what render::OccupancyGrid::build probes. Blocking.
+  std::vector<float> density_logits(const std::vector<float>& x, int n);
+  // Rows one density_logits() device call takes (the sample buffers' capacity).
+  int sample_capacity() const;
+  // The renderer's uniform bin width in the normalised frame (the last sample's δ).
+  float bin_width() const { return cfg_.render.bin_width(scene_scale_); }
+
   // With importance sampling the coarse samples' hash encodings are reused in the merged pass
   // (default, exact). Off: the merged pass encodes every sample again (the reference path,
   // for tests and benchmarks); the results are bit-identical. Always off with the 4D encoder:
@@ -235,6 +256,10 @@ class LidarNerfModel {
   std::unique_ptr<SampleCompaction> live_;
   std::unique_ptr<CoarseWaves> waves_;
   std::unique_ptr<HeadBand> band_;
+  // The fast renderer's marching, made on its first use with its config.
+  std::unique_ptr<FastMarch> fast_;
+  render::FastRenderConfig fast_cfg_;
+  long fast_evaluated_ = 0, fast_head_ = 0;
 };
 
 // Capacity (rays) a model needs for training and chunked rendering under `c`.

@@ -19,7 +19,7 @@ int nearest_frame(const Scene& scene, const Pose& T_world_lidar) {
 }
 
 RangeImage render_view(LidarNerfModel& model, const Scene& scene, const Pose& T_world_lidar,
-                       int chunk_rays, int frame) {
+                       int chunk_rays, int frame, FastView* fast) {
   const int H = scene.sensor.height, W = scene.sensor.width;
   RangeImage img(H, W);
   const Pose T = normalize_pose(T_world_lidar, scene.norm);
@@ -31,7 +31,9 @@ RangeImage render_view(LidarNerfModel& model, const Scene& scene, const Pose& T_
   for (size_t begin = 0; begin < n; begin += size_t(chunk_rays)) {
     const size_t end = std::min(n, begin + size_t(chunk_rays));
     image_rays(scene, T, begin, end, o, d);
-    const auto out = model.render_rays(o, d, int(end - begin));
+    const auto out = fast ? model.render_rays_fast(o, d, int(end - begin), *fast->grid, *fast->cfg)
+                          : model.render_rays(o, d, int(end - begin));
+    if (fast) fast->evaluated += model.fast_evaluated(), fast->head_rows += model.fast_head_rows();
     for (size_t p = begin; p < end; ++p) {
       const float* v = &out[3 * (p - begin)];
       img.range[p] = float(double(v[0]) / scene.norm.scale);

@@ -4,14 +4,23 @@
 #pragma once
 #include "pipeline/model/model.hpp"
 #include "pipeline/model/scene.hpp"
+#include "render/fast_render_config.hpp"
+#include "render/occupancy_grid.hpp"
 
 namespace sgnlf::pipeline {
 
 // `T_world_lidar` in metres (dataset frame); chunk = rays per device call (≤ model capacity).
 // A model with a time (LiDAR4D's 4D field) renders at dataset frame `frame`'s time; with
 // frame < 0, at the time of the frame whose pose is nearest to T_world_lidar (nearest_frame).
+// With `fast` (grid and config), the chunks go through model.render_rays_fast; the grid must
+// have been built at the same frame's time for a 4D field (pipeline::FastRenderer does that).
+struct FastView {
+  const render::OccupancyGrid* grid = nullptr;
+  const render::FastRenderConfig* cfg = nullptr;
+  long evaluated = 0, head_rows = 0;  // density and head rows, added up over the chunks
+};
 RangeImage render_view(LidarNerfModel& model, const Scene& scene, const Pose& T_world_lidar,
-                       int chunk_rays, int frame = -1);
+                       int chunk_rays, int frame = -1, FastView* fast = nullptr);
 
 // The dataset frame whose scene pose lies nearest to `T_world_lidar` (metres).
 int nearest_frame(const Scene& scene, const Pose& T_world_lidar);

@@ -21,7 +21,8 @@ void add_view(ViewSet& vs, std::vector<Json>& views, const Dataset& d, int f, Ra
 }  // namespace
 
 ViewSet evaluate_model(LidarNerfModel& model, const Dataset& d, const Scene& scene,
-                       int chunk_rays, const std::vector<Pose>& T_world_lidar) {
+                       int chunk_rays, const std::vector<Pose>& T_world_lidar,
+                       FastRenderer* fast) {
   if (d.split.test.empty()) throw Error("dataset " + d.name + ": no test frames to evaluate");
   require(T_world_lidar.size() == d.frames.size(),
           "evaluate_model: " + std::to_string(T_world_lidar.size()) + " poses for " +
@@ -29,7 +30,9 @@ ViewSet evaluate_model(LidarNerfModel& model, const Dataset& d, const Scene& sce
   ViewSet vs;
   std::vector<Json> views;
   for (int f : d.split.test)
-    add_view(vs, views, d, f, render_view(model, scene, T_world_lidar[size_t(f)], chunk_rays, f));
+    add_view(vs, views, d, f,
+             fast ? fast->render(T_world_lidar[size_t(f)], f)
+                  : render_view(model, scene, T_world_lidar[size_t(f)], chunk_rays, f));
   vs.mean = metrics::mean_metrics(views);
   return vs;
 }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/config.hpp"
+#include "pipeline/model/fast_renderer.hpp"
 #include "pipeline/model/model.hpp"
 #include "pipeline/model/scene.hpp"
 
@@ -18,9 +19,11 @@ struct ViewSet {
 
 // Renders every test frame at T_world_lidar[frame] (metres: the ground truth for the GT-pose
 // methods, the optimised pose for the pose-free ones, protocol §3) and scores it against the
-// frame's observed range image.
+// frame's observed range image. With `fast`, through the fast renderer (a diagnostic of its
+// agreement: the tables use the protocol's renderer).
 ViewSet evaluate_model(LidarNerfModel& model, const Dataset& d, const Scene& scene,
-                       int chunk_rays, const std::vector<Pose>& T_world_lidar);
+                       int chunk_rays, const std::vector<Pose>& T_world_lidar,
+                       FastRenderer* fast = nullptr);
 // The naive baseline (nearest training scan moved with GT poses, metrics/naive_baseline.hpp).
 ViewSet evaluate_naive(const Dataset& d);
 

@@ -1,11 +1,14 @@
 // train_run / render_run / eval_run (see session.hpp).
 #include "pipeline/run/session.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 
 #include "core/log.hpp"
+#include "core/progress.hpp"
+#include "io/cloud_writers.hpp"
 #include "datasets/loader.hpp"
 #include "io/png_writer.hpp"
 #include "io/range_array.hpp"
@@ -130,16 +133,18 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
   return j;
 }
 
-Json render_run(LoadedRun& run, const std::string& out_dir) {
+Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast) {
   fs::create_directories(out_dir);
   const Dataset& d = *run.dataset;
   Json files = Json::array();
   const ViewSet naive = evaluate_naive(d);  // one image per test frame, in split order
   for (size_t k = 0; k < d.split.test.size(); ++k) {
     const Frame& fr = d.frames[size_t(d.split.test[k])];
-    const RangeImage pred = render_view(*run.model, *run.scene, run.T_world_lidar[size_t(d.split.test[k])],
-                                        run.manifest.config.schedule.render_chunk_rays,
-                                        d.split.test[k]);
+    const Pose& T = run.T_world_lidar[size_t(d.split.test[k])];
+    const RangeImage pred =
+        fast ? fast->render(T, d.split.test[k])
+             : render_view(*run.model, *run.scene, T,
+                           run.manifest.config.schedule.render_chunk_rays, d.split.test[k]);
     const std::string stem = (fs::path(out_dir) / std::to_string(fr.id)).string();
     io::write_range_npy(stem + "_pred.npy", pred);
     io::write_range_npy(stem + "_gt.npy", fr.image);
@@ -155,35 +160,42 @@ Json render_run(LoadedRun& run, const std::string& out_dir) {
 }
 
 Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
-                  const std::string& out_dir) {
+                  const std::string& out_dir, FastRenderer* fast) {
   if (T_world_lidar.empty()) throw ConfigError("render_poses: no poses to render");
   fs::create_directories(out_dir);
   io::RangePictureOptions po;
   po.max_range_m = run.dataset->sensor.max_range_m;
   Json files = Json::array();
+  Progress progress("render", long(T_world_lidar.size()));
   for (size_t k = 0; k < T_world_lidar.size(); ++k) {
     const Eigen::Vector3d o = normalize_pose(T_world_lidar[k], run.scene->norm).translation();
     if (o.cwiseAbs().maxCoeff() > 1.0)
       log::warn("render_poses: pose ", k, " has its origin at (", o.x(), ", ", o.y(), ", ", o.z(),
                 ") in the normalised scene, outside the trained box [-1, 1]^3");
-    const RangeImage pred = render_view(*run.model, *run.scene, T_world_lidar[k],
-                                        run.manifest.config.schedule.render_chunk_rays);
+    const RangeImage pred =
+        fast ? fast->render(T_world_lidar[k])
+             : render_view(*run.model, *run.scene, T_world_lidar[k],
+                           run.manifest.config.schedule.render_chunk_rays);
     char name[32];
     std::snprintf(name, sizeof name, "pose_%04zu", k);
     const std::string stem = (fs::path(out_dir) / name).string();
+    const RangeImage masked = masked_prediction(pred);
     io::write_range_npy(stem + ".npy", pred);
-    io::write_png(stem + ".png", io::range_image_picture(masked_prediction(pred), po));
+    io::write_png(stem + ".png", io::range_image_picture(masked, po));
+    io::write_pcd(stem + ".pcd", unproject(run.dataset->sensor, masked));
     files.push_back(Json{{"pose", k}, {"npy", stem + ".npy"}, {"png", stem + ".png"},
-                         {"origin_normalised", {o.x(), o.y(), o.z()}}});
+                         {"pcd", stem + ".pcd"}, {"origin_normalised", {o.x(), o.y(), o.z()}}});
+    progress.update(long(k) + 1);
   }
+  progress.finish();
   return files;
 }
 
-Json eval_run(LoadedRun& run, const std::string& run_dir) {
+Json eval_run(LoadedRun& run, const std::string& run_dir, FastRenderer* fast) {
   const auto t0 = std::chrono::steady_clock::now();
   const ViewSet model = evaluate_model(*run.model, *run.dataset, *run.scene,
                                        run.manifest.config.schedule.render_chunk_rays,
-                                       run.T_world_lidar);
+                                       run.T_world_lidar, fast);
   const double render_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const ViewSet naive = evaluate_naive(*run.dataset);
   Json j{{"method", run.manifest.method},
@@ -219,7 +231,17 @@ Json eval_run(LoadedRun& run, const std::string& run_dir) {
                              {"file", graph.string()}};
     }
   }
-  write_json_file((fs::path(run_dir) / "metrics.json").string(), j);
+  if (fast) {
+    const auto& c = fast->counts();
+    const double rays = double(std::max(1L, c.rays));
+    j["renderer"] = Json{{"name", "fast"},
+                         {"config", fast->config().to_json()},
+                         {"render_seconds", c.render_seconds},
+                         {"grid_seconds", c.grid_seconds},
+                         {"density_rows_per_ray", double(c.evaluated) / rays},
+                         {"head_rows_per_ray", double(c.head_rows) / rays}};
+  }
+  write_json_file((fs::path(run_dir) / (fast ? "metrics-fast.json" : "metrics.json")).string(), j);
   return j;
 }
 

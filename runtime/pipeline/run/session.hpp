@@ -6,6 +6,7 @@
 
 #include "cl/runtime.hpp"
 #include "core/config.hpp"
+#include "pipeline/model/fast_renderer.hpp"
 #include "pipeline/run/run_dir.hpp"
 #include "pipeline/train/trainer.hpp"
 
@@ -25,21 +26,28 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req);
 
 // Renders every test frame: <out>/<frame>_pred.npy, <frame>_gt.npy, <frame>_naive.npy (the naive
 // baseline's view; H×W×3, io/range_array.hpp) and <frame>.png (rendered above ground truth: depth, intensity, mask). Returns the files.
-Json render_run(LoadedRun& run, const std::string& out_dir);
+// With `fast`, the views go through the fast renderer (pipeline::FastRenderer) instead of the
+// protocol's.
+Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast = nullptr);
 
 // Renders novel views at the given poses (T_world_lidar in the dataset's world frame, metres):
 // <out>/pose_<k>.npy (H×W×3: range, return probability, intensity) and pose_<k>.png (the
 // prediction masked at probability 0.5: depth, intensity, mask). ConfigError for an empty list;
 // a pose whose origin lies outside the scene's normalised box is rendered with a warning (the
 // field is only trained inside it). Returns the files with each pose's normalised origin.
+// Also <out>/pose_<k>.pcd: the returns (probability > 0.5) as points in the sensor frame.
+// One progress line over the poses.
 Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
-                  const std::string& out_dir);
+                  const std::string& out_dir, FastRenderer* fast = nullptr);
 
 // ATE, RPE_t, RPE_r (protocol §4, SE(3) Umeyama alignment) of `est` against `gt`, as JSON.
 Json pose_metrics_json(const std::vector<Pose>& est, const std::vector<Pose>& gt);
 
 // Per-frame and mean metrics of the model and of the naive baseline (pose-free runs: with the
 // pose metrics of the optimised and the initial poses over all frames); writes <run>/metrics.json.
-Json eval_run(LoadedRun& run, const std::string& run_dir);
+// With `fast`, the test views go through the fast renderer and the result (with the renderer's
+// counts and config under "renderer") goes to <run>/metrics-fast.json: metrics.json stays the
+// protocol's.
+Json eval_run(LoadedRun& run, const std::string& run_dir, FastRenderer* fast = nullptr);
 
 }  // namespace sgnlf::pipeline

@@ -1,0 +1,17 @@
+// FastRenderConfig validation and JSON.
+#include "render/fast_render_config.hpp"
+
+namespace sgnlf::render {
+
+void FastRenderConfig::validate(const std::string& where) const { config::check_fields(*this, where); }
+
+FastRenderConfig FastRenderConfig::from_json(const Json& j, const std::string& where) {
+  FastRenderConfig c;
+  ConfigReader r(j, where);
+  config::read_fields_here(r, c);
+  r.finish();
+  c.validate(where);
+  return c;
+}
+
+}  // namespace sgnlf::render

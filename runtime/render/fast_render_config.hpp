@@ -1,0 +1,48 @@
+// Configuration of the fast renderer for trained fields (`sgnlf render`'s default; the tables
+// keep the protocol's renderer): its occupancy grid (render::OccupancyGrid), early ray
+// termination and the LiDAR head's weight threshold. Host-only.
+#pragma once
+#include <string>
+
+#include "core/config.hpp"
+#include "core/config_fields.hpp"
+
+namespace sgnlf::render {
+
+struct FastRenderConfig {
+  // The occupancy grid: cells of cell_m metres over the scene's points' box grown by margin_m;
+  // a cell is occupied when it holds a return of a training scan (under the run's poses) or exp(σ)·δ at one of its probes³ stratified probe points exceeds
+  // −log(1 − alpha) (one sample there, δ the renderer's bin width, would stop more than alpha
+  // of the light), then dilated by `dilate` cells. Refused above max_cells cells.
+  float cell_m = 1.0f;
+  int probes_per_axis = 2;
+  float alpha = 1e-4f;
+  int dilate = 1;
+  float margin_m = 2.0f;
+  int max_cells = 1 << 26;
+  // Marching: samples in occupied cells are evaluated front to back in waves (`wave` samples
+  // per ray each, one host sync per wave) until the transmittance falls below
+  // stop_transmittance; the head runs on samples whose weight exceeds head_weight_threshold.
+  float stop_transmittance = 1e-4f;
+  float head_weight_threshold = 1e-4f;
+  int wave = 16;
+
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("cell_m", s.cell_m, 1e-3f, 1e3f);
+    v("probes_per_axis", s.probes_per_axis, 1, 8);
+    v("alpha", s.alpha, 1e-9f, 0.5f);
+    v("dilate", s.dilate, 0, 8);
+    v("margin_m", s.margin_m, 0.0f, 1e3f);
+    v("max_cells", s.max_cells, 1, 1 << 30);
+    v("stop_transmittance", s.stop_transmittance, 0.0f, 0.5f);
+    v("head_weight_threshold", s.head_weight_threshold, 0.0f, 0.1f);
+    v("wave", s.wave, 1, 1 << 16);
+  }
+  void validate(const std::string& where = "fast_render") const;
+  // All keys optional, unknown keys rejected, validated.
+  static FastRenderConfig from_json(const Json& j, const std::string& where = "fast_render");
+  Json to_json() const { return config::write_fields(*this); }
+};
+
+}  // namespace sgnlf::render
