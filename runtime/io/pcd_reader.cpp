@@ -88,17 +88,17 @@ void read_ascii(const std::string& path, const PcdHeader& h, const char* bytes, 
     const auto tok = split_ws(line);
     if (tok.empty()) continue;
     const size_t offset = h.data_offset + cur.line_offset(), line_no = h.data_line + cur.line_number();
-    const std::string where = "line " + std::to_string(line_no) + " (byte offset " + std::to_string(offset) + ")";
-    if (n == h.points) throw IoError(path + ": " + where + ": more points than POINTS " + std::to_string(h.points));
+    auto where = [&] { return "line " + std::to_string(line_no) + " (byte offset " + std::to_string(offset) + ")"; };
+    if (n == h.points) throw IoError(path + ": " + where() + ": more points than POINTS " + std::to_string(h.points));
     if (tok.size() != h.values_per_point)
-      throw IoError(path + ": " + where + ": " + std::to_string(tok.size()) + " values, FIELDS and COUNT declare " +
+      throw IoError(path + ": " + where() + ": " + std::to_string(tok.size()) + " values, FIELDS and COUNT declare " +
                     std::to_string(h.values_per_point));
     for (size_t k = 0; k < h.fields.size(); ++k) {
       const auto& f = h.fields[k];
       for (size_t c = 0; c < f.count; ++c) {
         double d = 0;
         if (!parse_scalar(tok[f.value_index + c], f.type, d))
-          throw IoError(path + ": " + where + ": '" + std::string(tok[f.value_index + c].substr(0, 40)) +
+          throw IoError(path + ": " + where() + ": '" + std::string(tok[f.value_index + c].substr(0, 40)) +
                         "' is not a value of field '" + f.name + "' (SIZE " + std::to_string(f.size) + ")");
         if (role_of_field[k] >= 0) v[size_t(role_of_field[k])] = d;
       }
