@@ -1,7 +1,5 @@
 #include "io/pcd_reader.hpp"
 
-#include <cstring>
-
 #include "core/error.hpp"
 #include "io/lzf.hpp"
 #include "io/pcd_header.hpp"
@@ -16,7 +14,7 @@ using detail::PcdHeader;
   throw IoError(path + ": byte offset " + std::to_string(offset) + ": " + what);
 }
 
-// Values of the roles a header has, from a record whose field f starts at base + stride_f·i.
+// The field of each role the header has (null: absent).
 struct RoleFields {
   const detail::PcdField* field[kFieldRoles] = {};
   explicit RoleFields(const PcdHeader& h) {

@@ -125,4 +125,15 @@ TEST_CASE("read_scan picks the reader by name and refuses other names", "[io][ba
   CHECK_FALSE(io::is_scan_file("a.las"));
   const std::string m = test::refusal([&] { io::read_scan(dir + "/a.las"); });
   CHECK(m.find(".pcd or .ply") != std::string::npos);
+  // nuScenes through read_scan: its rings come back as ScanExtras.
+  test::Bytes nus;
+  nus.le(1.f).le(2.f).le(3.f).le(51.f).le(7.f).le(4.f).le(5.f).le(6.f).le(255.f).le(31.f);
+  nus.write(dir + "/n.pcd.bin");
+  io::ScanExtras ex;
+  io::ScanReadStats st;
+  REQUIRE(io::read_scan(dir + "/n.pcd.bin", &st, &ex).size() == 2);
+  CHECK(ex.has_ring);
+  CHECK(ex.ring == std::vector<int32_t>{7, 31});
+  CHECK_FALSE(ex.has_time);
+  CHECK(st.max_intensity == Approx(1.0));
 }
