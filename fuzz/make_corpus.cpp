@@ -1,5 +1,5 @@
 // Writes the seed corpus of every fuzz target (fuzz/corpus/<target>/) with the project's own
-// writers: scans (io::write_kitti_bin, write_file_bytes), trajectories (write_kitti_poses,
+// writers: scans (io::write_kitti_bin, write_file_bytes, write_pcd, write_ply), trajectories (write_kitti_poses,
 // write_tum_poses, write_indexed_poses), calibration lines in the loaders' layout, sensor and
 // load-option JSON (sensor_to_json, LoadOptions::to_json), checkpoints (save_checkpoint),
 // .npy (write_range_npy), nuScenes tables (write_json_file) and a trimmed smoke result for
@@ -12,6 +12,7 @@
 #include "core/config.hpp"
 #include "datasets/loader.hpp"
 #include "geometry/sensor.hpp"
+#include "io/cloud_writers.hpp"
 #include "io/range_array.hpp"
 #include "io/scan_io.hpp"
 #include "io/trajectory_io.hpp"
@@ -61,6 +62,44 @@ int main(int argc, char** argv) {
   const std::vector<float> nus = {3, 1, -1, 102, 5, -6, 2, 0.5f, 255, 20};
   io::write_file_bytes(tmp + "/a.pcd.bin", nus.data(), nus.size() * 4);
   seed(out + "/fuzz_scan_nuscenes", "two_points.pcd.bin", read_all(tmp + "/a.pcd.bin"));
+
+  // PCD and PLY scans of 24 points (exact binary fractions: the same bytes on every libm), in
+  // every encoding, with and without ring and time; one hand-written file each for the header
+  // forms the writers do not produce (v0.6 PCD with COUNT 3; PLY faces around the vertices).
+  std::vector<PointXYZI> scan;
+  io::ScanExtras ex;
+  for (int k = 0; k < 24; ++k) {
+    scan.push_back({0.5f * float(k) - 6.f, 1.25f * float(k % 5), -1.5f + 0.125f * float(k % 3), 10.f * float(k)});
+    ex.ring.push_back(k % 16);
+    ex.time.push_back(0.00390625 * k);
+  }
+  ex.has_ring = ex.has_time = ex.has_intensity = true;
+  const std::string pcd = out + "/fuzz_scan_pcd", ply = out + "/fuzz_scan_ply";
+  const std::pair<io::PcdEncoding, const char*> pcd_enc[] = {
+      {io::PcdEncoding::kAscii, "ascii"}, {io::PcdEncoding::kBinary, "binary"}, {io::PcdEncoding::kBinaryCompressed, "compressed"}};
+  for (const auto& [enc, name] : pcd_enc) {
+    io::write_pcd(tmp + "/s.pcd", scan, enc);
+    seed(pcd, std::string(name) + ".pcd", read_all(tmp + "/s.pcd"));
+    io::write_pcd(tmp + "/s.pcd", scan, enc, &ex);
+    seed(pcd, std::string(name) + "_ring_time.pcd", read_all(tmp + "/s.pcd"));
+  }
+  seed(pcd, "v06_count3.pcd",
+       "# .PCD v0.6\nFIELDS rgb x normal y z\nSIZE 4 4 4 4 4\nTYPE U F F F F\nCOUNT 1 1 3 1 1\nWIDTH 2\n"
+       "HEIGHT 1\nDATA ascii\n7 1.5 0 0 1 2 -3\n9 nan 0 1 0 4 5\n");
+  const std::pair<io::PlyEncoding, const char*> ply_enc[] = {{io::PlyEncoding::kAscii, "ascii"},
+                                                             {io::PlyEncoding::kBinaryLittleEndian, "little"},
+                                                             {io::PlyEncoding::kBinaryBigEndian, "big"}};
+  for (const auto& [enc, name] : ply_enc) {
+    io::write_ply(tmp + "/s.ply", scan, enc);
+    seed(ply, std::string(name) + ".ply", read_all(tmp + "/s.ply"));
+    io::write_ply(tmp + "/s.ply", scan, enc, &ex);
+    seed(ply, std::string(name) + "_ring_time.ply", read_all(tmp + "/s.ply"));
+  }
+  seed(ply, "faces_around_vertices.ply",
+       "ply\nformat ascii 1.0\ncomment faces before and after\nelement face 1\nproperty list uchar int vertex_index\n"
+       "element vertex 3\nproperty short x\nproperty uint16 y\nproperty double z\nproperty uchar reflectance\n"
+       "property list uchar float n\nelement edge 1\nproperty int a\nproperty int b\nend_header\n"
+       "3 0 1 2\n1 2 3 200 0\n-4 5 6.5 17 2 0.5 0.25\n7 8 9 255 1 1\n0 2\n");
 
   // Trajectories: prefix 0 KITTI, 1 TUM, 2 KITTI-360 poses.txt.
   const std::vector<Pose> poses = {pose(0.0, 0.0), pose(0.1, 1.0), pose(0.25, 2.5)};

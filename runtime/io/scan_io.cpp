@@ -8,6 +8,8 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "io/pcd_reader.hpp"
+#include "io/ply_reader.hpp"
 
 namespace sgnlf::io {
 namespace fs = std::filesystem;
@@ -69,6 +71,7 @@ std::vector<PointXYZI> read_records(const std::string& path, int fields, float i
       continue;
     }
     pts.push_back(p);
+    if (pts.size() == 1 || p.intensity > st.max_intensity) st.max_intensity = p.intensity;
     if (rings) rings->push_back(uint8_t(std::lround(std::fmax(0.f, std::fmin(255.f, v[4])))));
   }
   if (st.non_finite > 0)
@@ -94,12 +97,26 @@ std::vector<PointXYZI> read_nuscenes_bin(const std::string& path, ScanReadStats*
   return read_records(path, 5, 1.0f / 255.0f, stats, rings);
 }
 
-bool is_scan_file(const std::string& path) { return ends_with(path, ".bin"); }
+bool is_scan_file(const std::string& path) {
+  return ends_with(path, ".bin") || ends_with(path, ".pcd") || ends_with(path, ".ply");
+}
 
-std::vector<PointXYZI> read_scan(const std::string& path, ScanReadStats* stats) {
-  if (ends_with(path, ".pcd.bin")) return read_nuscenes_bin(path, stats);
+std::vector<PointXYZI> read_scan(const std::string& path, ScanReadStats* stats, ScanExtras* extras) {
+  if (ends_with(path, ".pcd")) return read_pcd(path, stats, extras);
+  if (ends_with(path, ".ply")) return read_ply(path, stats, extras);
+  ScanExtras none;
+  ScanExtras& ex = extras ? *extras : none;
+  ex = ScanExtras{};
+  ex.has_intensity = true;
+  if (ends_with(path, ".pcd.bin")) {
+    std::vector<uint8_t> rings;
+    auto pts = read_nuscenes_bin(path, stats, extras ? &rings : nullptr);
+    ex.ring.assign(rings.begin(), rings.end());
+    ex.has_ring = true;
+    return pts;
+  }
   if (ends_with(path, ".bin")) return read_kitti_bin(path, stats);
-  throw IoError(path + ": unknown scan format (expected .bin or .pcd.bin)");
+  throw IoError(path + ": unknown scan format (expected .bin, .pcd.bin, .pcd or .ply)");
 }
 
 void write_kitti_bin(const std::string& path, const std::vector<PointXYZI>& pts) {

@@ -39,6 +39,7 @@ TEST_CASE("KITTI .bin round trip", "[io]") {
   REQUIRE(back.size() == 2);
   CHECK(st.records == 2);
   CHECK(st.non_finite == 0);
+  CHECK(st.max_intensity == 0.5f);
   CHECK(back[1].y == 5.5f);
   CHECK(back[1].intensity == 0.25f);
 }

@@ -36,6 +36,25 @@ TEST_CASE("PLY and PCD: header then packed float32 x y z intensity", "[io]") {
   }
 }
 
+TEST_CASE("write_ply(path, pts) and write_pcd(path, pts): their bytes are pinned", "[io]") {
+  // Literal headers as these two writers have always written them, then the packed floats:
+  // the extended writers they now delegate to must not change a byte of them.
+  const std::string dir = test::temp_dir("io_clouds_pinned");
+  const std::vector<PointXYZI> pts = {{1, -2, 3.25f, 0.5f}, {1e-7f, 5e6f, -6, 255.f}};
+  std::string body(pts.size() * 16, '\0');
+  std::memcpy(&body[0], pts.data(), body.size());
+  const std::string ply = "ply\nformat binary_little_endian 1.0\ncomment sgnlf\nelement vertex 2\nproperty float x\n"
+                          "property float y\nproperty float z\nproperty float intensity\nend_header\n";
+  const std::string pcd = "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS x y z intensity\n"
+                          "SIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH 2\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\n"
+                          "POINTS 2\nDATA binary\n";
+  io::write_ply(dir + "/a.ply", pts);
+  io::write_pcd(dir + "/a.pcd", pts);
+  const auto a = io::read_file_bytes(dir + "/a.ply"), b = io::read_file_bytes(dir + "/a.pcd");
+  CHECK(std::string(a.begin(), a.end()) == ply + body);
+  CHECK(std::string(b.begin(), b.end()) == pcd + body);
+}
+
 TEST_CASE("npy range image round trip and bad files", "[io]") {
   const std::string dir = test::temp_dir("io_npy");
   RangeImage img(3, 5);
