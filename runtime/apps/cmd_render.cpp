@@ -15,7 +15,7 @@ namespace sgnlf::app {
 namespace {
 
 struct RenderArgs {
-  std::string run, out, data, device, poses;
+  std::string run, out, data, device, poses, sensor;
   FastRenderOptions fast;
   pipeline::RenderSampling sampling;
 };
@@ -29,6 +29,10 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
   sub.add_option("--poses", a->poses,
                  "Render these views instead of the test frames: KITTI trajectory file, one "
                  "T_world_lidar per line (12 numbers, the dataset's world frame, metres)");
+  sub.add_option("--sensor", a->sensor,
+                 "Render for this sensor instead of the recording one: a preset (kitti360 = "
+                 "HDL-64E, nuscenes = HDL-32E) or a sensor JSON file (keys of sensor.json); "
+                 "without --poses, at the test frames' poses");
   a->fast.add(sub, "fast", "");
   sub.add_option("--samples", a->sampling.n_samples,
                  "Uniform samples per ray when rendering (default: the config's render.eval_samples, else as trained)");
@@ -44,18 +48,28 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
     const std::vector<Pose> poses =
         a->poses.empty() ? std::vector<Pose>{} : io::read_kitti_poses(a->poses);
     const render::FastRenderConfig fcfg = a->fast.config();
+    std::unique_ptr<Sensor> sensor;
+    if (!a->sensor.empty())
+      sensor = std::make_unique<Sensor>(
+          a->sensor == "kitti360" || a->sensor == "nuscenes"
+              ? sensor_preset(a->sensor)
+              : sensor_from_json(load_config_file(a->sensor), a->sensor));
     cl::Runtime rt(a->device);
     auto run = pipeline::load_run(rt, a->run, a->data, a->sampling);
     const std::string out =
         a->out.empty() ? (std::filesystem::path(a->run) / "renders").string() : a->out;
     const auto fast = a->fast.make(rt, run, fcfg);
     const auto t0 = std::chrono::steady_clock::now();
-    const Json files = a->poses.empty()
+    std::vector<Pose> views = poses;
+    if (views.empty() && sensor)
+      for (int f : run.dataset->split.test) views.push_back(run.T_world_lidar[size_t(f)]);
+    const Json files = views.empty()
                            ? pipeline::render_run(run, out, fast.get())
-                           : pipeline::render_poses(run, poses, out, fast.get());
+                           : pipeline::render_poses(run, views, out, fast.get(), sensor.get());
     const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const long frames = long(files.size());
-    const long rays = frames * long(run.scene->sensor.height) * long(run.scene->sensor.width);
+    const Sensor& shown = sensor ? *sensor : run.scene->sensor;
+    const long rays = frames * long(shown.height) * long(shown.width);
     // Render time without writing files and (fast) without the grid builds.
     const double render_s = fast ? fast->counts().render_seconds : total_s;
     Json summary{{"renderer", a->fast.renderer}, {"frames", frames}, {"rays", rays},
@@ -70,8 +84,8 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
       summary["head_rows_per_ray"] = rays > 0 ? double(c.head_rows) / double(rays) : 0.0;
       summary["fast_config"] = fcfg.to_json();
     }
-    std::cerr << "render: " << frames << " frame(s) of " << run.scene->sensor.height << " x "
-              << run.scene->sensor.width << " in " << render_s << " s ("
+    std::cerr << "render: " << frames << " frame(s) of " << shown.height << " x "
+              << shown.width << " in " << render_s << " s ("
               << summary["rays_per_s"].get<double>() << " rays/s, "
               << summary["frames_per_s"].get<double>() << " frames/s, " << a->fast.renderer
               << " renderer)\n";

@@ -14,7 +14,7 @@ struct FastRenderConfig {
   // a cell is occupied when it holds a return of a training scan (under the run's poses) or exp(σ)·δ at one of its probes³ stratified probe points exceeds
   // −log(1 − alpha) (one sample there, δ the renderer's bin width, would stop more than alpha
   // of the light), then dilated by `dilate` cells. Refused above max_cells cells.
-  float cell_m = 1.0f;
+  float cell_m = 2.0f;
   int probes_per_axis = 2;
   float alpha = 1e-4f;
   int dilate = 1;
@@ -25,7 +25,7 @@ struct FastRenderConfig {
   // stop_transmittance; the head runs on samples whose weight exceeds head_weight_threshold.
   float stop_transmittance = 1e-4f;
   float head_weight_threshold = 1e-4f;
-  int wave = 16;
+  int wave = 8;
 
   template <class Self, class V>
   static void fields(Self& s, V& v) {

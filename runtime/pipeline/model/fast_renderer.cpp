@@ -62,18 +62,18 @@ const render::OccupancyGrid& FastRenderer::grid(int frame) {
   return *grids_.emplace(key, std::move(g)).first->second;
 }
 
-RangeImage FastRenderer::render(const Pose& T_world_lidar, int frame) {
+RangeImage FastRenderer::render(const Pose& T_world_lidar, int frame, const Scene* view) {
   if (model_.temporal() && frame < 0) frame = nearest_frame(scene_, T_world_lidar);
   const render::OccupancyGrid& g = grid(frame);
   const auto t0 = std::chrono::steady_clock::now();
   FastView fast{&g, &cfg_};
-  const int H = scene_.sensor.height, W = scene_.sensor.width;
-  RangeImage img = render_view(model_, scene_, T_world_lidar, chunk_, frame, &fast);
+  const Scene& v = view ? *view : scene_;
+  RangeImage img = render_view(model_, v, T_world_lidar, chunk_, frame, &fast);
   counts_.render_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ++counts_.frames;
   counts_.evaluated += fast.evaluated;
   counts_.head_rows += fast.head_rows;
-  counts_.rays += long(H) * long(W);
+  counts_.rays += long(img.size());
   return img;
 }
 

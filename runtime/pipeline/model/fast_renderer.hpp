@@ -23,8 +23,9 @@ class FastRenderer {
   FastRenderer(cl::Runtime& rt, LidarNerfModel& model, const Scene& scene,
                const render::FastRenderConfig& cfg, int chunk_rays);
 
-  // As render_view (frame < 0: the nearest dataset frame's time for a 4D field).
-  RangeImage render(const Pose& T_world_lidar, int frame = -1);
+  // As render_view (frame < 0: the nearest dataset frame's time for a 4D field); `view` (from
+  // view_with_sensor) renders another sensor's rays, the grid staying the scene's.
+  RangeImage render(const Pose& T_world_lidar, int frame = -1, const Scene* view = nullptr);
   // The grid for dataset frame `frame` (any frame for a field without time), built on first use.
   const render::OccupancyGrid& grid(int frame);
 

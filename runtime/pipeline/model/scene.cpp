@@ -68,4 +68,17 @@ Scene make_pose_free_scene(const Dataset& d, const std::vector<Pose>& T_world_li
   return s;
 }
 
+Scene view_with_sensor(const Scene& scene, const Sensor& sensor) {
+  sensor.validate();
+  Scene v;
+  v.sensor = sensor;
+  v.norm = scene.norm;
+  v.T_world_lidar = scene.T_world_lidar;
+  v.directions = ray_directions(sensor);
+  v.train = scene.train;
+  v.test = scene.test;
+  v.pose_only = scene.pose_only;
+  return v;
+}
+
 }  // namespace sgnlf::pipeline

@@ -29,6 +29,10 @@ Scene make_scene(const Dataset& d);
 // frames for their poses only (pose_only).
 Scene make_pose_free_scene(const Dataset& d, const std::vector<Pose>& T_world_lidar_init);
 
+// The scene seen through another sensor (rendering only): its sensor and ray directions,
+// the same normalisation, poses and splits, no range images.
+Scene view_with_sensor(const Scene& scene, const Sensor& sensor);
+
 // Pose `T_world_lidar` (metres) → normalised frame, and back.
 Pose normalize_pose(const Pose& T_world_lidar, const SceneNormalization& n);
 Pose denormalize_pose(const Pose& T_norm, const SceneNormalization& n);

@@ -160,11 +160,14 @@ Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast) 
 }
 
 Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
-                  const std::string& out_dir, FastRenderer* fast) {
+                  const std::string& out_dir, FastRenderer* fast, const Sensor* sensor) {
   if (T_world_lidar.empty()) throw ConfigError("render_poses: no poses to render");
   fs::create_directories(out_dir);
+  const std::unique_ptr<Scene> other =
+      sensor ? std::make_unique<Scene>(view_with_sensor(*run.scene, *sensor)) : nullptr;
+  const Scene& view = other ? *other : *run.scene;
   io::RangePictureOptions po;
-  po.max_range_m = run.dataset->sensor.max_range_m;
+  po.max_range_m = view.sensor.max_range_m;
   Json files = Json::array();
   Progress progress("render", long(T_world_lidar.size()));
   for (size_t k = 0; k < T_world_lidar.size(); ++k) {
@@ -173,8 +176,8 @@ Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
       log::warn("render_poses: pose ", k, " has its origin at (", o.x(), ", ", o.y(), ", ", o.z(),
                 ") in the normalised scene, outside the trained box [-1, 1]^3");
     const RangeImage pred =
-        fast ? fast->render(T_world_lidar[k])
-             : render_view(*run.model, *run.scene, T_world_lidar[k],
+        fast ? fast->render(T_world_lidar[k], -1, &view)
+             : render_view(*run.model, view, T_world_lidar[k],
                            run.manifest.config.schedule.render_chunk_rays);
     char name[32];
     std::snprintf(name, sizeof name, "pose_%04zu", k);
@@ -182,7 +185,7 @@ Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
     const RangeImage masked = masked_prediction(pred);
     io::write_range_npy(stem + ".npy", pred);
     io::write_png(stem + ".png", io::range_image_picture(masked, po));
-    io::write_pcd(stem + ".pcd", unproject(run.dataset->sensor, masked));
+    io::write_pcd(stem + ".pcd", unproject(view.sensor, masked));
     files.push_back(Json{{"pose", k}, {"npy", stem + ".npy"}, {"png", stem + ".png"},
                          {"pcd", stem + ".pcd"}, {"origin_normalised", {o.x(), o.y(), o.z()}}});
     progress.update(long(k) + 1);

@@ -36,9 +36,11 @@ Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast =
 // a pose whose origin lies outside the scene's normalised box is rendered with a warning (the
 // field is only trained inside it). Returns the files with each pose's normalised origin.
 // Also <out>/pose_<k>.pcd: the returns (probability > 0.5) as points in the sensor frame.
-// One progress line over the poses.
+// One progress line over the poses. With `sensor`, the views are that sensor's (rows, field of
+// view, resolution, range), not the recording one's.
 Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
-                  const std::string& out_dir, FastRenderer* fast = nullptr);
+                  const std::string& out_dir, FastRenderer* fast = nullptr,
+                  const Sensor* sensor = nullptr);
 
 // ATE, RPE_t, RPE_r (protocol §4, SE(3) Umeyama alignment) of `est` against `gt`, as JSON.
 Json pose_metrics_json(const std::vector<Pose>& est, const std::vector<Pose>& gt);
