@@ -21,11 +21,13 @@ struct FastRenderConfig {
   float margin_m = 2.0f;
   int max_cells = 1 << 26;
   // Marching: samples in occupied cells are evaluated front to back in waves (`wave` samples
-  // per ray each, one host sync per wave) until the transmittance falls below
-  // stop_transmittance; the head runs on samples whose weight exceeds head_weight_threshold.
+  // per ray, doubling, one host sync per wave; wave max_waves takes every sample left) until
+  // the transmittance falls below stop_transmittance; the head runs on samples whose weight
+  // exceeds head_weight_threshold.
   float stop_transmittance = 1e-4f;
   float head_weight_threshold = 1e-4f;
   int wave = 8;
+  int max_waves = 3;
 
   template <class Self, class V>
   static void fields(Self& s, V& v) {
@@ -38,6 +40,7 @@ struct FastRenderConfig {
     v("stop_transmittance", s.stop_transmittance, 0.0f, 0.5f);
     v("head_weight_threshold", s.head_weight_threshold, 0.0f, 0.1f);
     v("wave", s.wave, 1, 1 << 16);
+    v("max_waves", s.max_waves, 1, 1 << 16);
   }
   void validate(const std::string& where = "fast_render") const;
   // All keys optional, unknown keys rejected, validated.

@@ -50,9 +50,11 @@ long FastMarch::density_pass(int n_rays, int S, const cl::Buffer& x,
   for (int r = 0; r < n_rays; ++r)
     if (count[size_t(r)] > 0) alive.push_back(r);
   long evaluated = 0;
-  const int K = std::min(cfg_.wave, S);
   std::vector<int32_t> cur_a, off_a, end_a;
-  while (!alive.empty()) {
+  for (int wave = 0; !alive.empty(); ++wave) {
+    // `wave` samples per ray, doubling; the last wave (max_waves) takes every sample left: the
+    // rays still going then are the translucent ones, which need most of their samples anyway.
+    const int K = wave + 1 >= cfg_.max_waves ? S : std::min(S, cfg_.wave << std::min(wave, 16));
     const size_t A = alive.size();
     cur_a.assign(A, 0), off_a.assign(A + 1, 0), end_a.assign(A, 0);
     for (size_t a = 0; a < A; ++a) {

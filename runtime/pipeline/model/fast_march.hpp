@@ -1,6 +1,7 @@
 // The fast renderer's marching (render::FastRenderConfig; kernels/pipeline/fast_march.cl): of
 // each ray's samples only those in occupied cells of a render::OccupancyGrid are evaluated,
-// front to back in waves (`wave` samples per ray each) until the ray's transmittance
+// front to back in waves (`wave` samples per ray, doubling, the last of max_waves taking every
+// sample left) until the ray's transmittance
 // falls below stop_transmittance; the others keep a dead σ (zero weight). The LiDAR head then
 // runs only on the samples whose weight exceeds head_weight_threshold (head logits kOffLogit
 // elsewhere). The sample layout is the protocol renderer's (S per ray, ray-major), so the
