@@ -13,6 +13,7 @@
 
 #include "support/bench_support.hpp"
 #include "bench_dataset.hpp"
+#include "bench_trained.hpp"
 #include "pipeline/model/model.hpp"
 #include "pipeline/config/presets.hpp"
 #include "pipeline/model/ray_batch.hpp"
@@ -22,7 +23,9 @@ using namespace sgnlf::pipeline;
 
 namespace {
 
-const Dataset& bench_dataset() { return bench::simulated_dataset("kitti360-1538", 14); }
+using bench::bench_dataset;
+using bench::kWarmSteps;
+using bench::trained_state;
 
 // stop_transmittance < 0 keeps the preset's.
 void BM_TrainStep(benchmark::State& state, const char* preset, bool reuse_coarse,
@@ -65,22 +68,6 @@ long free_space_samples(const RayBatch& b, const TrainConfig& c, float scene_sca
     if (front > 0.0) n += std::min<long>(long(front / bin), c.render.n_samples);
   }
   return n;
-}
-
-// One quick-preset model trained for kWarmSteps (with termination; shared by the pair below).
-constexpr long kWarmSteps = 1000;
-const ModelState& trained_state() {
-  static const ModelState st = [] {
-    const Scene scene = make_scene(bench_dataset());
-    const TrainConfig c = resolve_config("lidar-nerf", "quick");
-    LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), c.schedule.rays_per_batch);
-    model.init_params(1);
-    for (long step = 0; step < kWarmSteps; ++step)
-      model.train_step(draw_ray_batch(scene, c, 1, step), 1, step, float(c.optim.lr_at(step, c.schedule.iterations)));
-    model.read_loss();
-    return model.state();
-  }();
-  return st;
 }
 
 void BM_TrainStepTrained(benchmark::State& state, float stop_transmittance, int coarse_waves = 1,
