@@ -184,3 +184,41 @@ TEST_CASE("sg-nlf killed with SIGKILL and resumed equals the uninterrupted run",
   CHECK(logged_steps(b) == logged_steps(a));
   CHECK(logged_steps(a) == std::vector<long>{1, 7, 14, 21, 28});
 }
+
+TEST_CASE("lidar4d killed with SIGKILL and resumed equals the uninterrupted run",
+          "[pipeline][train][crash][lidar4d][device]") {
+  // LiDAR4D shrunk to the tiny scene (24 steps, checkpoints every 8): the resumed run must
+  // restore both Adam groups (encodings, and the MLPs with the flow field at 0.1·lr) and the
+  // flow supervision's schedule; its checkpoint must equal the uninterrupted run's byte for byte.
+  const std::string root = test::temp_dir("kill_resume_lidar4d");
+  const std::string data = root + "/data";
+  test::write_tiny_dataset(data);
+  const std::string config = root + "/tiny.json";
+  std::ofstream(config) << Json{{"schedule", {{"iterations", 24}, {"checkpoint_every", 8},
+                                              {"log_every", 8}, {"rays_per_batch", 128},
+                                              {"render_chunk_rays", 512}}},
+                                {"render", {{"n_samples", 16}, {"n_importance", 4}}}}
+                               .dump();
+  const std::string a = root + "/uninterrupted";
+  const Outcome full = run_train(data, a, "", -1.0, "lidar4d", config);
+  INFO(contents(a + ".log"));
+  REQUIRE(full.exited);
+  REQUIRE(full.code == 0);
+  REQUIRE(latest_step(a) == 24);
+
+  const std::string b = root + "/killed";
+  Outcome o = run_train(data, b, "after-step@13", -1.0, "lidar4d", config);
+  CHECK(o.signal == SIGKILL);
+  CHECK(latest_step(b) == 8);
+  o = run_train(data, b, "checkpoint-partial@16", -1.0, "lidar4d", config);
+  CHECK(o.signal == SIGKILL);
+  CHECK(latest_step(b) == 8);
+  o = run_train(data, b, "", -1.0, "lidar4d", config);
+  INFO(contents(b + ".log"));
+  REQUIRE(o.exited);
+  REQUIRE(o.code == 0);
+  CHECK(latest_step(b) == 24);
+  CHECK(contents(pipeline::checkpoint_path(b)) == contents(pipeline::checkpoint_path(a)));
+  CHECK(logged_steps(b) == logged_steps(a));
+  CHECK(logged_steps(a) == std::vector<long>{1, 8, 16, 24});
+}
