@@ -1,9 +1,6 @@
 #include "report/html.hpp"
 
-#include <fstream>
-#include <sstream>
-
-#include "core/error.hpp"
+#include "io/scan_io.hpp"
 #include "report/base64.hpp"
 
 namespace sgnlf::report {
@@ -29,12 +26,8 @@ std::string data_uri(const std::string& mime, std::string_view bytes) {
 }
 
 std::string read_bytes(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw IoError("report: cannot read " + path);
-  std::ostringstream s;
-  s << f.rdbuf();
-  if (f.bad()) throw IoError("report: error while reading " + path);
-  return s.str();
+  const std::vector<char> b = io::read_file_bytes(path);
+  return std::string(b.begin(), b.end());
 }
 
 std::string html_table(const std::vector<std::string>& header,
