@@ -24,7 +24,7 @@ std::vector<fs::path> files_with(const std::string& dir, const std::string& ext)
     if (e.is_regular_file() && e.path().extension() == ext) v.push_back(e.path());
   auto numeric = [](const fs::path& p) {
     const std::string s = p.stem().string();
-    return !s.empty() && s.size() < 10 && std::all_of(s.begin(), s.end(), ::isdigit);
+    return !s.empty() && s.size() < 10 && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
   };
   std::sort(v.begin(), v.end(), [&](const fs::path& a, const fs::path& b) {
     if (numeric(a) && numeric(b)) return std::stol(a.stem().string()) < std::stol(b.stem().string());
