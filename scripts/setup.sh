@@ -9,6 +9,9 @@ PACKAGES=(
 )
 # The fuzz targets and CI's sanitizer job build with clang and its libFuzzer runtime.
 if [ "${SGNLF_SETUP_CLANG:-0}" = "1" ]; then PACKAGES+=(clang libclang-rt-dev); fi
+# The test job opens the `sgnlf report` page in headless Chromium (tests/report/test_browser.cpp;
+# without it that test warns and passes). run.sh does not need it.
+if [ "${SGNLF_SETUP_BROWSER:-0}" = "1" ]; then PACKAGES+=(chromium); fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

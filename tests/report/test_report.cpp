@@ -1,0 +1,179 @@
+// `sgnlf report`: the page of a synthetic run folder and bench folder (report_fixture.hpp),
+// checked as text: every picture is a data: URI of the file's exact bytes, the curves are
+// inline SVG, inserted text is escaped, nothing refers to the network, and bad input is refused
+// with the path named.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "report/base64.hpp"
+#include "report/report.hpp"
+#include "report/run_folder.hpp"
+#include "report_fixture.hpp"
+#include "support/test_device.hpp"
+
+using namespace sgnlf;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string decode_data_uri(const std::string& uri, const std::string& mime) {
+  const std::string head = "data:" + mime + ";base64,";
+  REQUIRE(uri.rfind(head, 0) == 0);
+  return report::base64_decode(uri.substr(head.size()));
+}
+
+bool contains(const std::string& s, const std::string& what) { return s.find(what) != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("report of a run: every picture is embedded with the file's exact bytes", "[report]") {
+  const std::string dir = test::temp_dir("report_run");
+  const auto pngs = test::write_run_fixture(dir);
+  const std::string html = report::build_report(dir);
+  const auto srcs = test::img_sources(html);
+  // top view, latest pose graph, the two renders in frame order
+  REQUIRE(srcs.size() == 4);
+  for (const auto& s : srcs) CHECK(s.rfind("data:", 0) == 0);
+  CHECK(decode_data_uri(srcs[0], "image/svg+xml") == test::file_text(dir + "/trajectories/top_view.svg"));
+  CHECK(decode_data_uri(srcs[1], "image/svg+xml") == test::file_text(dir + "/pose_graph/epoch_00010.svg"));
+  CHECK(decode_data_uri(srcs[2], "image/png") == test::file_text(pngs[0]));
+  CHECK(decode_data_uri(srcs[3], "image/png") == test::file_text(pngs[1]));
+  CHECK(test::file_text(pngs[0]).substr(1, 3) == "PNG");
+  CHECK(contains(html, "frame 3 (3.png): depth PSNR"));
+  CHECK(test::count_of(html, "class=\"tag top\">rendered<") == 2);
+}
+
+TEST_CASE("report of a run: curves, metrics and context", "[report]") {
+  const std::string dir = test::temp_dir("report_run_text");
+  test::write_run_fixture(dir);
+  const std::string html = report::build_report(dir);
+  // Loss, learning rate and ATE charts, each with drawn series.
+  CHECK(test::count_of(html, "<svg class=\"chart\"") == 3);
+  CHECK(test::count_of(html, "<polyline class=\"series\"") >= 4);  // total, depth, lr, 2 × ATE
+  CHECK(contains(html, "<title>Learning rate</title>"));
+  CHECK(contains(html, "ATE after geometric step"));
+  CHECK(contains(html, "4 entries of train_log.jsonl, 2 of geometric_log.jsonl"));
+  CHECK_FALSE(contains(html, "no data"));
+  // Means: model vs naive (depth PSNR 27/1.05 = 25.71 vs 13.50), per frame, poses.
+  CHECK(contains(html, "<span class=\"better\">25.71</span>"));
+  CHECK(contains(html, "<td>13.50</td>"));
+  CHECK(contains(html, "naive 13.50"));
+  CHECK(contains(html, "<span class=\"better\">0.0817</span>"));
+  CHECK(contains(html, "<td>3.2526</td>"));
+  CHECK(contains(html, "pose_graph/epoch_00010.svg (latest of 2)"));
+  CHECK(contains(html, "3 edges, 2 kept, of which 1 non-sequential"));
+  CHECK(contains(html, "<td>0123456789abcdef</td>"));
+  CHECK(contains(html, "<td>[0] Test Platform / test-device (CPU)</td>"));  // run.json's is empty
+  CHECK(contains(html, "<td>100</td>"));                                      // step
+  CHECK(contains(html, "resolved config (run.json)"));
+}
+
+TEST_CASE("report: inserted text is escaped and nothing refers to the network", "[report]") {
+  const std::string dir = test::temp_dir("report_escape");
+  test::write_run_fixture(dir);
+  const std::string html = report::build_report(dir);
+  CHECK(contains(html, "seq &lt;b&gt;&amp;&quot;x&#39;"));
+  CHECK_FALSE(contains(html, "<b>"));
+  CHECK_FALSE(contains(html, "<tag>"));
+  CHECK(contains(html, "a &lt;tag&gt; &amp; more"));  // inside the config block
+  CHECK_FALSE(contains(html, "http://"));
+  CHECK_FALSE(contains(html, "https://"));
+  CHECK_FALSE(contains(html, "<link"));
+  CHECK_FALSE(contains(html, "<script src"));
+  CHECK(test::count_of(html, "<script>") == 1);  // the picture check, inline
+}
+
+TEST_CASE("report: the top view is drawn from the TUM files; missing renders are said", "[report]") {
+  const std::string dir = test::temp_dir("report_drawn");
+  test::write_run_fixture(dir, {false, false});
+  const std::string html = report::build_report(dir);
+  CHECK(test::count_of(html, "<svg class=\"chart\"") == 4);
+  CHECK(contains(html, "<title>Trajectories from above (TUM files; metres, not aligned)</title>"));
+  CHECK(contains(html, "No renders (no renders/ folder in the run; give --renders DIR)"));
+  CHECK(test::img_sources(html).size() == 1);  // the pose graph only
+  // --renders elsewhere: those pictures, and only up to max_images of them.
+  const std::string other = test::temp_dir("report_renders_src");
+  const auto pngs = test::write_run_fixture(other);
+  const std::string two = report::build_report(dir, {other + "/renders", 24});
+  CHECK(test::img_sources(two).size() == 3);
+  const std::string one = report::build_report(dir, {other + "/renders", 1});
+  REQUIRE(test::img_sources(one).size() == 2);
+  CHECK(decode_data_uri(test::img_sources(one)[1], "image/png") == test::file_text(pngs[0]));
+  CHECK(contains(one, "1 more pictures not embedded"));
+}
+
+TEST_CASE("report: write_report writes <dir>/report.html or --out", "[report]") {
+  const std::string dir = test::temp_dir("report_write");
+  test::write_run_fixture(dir);
+  CHECK(report::write_report(dir) == dir + "/report.html");
+  CHECK(test::file_text(dir + "/report.html") == report::build_report(dir));
+  const std::string out = test::temp_dir("report_write_out") + "/page.html";
+  CHECK(report::write_report(dir, out) == out);
+  CHECK(fs::file_size(out) > 1000);
+}
+
+TEST_CASE("report of a bench folder: the table, one section per run, links to them", "[report]") {
+  const std::string dir = test::temp_dir("report_bench");
+  const std::string run = dir + "/runs/sg-nlf/seq-a";
+  test::write_run_fixture(run);
+  Json seq = {{"sequence", "seq-a"}, {"metrics", test::metric_block(1.0)},
+              {"pose_metrics", {{"ate_m", 0.0817}}},
+              {"extra", {{"naive_baseline", test::metric_block(2.0)}}}};
+  write_json_file(dir + "/results.json",
+                  Json{{"title", "A <table>"}, {"table", "t"}, {"scale", "smoke"},
+                       {"columns", {"cd", "depth_psnr"}}, {"extra_columns", {"ate_m"}},
+                       {"sequences", {{{"name", "seq-a"}}}},
+                       {"rows", {{{"method", "sg-nlf"}, {"label", "SG-NLF & co"}, {"status", "ok"},
+                                  {"mean", test::metric_block(1.0)},
+                                  {"paper", {{"cd", 0.1695}}}, {"sequences", {seq}}},
+                                 {{"method", "geonlf"}, {"label", "GeoNLF"}, {"status", "skipped"},
+                                  {"sequences", Json::array()}}}}});
+  const std::string html = report::build_report(dir);
+  CHECK(contains(html, "<title>sgnlf report: A &lt;table&gt;</title>"));
+  CHECK(contains(html, "SG-NLF &amp; co"));
+  CHECK(contains(html, "paper 0.1695"));
+  CHECK(contains(html, "not run (--rows)"));
+  CHECK(contains(html, "<em>naive baseline</em>"));
+  CHECK(contains(html, "<td>13.50</td>"));  // the naive baseline's depth PSNR
+  CHECK(contains(html, "<a href=\"#run-sg-nlf-seq-a\">"));
+  CHECK(test::count_of(html, "<article id=\"run-sg-nlf-seq-a\">") == 1);
+  CHECK(test::img_sources(html).size() == 4);  // the run's pictures
+  CHECK_FALSE(contains(html, "http://"));
+  CHECK_THROWS_AS(report::build_report(dir, {run + "/renders", 24}), ConfigError);
+}
+
+TEST_CASE("report refuses what is not a run or bench folder, naming the path", "[report]") {
+  const std::string base = test::temp_dir("report_refuse");
+  auto message = [](const std::function<void()>& f) {
+    try {
+      f();
+    } catch (const IoError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no IoError");
+  };
+  const std::string missing = base + "/does-not-exist";
+  CHECK(contains(message([&] { report::build_report(missing); }), missing + ": no such folder"));
+  CHECK(contains(message([&] { report::build_report(base); }),
+                 base + ": neither a run folder (no run.json) nor a bench folder (no results.json)"));
+  CHECK(contains(message([&] { report::load_run_folder(base); }), base));
+  // A damaged log line (not the last, unterminated one) names the file and line.
+  const std::string run = base + "/run";
+  test::write_run_fixture(run);
+  test::write_text(run + "/train_log.jsonl", "{\"step\": 1}\nnot json\n{\"step\": 2}\n");
+  CHECK(contains(message([&] { report::build_report(run); }), run + "/train_log.jsonl:2"));
+  CHECK(contains(message([&] { report::build_report(run, {base + "/nope", 24}); }), base + "/nope"));
+}
+
+TEST_CASE("read_json_lines skips only an unterminated last line", "[report]") {
+  const std::string dir = test::temp_dir("report_jsonl");
+  test::write_text(dir + "/a.jsonl", "{\"a\":1}\n\n{\"a\":2}\n{\"a\":");
+  const auto v = report::read_json_lines(dir + "/a.jsonl");
+  REQUIRE(v.size() == 2);
+  CHECK(v[1]["a"] == 2);
+  CHECK(report::read_json_lines(dir + "/missing.jsonl").empty());
+  test::write_text(dir + "/b.jsonl", "{\"a\":1}\n{\"a\":\n");
+  CHECK_THROWS_AS(report::read_json_lines(dir + "/b.jsonl"), IoError);
+}
