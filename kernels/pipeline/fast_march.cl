@@ -16,14 +16,16 @@ inline int fast_cell(const float3 x, const float4 lo, const float4 inv_cell, con
   return (k * dims.y + j) * dims.x + i;
 }
 
+// Occupied, or outside the grid: the grid knows only its box (the training returns' box), so
+// samples beyond it are evaluated as the protocol's renderer evaluates them.
 inline int fast_occupied(const float3 x, const float4 lo, const float4 inv_cell, const int4 dims,
                          __global const uchar* grid) {
   const int c = fast_cell(x, lo, inv_cell, dims);
-  return c >= 0 && grid[c] != 0;
+  return c < 0 || grid[c] != 0;
 }
 
-// occ[p] = whether x[p]'s cell is occupied (0 outside the grid), for n points (the lookup on its
-// own, for tests).
+// occ[p] = whether x[p] must be evaluated (its cell occupied, or outside the grid), for n points
+// (the lookup on its own, for tests).
 __kernel void pipeline_grid_lookup(const int n, const float4 lo, const float4 inv_cell,
                                    const int4 dims, __global const uchar* grid,
                                    __global const float* x, __global int* occ) {

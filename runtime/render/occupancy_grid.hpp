@@ -44,9 +44,11 @@ class OccupancyGrid {
   // Host lookup (the kernel's rule): −1 outside the box, else the cell index (a point on an
   // upper face belongs to the last cell).
   long cell_of(float x, float y, float z) const;
+  // Whether a sample at (x, y, z) is evaluated: its cell is occupied, or it lies outside the
+  // box (where the grid knows nothing: the protocol renderer evaluates it there).
   bool occupied_at(float x, float y, float z) const {
     const long c = cell_of(x, y, z);
-    return c >= 0 && cells_[size_t(c)] != 0;
+    return c < 0 || cells_[size_t(c)] != 0;
   }
   const cl::Buffer& device() const { return buf_; }
   // Kernel arguments: lo, 1/cell, dims (float4, float4, int4).

@@ -91,7 +91,7 @@ TEST_CASE("occupancy grid: built from the density and from points, refused when 
   CHECK(g.occupied_at(0.2f, 0.0f, 0.0f));
   CHECK(g.occupied_at(0.35f, 0.1f, 0.05f));
   CHECK_FALSE(g.occupied_at(-0.8f, 0.4f, 0.1f));
-  CHECK_FALSE(g.occupied_at(0.2f, 0.0f, 0.5f));  // outside the box
+  CHECK(g.occupied_at(0.2f, 0.0f, 0.5f));  // outside the box: evaluated
   CHECK(g.cell_of(-1.0f, -0.5f, -0.2f) == 0);
   CHECK(g.cell_of(1.01f, 0.0f, 0.0f) == -1);
   CHECK(g.cell_of(1.0f, 0.5f, 0.2f) == long(g.cells().size()) - 1);  // the upper corner
@@ -299,4 +299,42 @@ TEST_CASE("render_rays_fast: exact with a full grid and no thresholds, close and
     CHECK(fast.counts().rays == long(img.size()));
     CHECK(fast.counts().evaluated > 0);
   }
+}
+
+TEST_CASE("render_rays_fast on LiDAR4D's 4D field: exact with a full grid and no thresholds",
+          "[pipeline][fast-render][lidar4d][device]") {
+  const Dataset& d = test::tiny_dataset();
+  const Scene scene = make_scene(d);
+  const TrainConfig c = resolve_config(
+      "lidar4d", "smoke",
+      Json{{"schedule", {{"iterations", 20}, {"checkpoint_every", 0}, {"rays_per_batch", 128},
+                         {"render_chunk_rays", 512}}},
+           {"render", {{"n_samples", 16}, {"n_importance", 4}}}});
+  LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
+  TrainOptions opt;
+  opt.run_dir = test::temp_dir("fast_l4d");
+  opt.seed = 3;
+  opt.show_progress = false;
+  train(model, scene, c, opt);
+  REQUIRE(model.temporal());
+  model.set_frame(13, int(d.frames.size()));
+  std::vector<float> o, dir;
+  image_rays(scene, normalize_pose(d.frames[13].T_world_lidar, scene.norm), 600, 1112, o, dir);
+  const auto ref = model.render_rays(o, dir, 512);
+  render::GridBox box;
+  box.lo = {-1.0f, -1.0f, -1.0f};
+  box.hi = {1.0f, 1.0f, 1.0f};
+  const render::OccupancyGrid full(test::runtime(), box, {4, 4, 4}, std::vector<uint8_t>(64, 1));
+  render::FastRenderConfig none;
+  none.stop_transmittance = 0.0f;
+  none.head_weight_threshold = 0.0f;
+  none.wave = 5;
+  const auto exact = model.render_rays_fast(o, dir, 512, full, none);
+  for (int ch = 0; ch < 3; ++ch) CHECK(worst_channel_diff(ref, exact, ch) < 1e-5);
+  // The FastRenderer's grid at frame 13 leaves the time at frame 13.
+  FastRenderer fast(test::runtime(), model, scene, render::FastRenderConfig{}, 512);
+  fast.grid(5);
+  model.set_frame(13, int(d.frames.size()));
+  const auto again = model.render_rays(o, dir, 512);
+  CHECK(again == ref);
 }
