@@ -9,7 +9,10 @@
 namespace sgnlf::detail {
 namespace {
 
-constexpr double kBinDeg = 0.02;  // elevation histogram bin (beams are >= 0.1° apart)
+constexpr double kBinDeg = 0.02;     // elevation histogram bin
+constexpr long kSmoothBins = 3;      // ±0.06° box smoothing
+constexpr long kPeakBins = 10;       // peaks at least 0.2° apart
+constexpr double kMinPeakShare = 0.1;
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
@@ -49,39 +52,61 @@ Beams beams_from_elevations(const std::vector<ScanSample>& scans) {
   if (e.empty()) throw Error("sensor estimate: rows: the scans hold no point");
   const double lo = *std::min_element(e.begin(), e.end());
   const double hi = *std::max_element(e.begin(), e.end());
-  const size_t nbins = size_t((hi - lo) / kBinDeg) + 1;
-  auto bin_of = [&](double x) { return std::min(nbins - 1, size_t(std::max(0.0, (x - lo) / kBinDeg))); };
-  std::vector<size_t> count(nbins, 0);
-  for (double x : e) ++count[bin_of(x)];
-  // Occupied bins: at least 5 % of the typical occupied bin, so that stray returns between
-  // two beams (noise, a real head's spread) do not join them into one.
-  std::vector<double> nonzero;
-  for (size_t c : count)
-    if (c > 0) nonzero.push_back(double(c));
-  const double min_count = std::max(1.0, 0.05 * median(nonzero));
-  std::vector<int> cluster(nbins, -1);
-  int n = 0;
-  for (size_t k = 0; k < nbins; ++k) {
-    if (double(count[k]) < min_count) continue;
-    cluster[k] = (k > 0 && cluster[k - 1] >= 0) ? cluster[k - 1] : n++;
+  const long nbins = long((hi - lo) / kBinDeg) + 1;
+  auto bin_of = [&](double x) { return std::clamp(long((x - lo) / kBinDeg), 0L, nbins - 1); };
+  std::vector<double> count(size_t(nbins), 0.0), smooth(size_t(nbins), 0.0);
+  for (double x : e) count[size_t(bin_of(x))] += 1.0;
+  // Beams are the peaks of the histogram smoothed over ±kSmoothBins: real heads smear each
+  // laser over ~0.2° (per-laser offsets, motion compensation), so the gaps between neighbouring
+  // beams fill up and only the peaks remain. A peak is the largest value within ±kPeakBins
+  // (beams at least 0.2° apart) and at least kMinPeakShare of the median peak.
+  for (long k = 0; k < nbins; ++k)
+    for (long q = std::max(0L, k - kSmoothBins); q <= std::min(nbins - 1, k + kSmoothBins); ++q)
+      smooth[size_t(k)] += count[size_t(q)];
+  std::vector<long> peaks;
+  for (long k = 0; k < nbins; ++k) {
+    if (smooth[size_t(k)] <= 0.0 || (k > 0 && smooth[size_t(k)] <= smooth[size_t(k - 1)])) continue;
+    long end = k;  // a flat top (one exact beam, smoothed) is judged from its middle
+    while (end + 1 < nbins && smooth[size_t(end + 1)] == smooth[size_t(k)]) ++end;
+    const long c = (k + end) / 2;
+    bool top = true;
+    for (long q = std::max(0L, c - kPeakBins); top && q <= std::min(nbins - 1, c + kPeakBins); ++q)
+      top = smooth[size_t(q)] <= smooth[size_t(k)];
+    if (top) peaks.push_back(c);
   }
-  // Clusters, bottom first; the mean elevation of each.
-  std::vector<double> sum(size_t(n), 0.0), cnt(size_t(n), 0.0);
+  std::vector<double> heights;
+  for (long k : peaks) heights.push_back(smooth[size_t(k)]);
+  const double min_height = kMinPeakShare * median(heights);
+  peaks.erase(std::remove_if(peaks.begin(), peaks.end(), [&](long k) { return smooth[size_t(k)] < min_height; }),
+              peaks.end());
+  if (peaks.size() < 2)
+    throw Error("sensor estimate: rows: the elevation histogram holds " + std::to_string(peaks.size()) +
+                " beam peak(s); a range image needs at least 2 (give --sensor FILE)");
+  // Each beam's elevation: the mean of the raw elevations within ±kPeakBins / 2 of its peak
+  // (the smoothing window's plateau would shift an exact beam by up to kSmoothBins bins).
+  const size_t n = peaks.size();
+  std::vector<double> sum(n, 0.0), cnt(n, 0.0);
+  std::vector<long> owner(size_t(nbins), -1);  // the peak owning each bin: the nearest one
+  for (long k = 0, p = 0; k < nbins; ++k) {
+    while (p + 1 < long(n) && std::abs(peaks[size_t(p + 1)] - k) < std::abs(peaks[size_t(p)] - k)) ++p;
+    owner[size_t(k)] = p;
+  }
   for (double x : e) {
-    const int c = cluster[bin_of(x)];
-    if (c >= 0) sum[size_t(c)] += x, cnt[size_t(c)] += 1.0;
+    const long k = bin_of(x), p = owner[size_t(k)];
+    if (std::abs(k - peaks[size_t(p)]) <= kPeakBins / 2) sum[size_t(p)] += x, cnt[size_t(p)] += 1.0;
   }
-  if (n < 2)
-    throw Error("sensor estimate: rows: the elevation histogram holds " + std::to_string(n) +
-                " beam cluster(s); a range image needs at least 2 (give --sensor FILE)");
   Beams b;
-  b.rows = n;
-  for (int c = n - 1; c >= 0; --c) b.elevation_deg.push_back(sum[size_t(c)] / cnt[size_t(c)]);
+  b.rows = int(n);
+  for (size_t p = n; p-- > 0;) b.elevation_deg.push_back(sum[p] / cnt[p]);
+  // Points join the beam of their bin's peak when within ±kPeakBins / 2 of it (the core of the
+  // beam, so that the azimuth steps are measured within one laser).
   for (const auto& s : scans) {
     std::vector<int> beam(s.points.size(), -1);
     for (size_t i = 0; i < s.points.size(); ++i) {
       const double x = elevation_deg(s.points[i]);
-      if (x >= lo && x <= hi + kBinDeg) beam[i] = cluster[bin_of(x)];
+      if (x < lo || x > hi) continue;
+      const long k = bin_of(x), p = owner[size_t(k)];
+      if (std::abs(k - peaks[size_t(p)]) <= kPeakBins / 2) beam[i] = int(p);
     }
     b.beam.push_back(std::move(beam));
   }

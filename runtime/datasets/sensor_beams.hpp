@@ -1,5 +1,5 @@
 // The beams of a sample of scans (internal to sensor_estimate.cpp): from the ring field when
-// the scans carry one, else from the clusters of the elevation histogram; each point tagged with
+// the scans carry one, else from the peaks of the elevation histogram; each point tagged with
 // its beam so that the azimuth step can be measured within one beam.
 #pragma once
 #include <cmath>
@@ -15,7 +15,7 @@ constexpr double kNearM = 3.0;
 
 struct Beams {
   bool from_rings = false;
-  int rows = 0;                          // beam count (ring span, or clusters)
+  int rows = 0;                          // beam count (ring span, or histogram peaks)
   std::vector<double> elevation_deg;     // per beam found, top first
   std::vector<std::vector<int>> beam;    // per scan, per point: beam index, −1 = none
 };

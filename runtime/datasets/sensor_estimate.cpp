@@ -135,14 +135,14 @@ SensorEstimate estimate_sensor(const std::vector<ScanSample>& scans, const Senso
   e.kept_fraction = kept_fraction(s, scans, &e.in_range_points);
   if (e.kept_fraction < o.min_kept_fraction)
     throw Error("sensor estimate failed its check: rows " + std::to_string(s.height) +
-                (e.from_rings ? " (ring field)" : " (elevation clusters)") + ", field of view " +
+                (e.from_rings ? " (ring field)" : " (elevation histogram peaks)") + ", field of view " +
                 fmt("%.2f° up, %.2f° in all", s.fov_up_deg, s.fov_deg) + ", width " + std::to_string(s.width) +
                 " keep " + fmt("%.1f", 100.0 * e.kept_fraction) + " % of the " +
                 std::to_string(e.in_range_points) + " in-range points (needs " +
                 fmt("%.0f", 100.0 * o.min_kept_fraction) + " %): " + diagnose(s, scans) +
                 "; give --sensor NAME|FILE");
   log::info("sensor estimate (", scans.size(), " scans): ", s.height, " rows (",
-            e.from_rings ? "ring field" : "elevation clusters", "), fov_up ", s.fov_up_deg, "°, fov ",
+            e.from_rings ? "ring field" : "elevation histogram peaks", "), fov_up ", s.fov_up_deg, "°, fov ",
             s.fov_deg, "°, width ", s.width, ", range ", s.min_range_m, "-", s.max_range_m, " m; keeps ",
             100.0 * e.kept_fraction, " % of ", e.in_range_points, " in-range points");
   return e;
@@ -153,8 +153,8 @@ std::string matching_preset(const Sensor& est) {
     const Sensor p = sensor_preset(name);
     const double ratio = double(est.width) / p.width;
     if (std::abs(est.height - p.height) <= std::max(2.0, 0.05 * p.height) &&
-        std::abs(est.fov_up_deg - p.fov_up_deg) <= 1.5 && std::abs(est.fov_deg - p.fov_deg) <= 0.1 * p.fov_deg &&
-        ratio >= 0.9 && ratio <= 2.2)
+        std::abs(est.fov_up_deg - p.fov_up_deg) <= 2.0 && std::abs(est.fov_deg - p.fov_deg) <= 0.1 * p.fov_deg &&
+        ratio >= 0.9)
       return name;
   }
   return "";

@@ -29,7 +29,7 @@ struct SensorEstimateOptions {
 
 struct SensorEstimate {
   Sensor sensor;                        // name "estimated"
-  bool from_rings = false;              // beams from the ring field, else elevation clusters
+  bool from_rings = false;              // beams from the ring field, else elevation histogram peaks
   std::vector<double> beam_elevation_deg;  // one per beam found, top first
   double azimuth_coverage_deg = 0.0;
   size_t in_range_points = 0;           // of the sample, under the estimated range limits
@@ -40,7 +40,7 @@ struct SensorEstimate {
 // when the format has them.
 std::vector<ScanSample> read_scan_sample(const std::vector<std::string>& files, int max_scans = 8);
 
-// Estimates rows (the ring field's beam count, else the clusters of the elevation histogram),
+// Estimates rows (the ring field's beam count, else the peaks of the elevation histogram),
 // fov_up_deg / fov_deg (the top and bottom beams, one row step apart at the ends), width
 // (360° over the median azimuth step within a beam) and min/max range (0.1 % / 99.9 %
 // percentiles), then checks the fit. Throws Error naming the estimate that failed (rows,
@@ -53,9 +53,10 @@ SensorEstimate estimate_sensor(const std::vector<ScanSample>& scans, const Senso
 double kept_fraction(const Sensor& s, const std::vector<ScanSample>& scans, size_t* in_range = nullptr);
 
 // The preset ("kitti360", "nuscenes") an estimate matches, "" for none: the same beam count
-// within max(2, 5 %), fov_up within 1.5°, fov within 10 %, and a preset width at or below the
-// scans' azimuth resolution (estimated width 0.9–2.2 × the preset's: the presets' range images
-// are half the native azimuth resolution).
+// within max(2, 5 %), fov_up within 2° and fov within 10 % (real heads' lasers stray from their
+// nominal elevations: KITTI's HDL-64E shows beams up to +3.9°), and a preset width no finer
+// than the scans' azimuth resolution (estimated width >= 0.9 × the preset's: the presets'
+// widths are range-image resolutions, e.g. half the HDL-64E's ~2 083 steps).
 std::string matching_preset(const Sensor& estimate);
 
 }  // namespace sgnlf
