@@ -115,6 +115,7 @@ SensorEstimate estimate_sensor(const std::vector<ScanSample>& scans, const Senso
     for (const auto& p : sc.points)
       if (detail::range_m(p) > 0.0) r.push_back(detail::range_m(p));
   std::sort(r.begin(), r.end());
+  if (r.empty()) throw Error("sensor estimate: ranges: the scans hold no point");
   s.min_range_m = std::floor(0.9 * quantile(r, 0.001) * 10.0) / 10.0;
   // Returns so near that their elevation fits no beam are the vehicle itself or the head's
   // housing (a nuScenes sweep holds ~2 000 of them within 0.75 m): the sensor's minimum range.
