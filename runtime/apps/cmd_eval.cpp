@@ -1,5 +1,5 @@
 // `sgnlf eval --run <run dir> [--json] [--data <dataset>] [--device SPEC] [--samples N]
-// [--importance M] [--depth expected|median]`: protocol §4 metrics of a trained run's test frames and of the naive
+// [--importance M] [--depth expected|median] [--sensor NAME|FILE] [--frequency standard|low|HZ]`: protocol §4 metrics of a trained run's test frames and of the naive
 // baseline; writes <run>/metrics.json.
 #include <cmath>
 #include <cstdio>
@@ -7,6 +7,7 @@
 
 #include "apps/command.hpp"
 #include "apps/fast_render_options.hpp"
+#include "apps/sensor_rate_options.hpp"
 #include "pipeline/run/session.hpp"
 
 namespace sgnlf::app {
@@ -16,6 +17,7 @@ struct EvalArgs {
   std::string run, data, device;
   pipeline::RenderSampling sampling;
   FastRenderOptions fast;
+  SensorRateOptions sensor_rate;
   bool json = false;
 };
 
@@ -41,12 +43,23 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
                  "render.eval_depth, else expected")
       ->check(CLI::IsMember({"expected", "median"}));
   sub.add_flag("--json", a->json, "Print the metrics JSON");
+  a->sensor_rate.add(sub);
+  sub.get_option("--sensor")->description(
+      "Load the data with this sensor instead of the run's (run.json's dataset_options, else the "
+      "sensor.json train wrote for an estimated sensor): " + sub.get_option("--sensor")->get_description());
+  sub.get_option("--frequency")->description(
+      "Instead of the run's; must select the frames the run trained on: " +
+      sub.get_option("--frequency")->get_description());
   a->fast.add(sub, "protocol",
               " (the tables'); fast writes <run>/metrics-fast.json, to compare with metrics.json");
   return std::function<int()>([a] {
     const render::FastRenderConfig fcfg = a->fast.config();
     cl::Runtime rt(a->device);
-    auto run = pipeline::load_run(rt, a->run, a->data, a->sampling);
+    LoadOptions data_options = pipeline::read_manifest(a->run).data_options;
+    a->sensor_rate.apply(data_options);
+    data_options.validate();
+    auto run = pipeline::load_run(rt, a->run, a->data, a->sampling,
+                                  a->sensor_rate.any() ? &data_options : nullptr);
     const auto fast = a->fast.make(rt, run, fcfg);
     const Json j = pipeline::eval_run(run, a->run, fast.get());
     if (a->json) {

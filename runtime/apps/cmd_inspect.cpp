@@ -1,12 +1,14 @@
 // `sgnlf inspect <dataset> [--json]`: what a dataset holds (frames, points per scan, range and
 // intensity statistics, pose step lengths, split). Reads any layout load_dataset knows, a single
-// scan file or a folder of scans. --png/--npy/--ply write one frame's range image or points.
+// scan file or a folder of scans (whose sensor, unless --sensor names one, is estimated from the
+// scans and printed). --png/--npy/--ply write one frame's range image or points.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 
 #include "apps/command.hpp"
+#include "apps/sensor_rate_options.hpp"
 #include "core/error.hpp"
 #include "datasets/loader.hpp"
 #include "io/cloud_writers.hpp"
@@ -88,23 +90,24 @@ const Registrar reg("inspect", "Describe a dataset (synthetic, KITTI-360, KITTI 
   auto path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
   auto opt = std::make_shared<LoadOptions>();
+  auto sensor_rate = std::make_shared<SensorRateOptions>();
   auto png = std::make_shared<std::string>(), npy = std::make_shared<std::string>(), ply = std::make_shared<std::string>();
   auto frame = std::make_shared<int>(0);
   auto repeat = std::make_shared<int>(3);
   sub.add_option("dataset", *path, "Dataset folder, scan folder or scan file")->required();
   sub.add_flag("--json", *json, "Print JSON");
   sub.add_option("--sequence", opt->sequence, "Sequence / drive / scene");
-  sub.add_option("--frequency", opt->frequency, "standard | low");
   sub.add_option("--start", opt->start, "First frame id");
   sub.add_option("--frames", opt->frames, "Number of frames");
   sub.add_option("--stride", opt->stride, "Frame stride of the native stream");
-  sub.add_option("--sensor", opt->sensor, "Sensor preset name or JSON file (default: the layout's)");
+  sensor_rate->add(sub);
   sub.add_option("--frame", *frame, "Frame index (into the loaded frames) for --png/--npy/--ply");
   sub.add_option("--png", *png, "Write the frame's range image picture (depth turbo, intensity, mask)");
   sub.add_option("--row-repeat", *repeat, "Rows repeated in the picture");
   sub.add_option("--npy", *npy, "Write the frame's range image as .npy (H, W, 3)");
   sub.add_option("--ply", *ply, "Write the frame's points as binary PLY");
   return std::function<int()>([=] {
+    sensor_rate->apply(*opt);
     const Dataset d = load_dataset(*path, *opt);
     if (*frame < 0 || size_t(*frame) >= d.frames.size())
       throw ConfigError("inspect: --frame " + std::to_string(*frame) + " outside 0.." + std::to_string(d.frames.size() - 1));
@@ -124,6 +127,8 @@ const Registrar reg("inspect", "Describe a dataset (synthetic, KITTI-360, KITTI 
     std::printf("  sensor %s: %dx%d, fov_up %.2f deg, fov %.2f deg, range %.1f-%.1f m, %.1f Hz\n", d.sensor.name.c_str(),
                 d.sensor.height, d.sensor.width, d.sensor.fov_up_deg, d.sensor.fov_deg, d.sensor.min_range_m,
                 d.sensor.max_range_m, d.sensor.rate_hz);
+    if (d.sensor.name == "estimated")  // save it to pass as --sensor FILE
+      std::printf("  estimated from the scans; as a sensor file: %s\n", sensor_to_json(d.sensor).dump().c_str());
     std::printf("  %zu frames (ids %d..%d), %.2f s\n", d.frames.size(), d.frames.front().id, d.frames.back().id,
                 j["duration_s"].get<double>());
     print_summary("points/scan", j["points_per_scan"], "");

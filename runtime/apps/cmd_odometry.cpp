@@ -1,6 +1,6 @@
 // `sgnlf odometry --data <dataset> --out poses.txt [--tum poses.tum.txt] [--svg top.svg]
 // [--log odometry.json] [--config odometry.json] [--threads N] [--deskew] [--sequence S] [--start ID]
-// [--frames N] [--frequency standard|low] [--stride K]`: the LiDAR odometry alone
+// [--frames N] [--frequency standard|low|HZ] [--sensor NAME|FILE] [--stride K]`: the LiDAR odometry alone
 // (odometry/lidar_odometry.hpp) on a dataset's scans. Writes T_world_lidar (first frame at the
 // identity) as KITTI (--out) and TUM (--tum, default <out without .txt>.tum.txt) files, prints
 // progress with scans/s, and ATE/RPE (protocol §4) when the dataset has ground-truth poses.
@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "apps/command.hpp"
+#include "apps/sensor_rate_options.hpp"
 #include "core/progress.hpp"
 #include "datasets/loader.hpp"
 #include "datasets/protocol.hpp"
@@ -27,6 +28,7 @@ struct OdometryArgs {
   int threads = 0;
   bool deskew = false;
   LoadOptions load;
+  SensorRateOptions sensor_rate;
 };
 
 std::string default_tum_path(const std::string& kitti) {
@@ -48,9 +50,10 @@ const Registrar reg("odometry", "Estimate poses from raw scans with the built-in
   sub.add_option("--sequence", a->load.sequence, "Sequence / drive / scene of a real layout");
   sub.add_option("--start", a->load.start, "First frame id of the window");
   sub.add_option("--frames", a->load.frames, "Frames in the window (default: the protocol's 64 / 36)");
-  sub.add_option("--frequency", a->load.frequency, "standard or low (2 Hz)");
   sub.add_option("--stride", a->load.stride, "Take every k-th frame of the native stream");
+  a->sensor_rate.add(sub);
   return std::function<int()>([a] {
+    a->sensor_rate.apply(a->load);
     a->load.validate();
     odometry::OdometryConfig cfg;
     if (!a->config.empty()) {

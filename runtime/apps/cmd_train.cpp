@@ -1,11 +1,13 @@
 // `sgnlf train --method M (sgnlf train --help lists them) [--pose-init gt|noisy|identity|odometry] --preset <name> --data <dataset> --out <run dir> [--seed N]
 // [--config overrides.json] [--device SPEC] [--no-resume] [--stop-at STEP] [--sequence S]
-// [--start ID] [--frames N] [--test-frames P,...]`: trains a run folder (resumes an interrupted
+// [--start ID] [--frames N] [--test-frames P,...] [--sensor NAME|FILE] [--frequency standard|low|HZ]`:
+// trains a run folder (resumes an interrupted
 // one by default) and writes run.json (with the dataset options, which eval and render reuse),
-// checkpoints and summary.json.
+// checkpoints and summary.json (and sensor.json when the sensor was estimated from plain scans).
 #include <iostream>
 
 #include "apps/command.hpp"
+#include "apps/sensor_rate_options.hpp"
 #include "pipeline/methods/registry.hpp"
 #include "pipeline/config/presets.hpp"
 #include "pipeline/run/session.hpp"
@@ -27,6 +29,7 @@ struct TrainArgs {
   bool no_resume = false;
   long stop_at = -1;
   LoadOptions load;
+  SensorRateOptions sensor_rate;
 };
 
 const Registrar reg("train", "Train a method on a dataset into a run folder", [](CLI::App& sub) {
@@ -50,7 +53,9 @@ const Registrar reg("train", "Train a method on a dataset into a run folder", []
   sub.add_option("--test-frames", a->load.test_frames,
                  "Test views as positions in the window, comma-separated (default: the protocol's split)")
       ->delimiter(',');
+  a->sensor_rate.add(sub);
   return std::function<int()>([a] {
+    a->sensor_rate.apply(a->load);
     a->load.validate();
     pipeline::TrainRequest req;
     req.manifest.method = a->method;

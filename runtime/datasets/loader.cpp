@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "datasets/actor_truth.hpp"
+#include "datasets/load_args.hpp"
 #include "datasets/loader_internal.hpp"
 #include "datasets/protocol.hpp"
 #include "io/scan_io.hpp"
@@ -20,6 +21,8 @@ void LoadOptions::validate() const {
   if (frames == 0 || frames < -1) throw ConfigError("load options: frames = " + std::to_string(frames));
   if (stride == 0 || stride < -1) throw ConfigError("load options: stride = " + std::to_string(stride));
   if (start < -1) throw ConfigError("load options: start = " + std::to_string(start));
+  if (!std::isfinite(rate_hz) || rate_hz < 0.0 || rate_hz > 1e4)
+    throw ConfigError("load options: rate_hz = " + std::to_string(rate_hz) + " (a scan rate in Hz, 0 < rate <= 10000; 0 = the data's)");
   for (size_t k = 0; k < test_frames.size(); ++k) {
     if (test_frames[k] < 0)
       throw ConfigError("load options: test_frames[" + std::to_string(k) +
@@ -136,11 +139,14 @@ std::vector<int> select_window(const std::vector<int>& available, int start, int
 }
 
 std::string resolve_frequency(const LoadOptions& opt, const std::string& fallback) {
-  return opt.frequency.empty() ? fallback : opt.frequency;
+  if (!opt.frequency.empty()) return opt.frequency;
+  if (opt.rate_hz > 0.0) return frequency_class(opt.rate_hz);
+  return fallback;
 }
 
 int default_stride(const LoadOptions& opt, const std::string& frequency, double rate_hz) {
   if (opt.stride > 0) return opt.stride;
+  if (opt.rate_hz > 0.0) return std::max(1, int(std::lround(rate_hz / opt.rate_hz)));
   if (frequency == "low") return std::max(1, int(std::lround(rate_hz / 2.0)));  // 2 Hz
   return 1;
 }

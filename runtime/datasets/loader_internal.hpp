@@ -12,9 +12,11 @@ namespace sgnlf::detail {
 std::vector<int> select_window(const std::vector<int>& available, int start, int stride, int count,
                                const std::string& where);
 
-// Resolved defaults for a frequency: stride (from the native rate) and frame count.
+// Resolved defaults for a frequency: stride (from the native rate `rate_hz`: opt.rate_hz wanted,
+// else 2 Hz for low, else 1) and frame count.
 int default_stride(const LoadOptions& opt, const std::string& frequency, double rate_hz);
 int default_count(const LoadOptions& opt, const std::string& frequency);
+// opt.frequency, else the class of opt.rate_hz when set (frequency_class), else `fallback`.
 std::string resolve_frequency(const LoadOptions& opt, const std::string& fallback);
 Sensor resolve_sensor(const LoadOptions& opt, const Sensor& layout_default);
 
@@ -34,5 +36,8 @@ Dataset load_kitti360(const std::string& root, const LoadOptions& opt, bool synt
 Dataset load_kitti_odometry(const std::string& root, const LoadOptions& opt);
 Dataset load_nuscenes(const std::string& root, const LoadOptions& opt);
 Dataset load_scans(const std::string& path, const LoadOptions& opt);
+// The sensor of plain scans: opt.sensor, else the estimate's matching preset, else the
+// estimate (sensor_estimate.hpp); opt.rate_hz, when set, is its rate.
+Sensor plain_scans_sensor(const std::vector<std::string>& files, const LoadOptions& opt);
 
 }  // namespace sgnlf::detail

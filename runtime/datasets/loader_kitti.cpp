@@ -149,7 +149,7 @@ Dataset load_kitti360(const std::string& root_s, const LoadOptions& opt, bool sy
   const std::string freq = resolve_frequency(opt, freq_default);
   int stride = default_stride(opt, freq, sensor.rate_hz);
   int count = default_count(opt, freq);
-  if (synthetic && opt.stride < 0 && freq == freq_default) stride = stride_meta;
+  if (synthetic && opt.stride < 0 && opt.rate_hz <= 0.0 && freq == freq_default) stride = stride_meta;
   if (synthetic && opt.frames < 0 && freq == freq_default) count = count_meta;
   const int start = opt.start >= 0 ? opt.start : start_default;
 

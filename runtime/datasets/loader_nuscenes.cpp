@@ -155,7 +155,11 @@ Dataset load_nuscenes(const std::string& root_s, const LoadOptions& opt) {
   std::vector<int> avail(recs.size());
   for (size_t i = 0; i < recs.size(); ++i) avail[i] = int(i);
   const Sensor sensor = resolve_sensor(opt, sensor_preset("nuscenes"));
-  const int stride = opt.stride > 0 ? opt.stride : 1;  // keyframes are already 2 Hz
+  // Keyframes are already 2 Hz, sweeps the sensor's 20 Hz; a wanted rate takes every k-th.
+  const double native_hz = freq == "low" ? 2.0 : sensor.rate_hz;
+  const int stride = opt.stride > 0     ? opt.stride
+                     : opt.rate_hz > 0.0 ? std::max(1, int(std::lround(native_hz / opt.rate_hz)))
+                                         : 1;
   const auto ids = select_window(avail, std::max(0, opt.start), stride, default_count(opt, freq), sd.file);
   Dataset d;
   d.name = sc;
@@ -174,38 +178,6 @@ Dataset load_nuscenes(const std::string& root_s, const LoadOptions& opt) {
     load_frame_scan(f, (root / str_field(sd.file, r, "filename")).string(), sensor, opt.load_points, dropped);
     d.frames.push_back(std::move(f));
   }
-  finish_dataset(d, dropped);
-  return d;
-}
-
-Dataset load_scans(const std::string& path, const LoadOptions& opt) {
-  std::vector<std::string> files;
-  if (fs::is_regular_file(path)) {
-    files.push_back(path);
-  } else {
-    for (const auto& e : fs::directory_iterator(path))
-      if (e.is_regular_file() && io::is_scan_file(e.path().string())) files.push_back(e.path().string());
-    std::sort(files.begin(), files.end());
-  }
-  const bool nus = files.front().size() > 8 && files.front().rfind(".pcd.bin") == files.front().size() - 8;
-  const Sensor sensor = resolve_sensor(opt, sensor_preset(nus ? "nuscenes" : "kitti360"));
-  Dataset d;
-  d.name = fs::path(path).filename().string();
-  d.source = "scans";
-  d.path = path;
-  d.frequency = resolve_frequency(opt, "standard");
-  d.sensor = sensor;
-  ProjectionStats dropped;
-  const size_t first = size_t(std::max(0, opt.start));
-  const size_t stride = size_t(opt.stride > 0 ? opt.stride : 1);
-  for (size_t i = first; i < files.size() && (opt.frames < 0 || int(d.frames.size()) < opt.frames); i += stride) {
-    Frame f;
-    f.id = int(i);
-    f.timestamp_s = double(i) / sensor.rate_hz;  // no pose and no clock: identity poses
-    load_frame_scan(f, files[i], sensor, opt.load_points, dropped);
-    d.frames.push_back(std::move(f));
-  }
-  log::warn(path, ": plain scans carry no poses; ground-truth poses are the identity");
   finish_dataset(d, dropped);
   return d;
 }

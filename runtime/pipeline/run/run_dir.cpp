@@ -40,6 +40,22 @@ RunManifest read_manifest(const std::string& run_dir) {
   return m;
 }
 
+std::string run_sensor_path(const std::string& run_dir) {
+  return (fs::path(run_dir) / "sensor.json").string();
+}
+
+LoadOptions run_load_options(const std::string& run_dir, const LoadOptions& opt) {
+  LoadOptions o = opt;
+  if (o.sensor.empty() && fs::is_regular_file(run_sensor_path(run_dir))) o.sensor = run_sensor_path(run_dir);
+  return o;
+}
+
+void write_run_sensor(const std::string& run_dir, const Sensor& s) {
+  if (s.name != "estimated") return;
+  fs::create_directories(run_dir);
+  write_json_file(run_sensor_path(run_dir), sensor_to_json(s));
+}
+
 RunScene make_run_scene(const Dataset& d, const TrainConfig& c) {
   if (!c.is_pose_free()) return RunScene{make_scene(d), gt_poses(d)};
   if (d.split.test.empty())
@@ -51,7 +67,8 @@ RunScene make_run_scene(const Dataset& d, const TrainConfig& c) {
 }
 
 LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
-                   const std::string& dataset_override, const RenderSampling& requested) {
+                   const std::string& dataset_override, const RenderSampling& requested,
+                   const LoadOptions* data_options) {
   LoadedRun run;
   run.manifest = read_manifest(run_dir);
   const uint64_t trained_hash = run.manifest.config.hash();
@@ -71,7 +88,9 @@ LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
     run.manifest.config.render.validate("render depth override");
   }
   const std::string data = dataset_override.empty() ? run.manifest.dataset : dataset_override;
-  run.dataset = std::make_unique<Dataset>(load_dataset(data, run.manifest.data_options));
+  if (data_options) run.manifest.data_options = *data_options;
+  run.dataset = std::make_unique<Dataset>(
+      load_dataset(data, run_load_options(run_dir, run.manifest.data_options)));
   RunScene rs = make_run_scene(*run.dataset, run.manifest.config);
   run.scene = std::make_unique<Scene>(std::move(rs.scene));
   run.T_world_lidar_init = rs.T_world_lidar_init;

@@ -4,6 +4,8 @@
 //   <run>/summary.json       training summary (steps, seconds, samples/s, losses)
 //   <run>/metrics.json       `sgnlf eval`: per-frame and mean metrics, model and naive baseline
 //   <run>/renders/           `sgnlf render` default output
+//   <run>/sensor.json        the sensor estimated from plain scans (datasets/sensor_estimate.hpp),
+//                            when train estimated one; eval/render load with it
 #pragma once
 #include <memory>
 #include <string>
@@ -28,6 +30,15 @@ struct RunManifest {
 
 void write_manifest(const std::string& run_dir, const RunManifest& m);
 RunManifest read_manifest(const std::string& run_dir);  // ConfigError/IoError naming the file
+
+// <run>/sensor.json
+std::string run_sensor_path(const std::string& run_dir);
+// The options a run's dataset loads with: `opt`, naming the sensor the run folder recorded
+// (run_sensor_path) when `opt` names none and the file exists.
+LoadOptions run_load_options(const std::string& run_dir, const LoadOptions& opt);
+// Records `s` in the run folder when it was estimated from the scans (name "estimated"), so
+// eval and render project with the sensor the run trained on; other sensors are not written.
+void write_run_sensor(const std::string& run_dir, const Sensor& s);
 
 // The scene a run trains on: ground-truth poses, or for the pose-free methods the initial poses
 // its config asks for (pose_init.hpp), which also set the normalisation (protocol §2).
@@ -63,7 +74,9 @@ struct RenderSampling {
 // checked against the run's config as trained; `sampling`, else the config's eval_samples /
 // eval_importance (and `sampling.depth`, else eval_depth), then changes the model's render sampling (LoadedRun::manifest.config shows
 // the sampling in use).
+// `data_options`, when given, replaces the manifest's dataset options (eval --sensor/--frequency).
 LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
-                   const std::string& dataset_override = "", const RenderSampling& sampling = {});
+                   const std::string& dataset_override = "", const RenderSampling& sampling = {},
+                   const LoadOptions* data_options = nullptr);
 
 }  // namespace sgnlf::pipeline

@@ -67,8 +67,12 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
                         ": the folder holds a run with another config, seed or dataset options; use a new --out");
   }
   // The dataset first: a bad path or option leaves no run folder behind.
-  const Dataset d = load_dataset(req.manifest.dataset, req.manifest.data_options);
+  // A resumed run reuses the sensor it estimated (deterministic, but no need to redo it).
+  const Dataset d = load_dataset(req.manifest.dataset, fs::exists(run / "run.json")
+                                                           ? run_load_options(req.run_dir, req.manifest.data_options)
+                                                           : req.manifest.data_options);
   write_manifest(req.run_dir, req.manifest);
+  write_run_sensor(req.run_dir, d.sensor);
   const TrainConfig& c = req.manifest.config;
   const RunScene rs = make_run_scene(d, c);
   const Scene& scene = rs.scene;
