@@ -17,6 +17,7 @@
 #include "pipeline/train/trainer.hpp"
 #include "render/occupancy_grid.hpp"
 #include "support/test_device.hpp"
+#include "opaque_field.hpp"
 #include "tiny_scene.hpp"
 
 SGNLF_DEVICE_TESTS;
@@ -40,6 +41,23 @@ std::vector<uint8_t> dilate_ref(const std::vector<uint8_t>& c, std::array<int, 3
               if (c[at(a, b, e)]) out[at(i, j, k)] = 1;
             }
   return out;
+}
+
+// Every cell of [-1, 1]³ occupied, and a config without termination or head threshold: the fast
+// renderer must then equal render_rays.
+render::OccupancyGrid full_grid() {
+  render::GridBox box;
+  box.lo = {-1.0f, -1.0f, -1.0f};
+  box.hi = {1.0f, 1.0f, 1.0f};
+  return render::OccupancyGrid(test::runtime(), box, {4, 4, 4}, std::vector<uint8_t>(64, 1));
+}
+
+render::FastRenderConfig no_thresholds() {
+  render::FastRenderConfig c;
+  c.stop_transmittance = 0.0f;
+  c.head_weight_threshold = 0.0f;
+  c.wave = 5;
+  return c;
 }
 
 double worst_channel_diff(const std::vector<float>& a, const std::vector<float>& b, int channel) {
@@ -230,34 +248,14 @@ TEST_CASE("render_rays_fast: exact with a full grid and no thresholds, close and
         Json{{"schedule", {{"iterations", 150}, {"checkpoint_every", 0}}},
              {"render", {{"n_samples", importance ? 16 : 32}, {"n_importance", importance ? 4 : 0}}}});
     LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
-    TrainOptions opt;
-    opt.run_dir = test::temp_dir(importance ? "fast_imp" : "fast_uni");
-    opt.seed = 3;
-    opt.show_progress = false;
-    train(model, scene, c, opt);
-    // Opaque surfaces (as in test_training's opaque_state): the σ logit's output bias + 4.
-    {
-      ModelState st = model.state();
-      const auto& f = c.field;
-      const field::Mlp dens(test::runtime(),
-                            field::make_mlp_spec(f.levels * f.features_per_level, f.density_hidden, 1,
-                                                 1 + f.geo_features, field::Activation::Relu));
-      st.params[model.layout().slice("density_mlp").offset + dens.layer_offset(1) +
-                size_t(f.density_hidden) * size_t(field::Mlp::pad16(1 + f.geo_features))] += 4.0f;
-      model.set_state(st);
-    }
+    // Opaque surfaces, so that the thresholds below cut something.
+    test::opaque_state(model, scene, c, importance ? "fast_imp" : "fast_uni");
     std::vector<float> o, dir;
     image_rays(scene, normalize_pose(d.frames[13].T_world_lidar, scene.norm), 600, 1112, o, dir);
     const auto ref = model.render_rays(o, dir, 512);
     // Every cell occupied, no termination, the head wherever the weight is positive.
-    render::GridBox box;
-    box.lo = {-1.0f, -1.0f, -1.0f};
-    box.hi = {1.0f, 1.0f, 1.0f};
-    const render::OccupancyGrid full(test::runtime(), box, {4, 4, 4}, std::vector<uint8_t>(64, 1));
-    render::FastRenderConfig none;
-    none.stop_transmittance = 0.0f;
-    none.head_weight_threshold = 0.0f;
-    none.wave = 5;
+    const render::OccupancyGrid full = full_grid();
+    const render::FastRenderConfig none = no_thresholds();
     const auto exact = model.render_rays_fast(o, dir, 512, full, none);
     const int M = c.render.n_samples + c.render.n_importance;
     CHECK(model.fast_evaluated() == 512L * (importance ? c.render.n_samples + M : M));
@@ -321,14 +319,8 @@ TEST_CASE("render_rays_fast on LiDAR4D's 4D field: exact with a full grid and no
   std::vector<float> o, dir;
   image_rays(scene, normalize_pose(d.frames[13].T_world_lidar, scene.norm), 600, 1112, o, dir);
   const auto ref = model.render_rays(o, dir, 512);
-  render::GridBox box;
-  box.lo = {-1.0f, -1.0f, -1.0f};
-  box.hi = {1.0f, 1.0f, 1.0f};
-  const render::OccupancyGrid full(test::runtime(), box, {4, 4, 4}, std::vector<uint8_t>(64, 1));
-  render::FastRenderConfig none;
-  none.stop_transmittance = 0.0f;
-  none.head_weight_threshold = 0.0f;
-  none.wave = 5;
+  const render::OccupancyGrid full = full_grid();
+  const render::FastRenderConfig none = no_thresholds();
   const auto exact = model.render_rays_fast(o, dir, 512, full, none);
   for (int ch = 0; ch < 3; ++ch) CHECK(worst_channel_diff(ref, exact, ch) < 1e-5);
   // The FastRenderer's grid at frame 13 leaves the time at frame 13.

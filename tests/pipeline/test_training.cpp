@@ -13,6 +13,7 @@
 #include "pipeline/model/render_view.hpp"
 #include "pipeline/train/trainer.hpp"
 #include "support/test_device.hpp"
+#include "opaque_field.hpp"
 #include "tiny_scene.hpp"
 
 SGNLF_DEVICE_TESTS;
@@ -44,27 +45,6 @@ double worst_channel_diff(const std::vector<float>& a, const std::vector<float>&
   for (size_t k = 0; 3 * k + 2 < a.size(); ++k)
     worst = std::max(worst, double(std::fabs(a[3 * k + size_t(channel)] - b[3 * k + size_t(channel)])));
   return worst;
-}
-
-// A field that terminates rays: `c` trained 150 tiny steps (translucent), then every density
-// raised (the σ logit's output bias + 4, σ × 55) so that rays become opaque. Left in `model`.
-ModelState opaque_state(LidarNerfModel& model, const Scene& scene, const TrainConfig& c,
-                        const std::string& dir) {
-  TrainOptions opt;
-  opt.run_dir = test::temp_dir(dir);
-  opt.seed = 3;
-  opt.show_progress = false;
-  train(model, scene, c, opt);
-  ModelState st = model.state();
-  const auto& f = c.field;
-  const field::Mlp dens(test::runtime(),
-                        field::make_mlp_spec(f.levels * f.features_per_level, f.density_hidden, 1,
-                                             1 + f.geo_features, field::Activation::Relu));
-  const size_t sigma_bias = model.layout().slice("density_mlp").offset + dens.layer_offset(1) +
-                            size_t(f.density_hidden) * size_t(field::Mlp::pad16(1 + f.geo_features));
-  st.params[sigma_bias] += 4.0f;
-  model.set_state(st);
-  return st;
 }
 
 }  // namespace
@@ -205,7 +185,7 @@ TEST_CASE("early ray termination: exact while no ray terminates, within its thre
   const TrainConfig c = test::tiny_config(
       Json{{"schedule", {{"iterations", 150}, {"checkpoint_every", 0}}}});
   LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
-  const ModelState st = opaque_state(model, scene, c, "ert_trained");
+  const ModelState st = test::opaque_state(model, scene, c, "ert_trained");
   const float eps = 1e-3f;
   TrainConfig ce = c;
   ce.render.stop_transmittance = eps;
@@ -358,7 +338,7 @@ TEST_CASE("early termination of uniform-only sampling: exact at initialisation, 
   const TrainConfig c = test::tiny_config(
       Json{{"render", uniform}, {"schedule", {{"iterations", 150}, {"checkpoint_every", 0}}}});
   LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
-  const ModelState st = opaque_state(model, scene, c, "uert_trained");
+  const ModelState st = test::opaque_state(model, scene, c, "uert_trained");
   const float eps = 1e-3f;
   std::vector<float> o, dir;
   image_rays(scene, normalize_pose(d.frames[13].T_world_lidar, scene.norm), 600, 1112, o, dir);

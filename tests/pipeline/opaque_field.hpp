@@ -1,0 +1,33 @@
+// Test fixture: a field that terminates rays. `c` trained on `scene` (seed 3, run folder under
+// test::temp_dir(dir)), then every density raised (the σ logit's output bias + 4, σ × 55) so that
+// rays become opaque: the trained tiny fields are translucent. Left in `model`; returns its state.
+#pragma once
+#include <string>
+
+#include "field/mlp.hpp"
+#include "pipeline/model/model.hpp"
+#include "pipeline/train/trainer.hpp"
+#include "support/test_device.hpp"
+
+namespace sgnlf::test {
+
+inline pipeline::ModelState opaque_state(pipeline::LidarNerfModel& model, const pipeline::Scene& scene,
+                                         const pipeline::TrainConfig& c, const std::string& dir) {
+  pipeline::TrainOptions opt;
+  opt.run_dir = temp_dir(dir);
+  opt.seed = 3;
+  opt.show_progress = false;
+  pipeline::train(model, scene, c, opt);
+  pipeline::ModelState st = model.state();
+  const auto& f = c.field;
+  const field::Mlp dens(runtime(),
+                        field::make_mlp_spec(f.levels * f.features_per_level, f.density_hidden, 1,
+                                             1 + f.geo_features, field::Activation::Relu));
+  const size_t sigma_bias = model.layout().slice("density_mlp").offset + dens.layer_offset(1) +
+                            size_t(f.density_hidden) * size_t(field::Mlp::pad16(1 + f.geo_features));
+  st.params[sigma_bias] += 4.0f;
+  model.set_state(st);
+  return st;
+}
+
+}  // namespace sgnlf::test
