@@ -151,74 +151,63 @@ TEST_CASE("sgnlf train killed with SIGKILL and resumed equals the uninterrupted 
   CHECK_FALSE(fs::exists(pipeline::checkpoint_path(b) + ".tmp"));
 }
 
+namespace {
+
+// `method` with the config overrides in `config` (JSON) on the tiny scene: the uninterrupted run
+// to `steps`; then a run killed after step `kill_step` (latest checkpoint `kept`), again half-way
+// through writing the checkpoint of `partial_step` (still `kept`), and resumed to the end. Its
+// checkpoint must equal the uninterrupted run's byte for byte, and both must log `logged`.
+void check_kill_resume(const std::string& name, const std::string& method, const Json& config,
+                       long steps, long kill_step, long kept, long partial_step,
+                       const std::vector<long>& logged) {
+  const std::string root = test::temp_dir(name);
+  const std::string data = root + "/data";
+  test::write_tiny_dataset(data);
+  const std::string cfg = root + "/tiny.json";
+  std::ofstream(cfg) << config.dump();
+  const std::string a = root + "/uninterrupted";
+  const Outcome full = run_train(data, a, "", -1.0, method, cfg);
+  INFO(contents(a + ".log"));
+  REQUIRE(full.exited);
+  REQUIRE(full.code == 0);
+  REQUIRE(latest_step(a) == steps);
+
+  const std::string b = root + "/killed";
+  Outcome o = run_train(data, b, "after-step@" + std::to_string(kill_step), -1.0, method, cfg);
+  CHECK(o.signal == SIGKILL);
+  CHECK(latest_step(b) == kept);
+  o = run_train(data, b, "checkpoint-partial@" + std::to_string(partial_step), -1.0, method, cfg);
+  CHECK(o.signal == SIGKILL);
+  CHECK(latest_step(b) == kept);
+  o = run_train(data, b, "", -1.0, method, cfg);
+  INFO(contents(b + ".log"));
+  REQUIRE(o.exited);
+  REQUIRE(o.code == 0);
+  CHECK(latest_step(b) == steps);
+  CHECK(contents(pipeline::checkpoint_path(b)) == contents(pipeline::checkpoint_path(a)));
+  CHECK(logged_steps(b) == logged_steps(a));
+  CHECK(logged_steps(a) == logged);
+}
+
+}  // namespace
+
 TEST_CASE("sg-nlf killed with SIGKILL and resumed equals the uninterrupted run",
           "[pipeline][train][crash][sgnlf][device]") {
   // The whole SG-NLF, shrunk to the tiny scene (28 steps, checkpoints every 7): the kills fall
   // after the adversarial warm-up (4), with the pose graph built and λ ramping (4 → 14), so the
   // resumed run must restore the discriminator and its Adam, the graph and the spectral state.
-  const std::string root = test::temp_dir("kill_resume_sgnlf");
-  const std::string data = root + "/data";
-  test::write_tiny_dataset(data);
-  const std::string config = root + "/tiny.json";
-  std::ofstream(config) << test::tiny_sgnlf_overrides(true).dump();
-  const std::string a = root + "/uninterrupted";
-  const Outcome full = run_train(data, a, "", -1.0, "sg-nlf", config);
-  INFO(contents(a + ".log"));
-  REQUIRE(full.exited);
-  REQUIRE(full.code == 0);
-  REQUIRE(latest_step(a) == 28);
-
-  const std::string b = root + "/killed";
-  Outcome o = run_train(data, b, "after-step@17", -1.0, "sg-nlf", config);
-  CHECK(o.signal == SIGKILL);
-  CHECK(latest_step(b) == 14);
-  o = run_train(data, b, "checkpoint-partial@21", -1.0, "sg-nlf", config);
-  CHECK(o.signal == SIGKILL);
-  CHECK(latest_step(b) == 14);
-  o = run_train(data, b, "", -1.0, "sg-nlf", config);
-  INFO(contents(b + ".log"));
-  REQUIRE(o.exited);
-  REQUIRE(o.code == 0);
-  CHECK(latest_step(b) == 28);
-  CHECK(contents(pipeline::checkpoint_path(b)) == contents(pipeline::checkpoint_path(a)));
-  CHECK(logged_steps(b) == logged_steps(a));
-  CHECK(logged_steps(a) == std::vector<long>{1, 7, 14, 21, 28});
+  check_kill_resume("kill_resume_sgnlf", "sg-nlf", test::tiny_sgnlf_overrides(true), 28, 17, 14,
+                    21, {1, 7, 14, 21, 28});
 }
 
 TEST_CASE("lidar4d killed with SIGKILL and resumed equals the uninterrupted run",
           "[pipeline][train][crash][lidar4d][device]") {
   // LiDAR4D shrunk to the tiny scene (24 steps, checkpoints every 8): the resumed run must
   // restore both Adam groups (encodings, and the MLPs with the flow field at 0.1·lr) and the
-  // flow supervision's schedule; its checkpoint must equal the uninterrupted run's byte for byte.
-  const std::string root = test::temp_dir("kill_resume_lidar4d");
-  const std::string data = root + "/data";
-  test::write_tiny_dataset(data);
-  const std::string config = root + "/tiny.json";
-  std::ofstream(config) << Json{{"schedule", {{"iterations", 24}, {"checkpoint_every", 8},
-                                              {"log_every", 8}, {"rays_per_batch", 128},
-                                              {"render_chunk_rays", 512}}},
-                                {"render", {{"n_samples", 16}, {"n_importance", 4}}}}
-                               .dump();
-  const std::string a = root + "/uninterrupted";
-  const Outcome full = run_train(data, a, "", -1.0, "lidar4d", config);
-  INFO(contents(a + ".log"));
-  REQUIRE(full.exited);
-  REQUIRE(full.code == 0);
-  REQUIRE(latest_step(a) == 24);
-
-  const std::string b = root + "/killed";
-  Outcome o = run_train(data, b, "after-step@13", -1.0, "lidar4d", config);
-  CHECK(o.signal == SIGKILL);
-  CHECK(latest_step(b) == 8);
-  o = run_train(data, b, "checkpoint-partial@16", -1.0, "lidar4d", config);
-  CHECK(o.signal == SIGKILL);
-  CHECK(latest_step(b) == 8);
-  o = run_train(data, b, "", -1.0, "lidar4d", config);
-  INFO(contents(b + ".log"));
-  REQUIRE(o.exited);
-  REQUIRE(o.code == 0);
-  CHECK(latest_step(b) == 24);
-  CHECK(contents(pipeline::checkpoint_path(b)) == contents(pipeline::checkpoint_path(a)));
-  CHECK(logged_steps(b) == logged_steps(a));
-  CHECK(logged_steps(a) == std::vector<long>{1, 8, 16, 24});
+  // flow supervision's schedule.
+  check_kill_resume("kill_resume_lidar4d", "lidar4d",
+                    Json{{"schedule", {{"iterations", 24}, {"checkpoint_every", 8}, {"log_every", 8},
+                                       {"rays_per_batch", 128}, {"render_chunk_rays", 512}}},
+                         {"render", {{"n_samples", 16}, {"n_importance", 4}}}},
+                    24, 13, 8, 16, {1, 8, 16, 24});
 }
