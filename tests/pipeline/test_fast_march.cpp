@@ -17,7 +17,7 @@
 #include "pipeline/train/trainer.hpp"
 #include "render/occupancy_grid.hpp"
 #include "support/test_device.hpp"
-#include "opaque_field.hpp"
+#include "render_fixtures.hpp"
 #include "tiny_scene.hpp"
 
 SGNLF_DEVICE_TESTS;
@@ -58,13 +58,6 @@ render::FastRenderConfig no_thresholds() {
   c.head_weight_threshold = 0.0f;
   c.wave = 5;
   return c;
-}
-
-double worst_channel_diff(const std::vector<float>& a, const std::vector<float>& b, int channel) {
-  double worst = 0;
-  for (size_t k = 0; 3 * k + 2 < a.size(); ++k)
-    worst = std::max(worst, double(std::fabs(a[3 * k + size_t(channel)] - b[3 * k + size_t(channel)])));
-  return worst;
 }
 
 }  // namespace
@@ -259,7 +252,7 @@ TEST_CASE("render_rays_fast: exact with a full grid and no thresholds, close and
     const auto exact = model.render_rays_fast(o, dir, 512, full, none);
     const int M = c.render.n_samples + c.render.n_importance;
     CHECK(model.fast_evaluated() == 512L * (importance ? c.render.n_samples + M : M));
-    for (int ch = 0; ch < 3; ++ch) CHECK(worst_channel_diff(ref, exact, ch) < 1e-5);
+    for (int ch = 0; ch < 3; ++ch) CHECK(test::worst_channel_diff(ref, exact, ch) < 1e-5);
 
     // Termination and the head threshold (full grid): fewer rows; the depth moves by at most
     // about the weight left behind termination times the far plane, the probability by at
@@ -274,7 +267,7 @@ TEST_CASE("render_rays_fast: exact with a full grid and no thresholds, close and
     CHECK(model.fast_evaluated() < full_rows);
     CHECK(model.fast_head_rows() < 512L * M * 3 / 4);
     const float far = c.render.far_m * float(scene.norm.scale);
-    const double dd = worst_channel_diff(ref, approx, 0), dp = worst_channel_diff(ref, approx, 1);
+    const double dd = test::worst_channel_diff(ref, approx, 0), dp = test::worst_channel_diff(ref, approx, 1);
     INFO("worst |depth diff| " << dd << " (far " << far << "), worst |prob diff| " << dp);
     if (importance) {
       // The importance pdf moves with the coarse weights behind termination: bounded loosely.
@@ -322,7 +315,7 @@ TEST_CASE("render_rays_fast on LiDAR4D's 4D field: exact with a full grid and no
   const render::OccupancyGrid full = full_grid();
   const render::FastRenderConfig none = no_thresholds();
   const auto exact = model.render_rays_fast(o, dir, 512, full, none);
-  for (int ch = 0; ch < 3; ++ch) CHECK(worst_channel_diff(ref, exact, ch) < 1e-5);
+  for (int ch = 0; ch < 3; ++ch) CHECK(test::worst_channel_diff(ref, exact, ch) < 1e-5);
   // The FastRenderer's grid at frame 13 leaves the time at frame 13.
   FastRenderer fast(test::runtime(), model, scene, render::FastRenderConfig{}, 512);
   fast.grid(5);

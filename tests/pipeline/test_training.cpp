@@ -13,7 +13,7 @@
 #include "pipeline/model/render_view.hpp"
 #include "pipeline/train/trainer.hpp"
 #include "support/test_device.hpp"
-#include "opaque_field.hpp"
+#include "render_fixtures.hpp"
 #include "tiny_scene.hpp"
 
 SGNLF_DEVICE_TESTS;
@@ -36,15 +36,6 @@ std::vector<float> train_params(const Scene& scene, const TrainConfig& c, uint64
   opt.show_progress = false;
   train(model, scene, c, opt);
   return model.state().params;
-}
-
-// The largest |a − b| over the rays of one output channel (renders are n × 3: depth, return
-// probability, intensity).
-double worst_channel_diff(const std::vector<float>& a, const std::vector<float>& b, int channel) {
-  double worst = 0;
-  for (size_t k = 0; 3 * k + 2 < a.size(); ++k)
-    worst = std::max(worst, double(std::fabs(a[3 * k + size_t(channel)] - b[3 * k + size_t(channel)])));
-  return worst;
 }
 
 }  // namespace
@@ -206,7 +197,7 @@ TEST_CASE("early ray termination: exact while no ray terminates, within its thre
   INFO("rays cut " << cut_rays << " of 512, live samples " << n_live << " of " << 512 * M);
   CHECK(cut_rays > 50);
   const float far = c.render.far_m * float(scene.norm.scale);
-  const double worst_depth = worst_channel_diff(full, part, 0), worst_prob = worst_channel_diff(full, part, 1);
+  const double worst_depth = test::worst_channel_diff(full, part, 0), worst_prob = test::worst_channel_diff(full, part, 1);
   INFO("worst |depth diff| " << worst_depth << " (far " << far << "), worst |prob diff| " << worst_prob);
   CHECK(worst_depth <= 4 * eps * far);
   CHECK(worst_prob <= 4 * eps);
@@ -230,8 +221,8 @@ TEST_CASE("early ray termination: exact while no ray terminates, within its thre
   for (size_t k = 0; k < live.size(); ++k) same_live += live[k] == wave_live[k];
   INFO("rays whose live count matches: " << same_live << " of 512");
   CHECK(same_live >= 500);
-  const double wave_depth = worst_channel_diff(full, wave_out, 0),
-               wave_prob = worst_channel_diff(full, wave_out, 1);
+  const double wave_depth = test::worst_channel_diff(full, wave_out, 0),
+               wave_prob = test::worst_channel_diff(full, wave_out, 1);
   INFO("waves: worst |depth diff| " << wave_depth << ", worst |prob diff| " << wave_prob);
   CHECK(wave_depth <= 4 * eps * far);
   CHECK(wave_prob <= 4 * eps);
@@ -247,9 +238,9 @@ TEST_CASE("early ray termination: exact while no ray terminates, within its thre
   INFO("head rows " << band.head_rows() << " of " << n_live << " live samples");
   CHECK(band.head_rows() > 0);
   CHECK(band.head_rows() < n_live * 3 / 4);
-  CHECK(worst_channel_diff(part, band_out, 0) == 0.0);  // depth bit-identical
-  const double band_prob = worst_channel_diff(part, band_out, 1),
-               band_int = worst_channel_diff(part, band_out, 2);
+  CHECK(test::worst_channel_diff(part, band_out, 0) == 0.0);  // depth bit-identical
+  const double band_prob = test::worst_channel_diff(part, band_out, 1),
+               band_int = test::worst_channel_diff(part, band_out, 2);
   INFO("band: worst |prob diff| " << band_prob << ", worst |intensity diff| " << band_int);
   CHECK(band_prob <= M * thr);
   CHECK(band_int <= M * thr);
@@ -356,8 +347,8 @@ TEST_CASE("early termination of uniform-only sampling: exact at initialisation, 
                  << cut.coarse_evaluated() << " of " << 512 * S);
     CHECK(cut.live_samples() < 512 * S * 6 / 10);
     if (n_waves > 1) CHECK(cut.coarse_evaluated() < 512 * S * 7 / 10);
-    const double worst_depth = worst_channel_diff(full, part, 0),
-                 worst_prob = worst_channel_diff(full, part, 1);
+    const double worst_depth = test::worst_channel_diff(full, part, 0),
+                 worst_prob = test::worst_channel_diff(full, part, 1);
     INFO("worst |depth diff| " << worst_depth << " (far " << far << "), worst |prob diff| " << worst_prob);
     CHECK(worst_depth <= 4 * eps * far);
     CHECK(worst_prob <= 4 * eps);

@@ -1,8 +1,13 @@
-// Test fixture: a field that terminates rays. `c` trained on `scene` (seed 3, run folder under
+// Test fixtures for comparing renders: worst_channel_diff, and a field that terminates rays.
+//
+// opaque_state: `c` trained on `scene` (seed 3, run folder under
 // test::temp_dir(dir)), then every density raised (the σ logit's output bias + 4, σ × 55) so that
 // rays become opaque: the trained tiny fields are translucent. Left in `model`; returns its state.
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include "field/mlp.hpp"
 #include "pipeline/model/model.hpp"
@@ -10,6 +15,16 @@
 #include "support/test_device.hpp"
 
 namespace sgnlf::test {
+
+// The largest |a − b| over the rays of one output channel (renders are n × 3: depth, return
+// probability, intensity).
+inline double worst_channel_diff(const std::vector<float>& a, const std::vector<float>& b,
+                                 int channel) {
+  double worst = 0;
+  for (size_t k = 0; 3 * k + 2 < a.size(); ++k)
+    worst = std::max(worst, double(std::fabs(a[3 * k + size_t(channel)] - b[3 * k + size_t(channel)])));
+  return worst;
+}
 
 inline pipeline::ModelState opaque_state(pipeline::LidarNerfModel& model, const pipeline::Scene& scene,
                                          const pipeline::TrainConfig& c, const std::string& dir) {
