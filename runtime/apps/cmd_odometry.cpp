@@ -96,7 +96,7 @@ const Registrar reg("odometry", "Estimate poses from raw scans with the built-in
                 res.frames.size(), res.seconds, res.scans_per_second(), res.failed.size(),
                 a->out.c_str(), tum.c_str());
 
-    const bool has_gt = d.source != "scans";
+    const bool has_gt = d.has_reference_poses;
     Json metrics = nullptr;
     std::vector<Pose> gt_aligned;
     if (has_gt && d.frames.size() >= 2) {

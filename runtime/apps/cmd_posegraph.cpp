@@ -71,6 +71,9 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
       throw ConfigError("--graph-config needs --graph confidence");
     a->load.validate();
     const Dataset d = load_dataset(a->data, a->load);
+    if (!d.has_reference_poses)
+      throw ConfigError(a->data + ": scans without reference poses; posegraph scores the "
+                        "alignment against them (use sgnlf reconstruct or train --pose-init odometry)");
     pipeline::PoseInitConfig pi;
     pi.init = a->init;
     const std::vector<Pose> init = pipeline::initial_poses(d, pi);

@@ -24,7 +24,8 @@ struct SensorRateOptions {
                    "<= 5 Hz follows the protocol's low-frequency rules (36 frames, test frames "
                    "4, 12, 20), above them the standard ones (64 frames, every 13th). Layouts with "
                    "a clock (KITTI, KITTI-360, nuScenes, synthetic) take every round(native / HZ)-th "
-                   "frame; a plain folder's sensor runs at HZ (its frames 1/HZ s apart; default 10)");
+                   "frame; a plain folder's frames are 1/HZ s apart (default: the times of a times.txt "
+                   "or of the file names, e.g. nuScenes' microseconds, else the sensor's rate)");
   }
   // Sets opt.sensor / opt.rate_hz / opt.frequency for the options given; absent ones leave it.
   void apply(LoadOptions& opt) const {

@@ -48,12 +48,15 @@ struct SceneNormalization {
 
 struct Dataset {
   std::string name;      // sequence name
-  std::string source;    // "synthetic", "kitti360", "kitti-odometry", "nuscenes"
+  std::string source;    // "synthetic", "kitti360", "kitti-odometry", "nuscenes", "scans"
   std::string path;      // where it was loaded from
   std::string frequency; // "standard" or "low"
   Sensor sensor;
   std::vector<Frame> frames;
   Split split;
+  // False for scans without poses (a plain folder of scans): the frames' T_world_lidar are
+  // then the identity, not a reference, and nothing may score poses against them.
+  bool has_reference_poses = true;
 };
 
 }  // namespace sgnlf

@@ -163,9 +163,12 @@ Sensor resolve_sensor(const LoadOptions& opt, const Sensor& layout_default) {
 }
 
 void load_frame_scan(Frame& f, const std::string& scan_path, const Sensor& s, bool load_points,
-                     ProjectionStats& dropped, const std::string& labels_path) {
+                     ProjectionStats& dropped, const std::string& labels_path,
+                     float intensity_scale) {
   io::ScanReadStats rs;
   auto pts = io::read_scan(scan_path, &rs);
+  if (intensity_scale != 1.0f)
+    for (auto& p : pts) p.intensity *= intensity_scale;
   std::vector<uint16_t> labels;
   if (!labels_path.empty()) {
     labels = read_labels(labels_path);

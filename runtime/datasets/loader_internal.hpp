@@ -25,9 +25,11 @@ Sensor resolve_sensor(const LoadOptions& opt, const Sensor& layout_default);
 // max_range_m are not scene geometry for any method); the points the projection drops (and
 // NaN/Inf records) are added to `dropped` and logged per frame at debug level. With
 // `labels_path` (actor_truth.hpp) the per-point labels are read into `f.labels` and kept with
-// their points (IoError when their count is not the scan's).
+// their points (IoError when their count is not the scan's). `intensity_scale` multiplies the
+// intensities as read (plain folders: plain_scans_intensity_scale).
 void load_frame_scan(Frame& f, const std::string& scan_path, const Sensor& s, bool load_points,
-                     ProjectionStats& dropped, const std::string& labels_path = "");
+                     ProjectionStats& dropped, const std::string& labels_path = "",
+                     float intensity_scale = 1.0f);
 // Fills timestamps relative to the first frame and the split; logs a summary with the totals
 // of dropped points.
 void finish_dataset(Dataset& d, const ProjectionStats& dropped);
@@ -39,5 +41,10 @@ Dataset load_scans(const std::string& path, const LoadOptions& opt);
 // The sensor of plain scans: opt.sensor, else the estimate's matching preset, else the
 // estimate (sensor_estimate.hpp); opt.rate_hz, when set, is its rate.
 Sensor plain_scans_sensor(const std::vector<std::string>& files, const LoadOptions& opt);
+// The methods take intensities in [0, 1]. A folder whose sampled scans (read_scan_sample) hold
+// intensities above 1 carries 8-bit (max <= 255: scale 1/255, the nuScenes reader's own rule)
+// or 16-bit (<= 65535: 1/65535) values; above that, 1/max. One scale per folder, so every scan
+// of it is read alike.
+float plain_scans_intensity_scale(const std::vector<std::string>& files);
 
 }  // namespace sgnlf::detail

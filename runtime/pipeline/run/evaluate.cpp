@@ -2,6 +2,7 @@
 #include "pipeline/run/evaluate.hpp"
 
 #include "core/error.hpp"
+#include "datasets/protocol.hpp"
 #include "metrics/evaluate.hpp"
 #include "metrics/naive_baseline.hpp"
 #include "pipeline/model/render_view.hpp"
@@ -37,19 +38,24 @@ ViewSet evaluate_model(LidarNerfModel& model, const Dataset& d, const Scene& sce
   return vs;
 }
 
-ViewSet evaluate_naive(const Dataset& d) {
+ViewSet evaluate_naive(const Dataset& d) { return evaluate_naive(d, gt_poses(d)); }
+
+ViewSet evaluate_naive(const Dataset& d, const std::vector<Pose>& T_world_lidar) {
   if (d.split.test.empty()) throw Error("dataset " + d.name + ": no test frames to evaluate");
+  require(T_world_lidar.size() == d.frames.size(),
+          "evaluate_naive: " + std::to_string(T_world_lidar.size()) + " poses for " +
+              std::to_string(d.frames.size()) + " frames");
   std::vector<Pose> poses;
   std::vector<const std::vector<PointXYZI>*> scans;
   for (int f : d.split.train) {
-    poses.push_back(d.frames[size_t(f)].T_world_lidar);
+    poses.push_back(T_world_lidar[size_t(f)]);
     scans.push_back(&d.frames[size_t(f)].points);
   }
   ViewSet vs;
   std::vector<Json> views;
   for (int f : d.split.test)
     add_view(vs, views, d, f,
-             metrics::naive_baseline_view(d.sensor, poses, scans, d.frames[size_t(f)].T_world_lidar));
+             metrics::naive_baseline_view(d.sensor, poses, scans, T_world_lidar[size_t(f)]));
   vs.mean = metrics::mean_metrics(views);
   return vs;
 }

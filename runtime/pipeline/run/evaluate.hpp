@@ -26,5 +26,8 @@ ViewSet evaluate_model(LidarNerfModel& model, const Dataset& d, const Scene& sce
                        FastRenderer* fast = nullptr);
 // The naive baseline (nearest training scan moved with GT poses, metrics/naive_baseline.hpp).
 ViewSet evaluate_naive(const Dataset& d);
+// The same with the scans moved by `T_world_lidar` (one per frame, metres): for scans without
+// reference poses, the run's own.
+ViewSet evaluate_naive(const Dataset& d, const std::vector<Pose>& T_world_lidar);
 
 }  // namespace sgnlf::pipeline

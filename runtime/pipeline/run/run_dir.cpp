@@ -57,7 +57,13 @@ void write_run_sensor(const std::string& run_dir, const Sensor& s) {
 }
 
 RunScene make_run_scene(const Dataset& d, const TrainConfig& c) {
-  if (!c.is_pose_free()) return RunScene{make_scene(d), gt_poses(d)};
+  if (!c.is_pose_free()) {
+    if (!d.has_reference_poses)
+      throw ConfigError("method " + c.method + " trains on known poses, and " + d.path +
+                        " holds scans without them; use a pose-free method (sg-nlf, geonlf) "
+                        "with --pose-init odometry, or sgnlf reconstruct");
+    return RunScene{make_scene(d), gt_poses(d)};
+  }
   if (d.split.test.empty())
     throw ConfigError("dataset " + d.name + ": " + std::to_string(d.frames.size()) +
                       " frames hold none of the protocol's test frames (4, 12, 20 of a 36-frame "

@@ -83,6 +83,7 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
   opt.resume = req.resume;
   opt.stop_at = req.stop_at;
   opt.show_progress = req.show_progress;
+  opt.on_progress = req.on_progress;
   // The method composes its step from the parts (methods/); a part whose feature the config
   // turns off is not built.
   RunStepParts parts(rt, d, scene, c, model, req.run_dir, req.manifest.seed);
@@ -94,7 +95,7 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
   const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_load).count();
   opt.evaluate = [&](long) {
     Json m = evaluate_model(model, d, scene, c.schedule.render_chunk_rays, current_poses()).mean;
-    if (pose_step) m["pose"] = pose_metrics_json(current_poses(), gt_poses(d));
+    if (pose_step && d.has_reference_poses) m["pose"] = pose_metrics_json(current_poses(), gt_poses(d));
     return m;
   };
   log::info("training ", c.method, "-", c.preset, " on ", d.name, " (", d.split.train.size(),
@@ -118,8 +119,10 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
          {"last_loss", loss_json(s.last_loss)},
          {"device", rt.device().describe()}};
   if (pose_step) {
-    j["pose_metrics"] = pose_metrics_json(current_poses(), gt_poses(d));
-    j["initial_pose_metrics"] = pose_metrics_json(rs.T_world_lidar_init, gt_poses(d));
+    if (d.has_reference_poses) {
+      j["pose_metrics"] = pose_metrics_json(current_poses(), gt_poses(d));
+      j["initial_pose_metrics"] = pose_metrics_json(rs.T_world_lidar_init, gt_poses(d));
+    }
     j["geometric_seconds"] = pose_step->geometric_seconds();
     if (spectral_step) j["spectral_seconds"] = spectral_step->seconds();
     if (consistency_step) {
@@ -204,7 +207,9 @@ Json eval_run(LoadedRun& run, const std::string& run_dir, FastRenderer* fast) {
                                        run.manifest.config.schedule.render_chunk_rays,
                                        run.T_world_lidar, fast);
   const double render_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const ViewSet naive = evaluate_naive(*run.dataset);
+  // Without reference poses the naive baseline moves the scans with the run's own poses.
+  const ViewSet naive = run.dataset->has_reference_poses ? evaluate_naive(*run.dataset)
+                                                         : evaluate_naive(*run.dataset, run.T_world_lidar);
   Json j{{"method", run.manifest.method},
          {"preset", run.manifest.preset},
          {"dataset", run.dataset->name},
@@ -219,10 +224,13 @@ Json eval_run(LoadedRun& run, const std::string& run_dir, FastRenderer* fast) {
          {"per_frame", model.per_frame},
          {"naive_baseline", {{"metrics", naive.mean}, {"per_frame", naive.per_frame}}},
          {"metric_definitions", metrics::definitions()}};
+  j["reference_poses"] = run.dataset->has_reference_poses;
   if (run.pose_free) {
-    const auto gt = gt_poses(*run.dataset);
-    j["pose_metrics"] = pose_metrics_json(run.T_world_lidar, gt);
-    j["initial_pose_metrics"] = pose_metrics_json(run.T_world_lidar_init, gt);
+    if (run.dataset->has_reference_poses) {
+      const auto gt = gt_poses(*run.dataset);
+      j["pose_metrics"] = pose_metrics_json(run.T_world_lidar, gt);
+      j["initial_pose_metrics"] = pose_metrics_json(run.T_world_lidar_init, gt);
+    }
     j["pose_init"] = run.manifest.config.pose_free->poses.init;
     const fs::path summary = fs::path(run_dir) / "summary.json";  // the training's own check
     if (fs::exists(summary)) {

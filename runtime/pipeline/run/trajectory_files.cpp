@@ -20,18 +20,23 @@ std::string write_run_trajectories(const std::string& run_dir, const Dataset& d,
   fs::create_directories(dir);
   std::vector<double> ts;
   for (const auto& f : d.frames) ts.push_back(f.timestamp_s);
+  // Scans without reference poses have no "gt" files: their identity poses are no reference.
   const std::vector<Pose> gt = gt_poses(d);
-  const std::pair<const char*, const std::vector<Pose>*> sets[] = {
-      {"gt", &gt}, {"initial", &init}, {"optimised", &opt}};
+  std::vector<std::pair<const char*, const std::vector<Pose>*>> sets = {{"initial", &init},
+                                                                        {"optimised", &opt}};
+  if (d.has_reference_poses) sets.insert(sets.begin(), {"gt", &gt});
   for (const auto& [name, poses] : sets) {
     io::write_kitti_poses((dir / (std::string(name) + ".kitti.txt")).string(), *poses);
     io::write_tum_poses((dir / (std::string(name) + ".tum.txt")).string(), ts, *poses);
   }
+  std::vector<io::SvgTrajectory> lines = {{"initial", "#e6842a", init}, {"optimised", "#1f77b4", opt}};
+  std::vector<std::pair<int, int>> links = {{1, 0}};
+  if (d.has_reference_poses) {
+    lines.insert(lines.begin(), {"ground truth", "#000000", gt});
+    links = {{2, 0}};
+  }
   io::write_trajectory_svg((dir / "top_view.svg").string(), d.name + ": poses from above (metres, not aligned)",
-                           {{"ground truth", "#000000", gt},
-                            {"initial", "#e6842a", init},
-                            {"optimised", "#1f77b4", opt}},
-                           {{2, 0}});
+                           lines, links);
   return dir.string();
 }
 

@@ -3,6 +3,8 @@
 //   <run>/trajectories/{gt,initial,optimised}.tum.txt     (timestamp tx ty tz qx qy qz qw)
 //   <run>/trajectories/top_view.svg  ground truth, initial and optimised poses from above, each
 //                                    optimised pose joined to its ground truth (not aligned)
+// Scans without reference poses (Dataset::has_reference_poses false) get no gt files, and the
+// picture joins each optimised pose to its initial one.
 #pragma once
 #include <string>
 #include <vector>

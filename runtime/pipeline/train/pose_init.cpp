@@ -31,6 +31,11 @@ std::vector<Pose> odometry_poses(const Dataset& d) {
 }  // namespace
 
 std::vector<Pose> initial_poses(const Dataset& d, const PoseInitConfig& c) {
+  if (!d.has_reference_poses && (c.init == "gt" || c.init == "noisy"))
+    throw ConfigError("poses.init = \"" + c.init + "\": " + d.path +
+                      " holds scans without reference poses, so there is nothing to start from "
+                      "or perturb; use \"odometry\" (--pose-init odometry, what sgnlf "
+                      "reconstruct does) or \"identity\"");
   const std::vector<Pose> gt = gt_poses(d);
   if (c.init == "gt") return gt;
   if (c.init == "noisy") return perturb_poses(gt, c.noise_seed, c.sigma_rot_rad, c.sigma_trans_m);

@@ -25,7 +25,7 @@ StepPolicy& RunStepParts::pose_free() {
   poses_ = std::make_unique<PoseSet>(scene_.T_world_lidar, pf.pose_optim,
                                      pf.pose_optim.lr_scale(pf.poses.init));
   pose_step_ = std::make_unique<PoseFreeStep>(
-      scene_, c_, *poses_, gt_poses(d_), run_dir_,
+      scene_, c_, *poses_, d_.has_reference_poses ? gt_poses(d_) : std::vector<Pose>{}, run_dir_,
       c_.confidence_graph()
           ? make_geometric_stage(d_, scene_, c_, field_features(model_, scene_.norm), run_dir_)
           : make_geometric_stage(d_, scene_, c_));
