@@ -2,6 +2,7 @@
 // folder (new or resumed), render its test frames beside the ground truth, and evaluate it
 // (with the naive baseline alongside).
 #pragma once
+#include <functional>
 #include <string>
 
 #include "cl/runtime.hpp"
@@ -18,6 +19,8 @@ struct TrainRequest {
   bool resume = true;
   long stop_at = -1;
   bool show_progress = true;
+  // Passed to TrainOptions::on_progress (done, end step, first step, text).
+  std::function<void(long, long, long, const std::string&)> on_progress;
 };
 
 // Writes run.json (or checks that an existing one has the same config and seed), trains, and

@@ -1,0 +1,61 @@
+// One progress line over a job of several stages of unequal cost (sgnlf reconstruct: odometry,
+// training, evaluation, renders, ...). Each stage carries an estimate of its duration that the
+// caller refines as it learns the real cost; the line shows the stage and its own progress, the
+// job's elapsed time and its ETA: the running stage's remaining time (from its own rate once it
+// has one, else its estimate minus its elapsed time) plus the estimates of the stages after it.
+// An estimate of < 0 means "not known yet": the ETA reads "?" until it is known.
+// Output goes to stderr like Progress: one rewritten line on a terminal, plain lines at most
+// every `plain_every_s` seconds otherwise.
+#pragma once
+#include <chrono>
+#include <string>
+#include <vector>
+
+namespace sgnlf {
+
+class StagedProgress {
+ public:
+  StagedProgress(std::string label, std::vector<std::string> stages, double plain_every_s = 10.0);
+  ~StagedProgress();
+
+  // The expected duration of `stage` in seconds (< 0: unknown). A finished stage ignores it.
+  void estimate(size_t stage, double seconds);
+  // Starts `stage` (its clock and counters); stages before it that were not ended count as
+  // done earlier (a resumed job), with no time.
+  void begin(size_t stage);
+  // The running stage has `done` of `total` units; `first`: the units done before this process
+  // started it (a resumed training), which its rate does not count.
+  void update(long done, long total, const std::string& extra = "", long first = 0);
+  // Ends the running stage: its measured time replaces its estimate.
+  void end();
+  // The last line, with the job's total time.
+  void finish(const std::string& extra = "");
+
+  // Seconds until the job ends by the current estimates; < 0 when some estimate is unknown.
+  double eta_s() const;
+  double elapsed_s() const;
+  // The text of the line (no terminal codes).
+  std::string line(const std::string& extra = "") const;
+
+ private:
+  struct Stage {
+    std::string name;
+    double estimate_s = -1.0;
+    double measured_s = -1.0;  // ≥ 0 once ended
+    bool ended = false;
+  };
+  double stage_elapsed_s() const;
+  void print(const std::string& extra, bool force);
+
+  std::string label_;
+  std::vector<Stage> stages_;
+  long current_ = -1;
+  long done_ = 0, total_ = 0, first_ = 0;
+  double plain_every_s_;
+  bool tty_;
+  bool finished_ = false;
+  std::chrono::steady_clock::time_point start_, stage_start_;
+  double last_print_ = -1e9;
+};
+
+}  // namespace sgnlf
