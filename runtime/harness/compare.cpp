@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/json_lookup.hpp"
 #include "harness/schema.hpp"
 #include "harness/stats.hpp"
 #include "harness/tables.hpp"
@@ -12,10 +13,8 @@
 namespace sgnlf::harness {
 namespace {
 
-const Json& at(const Json& j, const std::string& k) {
-  static const Json null_json;
-  return j.is_object() && j.contains(k) ? j[k] : null_json;
-}
+// Null for a missing key or a non-object (core/config.hpp): never throws.
+constexpr auto at = &member_or_null;
 
 // Typed look-ups that never throw: a results file of another shape (hand-edited, truncated, from
 // another tool) compares as missing rows and metrics instead of a JSON type_error.

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "core/json_lookup.hpp"
 #include "report/html.hpp"
 #include "report/page.hpp"
 #include "report/report.hpp"
@@ -13,10 +14,8 @@ namespace sgnlf::report {
 namespace fs = std::filesystem;
 namespace {
 
-const Json& at(const Json& j, const std::string& k) {
-  static const Json null_json;
-  return j.is_object() && j.contains(k) ? j[k] : null_json;
-}
+// Null for a missing key or a non-object (core/config.hpp): never throws.
+constexpr auto at = &member_or_null;
 
 std::string str(const Json& j, const std::string& k) {
   const Json& v = at(j, k);

@@ -2,11 +2,15 @@
 #include <cstdio>
 #include <string>
 
+#include "core/json_lookup.hpp"
 #include "report/html.hpp"
 #include "report/run_sections.hpp"
 
 namespace sgnlf::report {
 namespace {
+
+// Null for a missing key or a non-object (core/config.hpp): never throws.
+constexpr auto at = &member_or_null;
 
 std::string text_of(const Json& v) {
   if (v.is_null()) return "—";
@@ -17,11 +21,6 @@ std::string text_of(const Json& v) {
     return buf;
   }
   return v.dump();
-}
-
-const Json& at(const Json& j, const std::string& k) {
-  static const Json null_json;
-  return j.is_object() && j.contains(k) ? j[k] : null_json;
 }
 
 // The first non-empty of the candidates.

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/json_lookup.hpp"
 #include "harness/markdown.hpp"
 #include "harness/tables.hpp"
 #include "report/html.hpp"
@@ -11,6 +12,9 @@
 
 namespace sgnlf::report {
 namespace {
+
+// Null for a missing key or a non-object (core/config.hpp): never throws.
+constexpr auto at = &member_or_null;
 
 // Table order; keys a metrics file has beyond these follow them.
 const std::vector<std::string> kOrder = {
@@ -21,11 +25,6 @@ const std::vector<std::string> kOrder = {
 const std::vector<std::string> kPerFrame = {"cd", "fscore", "depth_rmse", "depth_psnr",
                                             "intensity_psnr", "raydrop_f1"};
 const std::vector<std::string> kPose = {"ate_m", "rpe_t_cm", "rpe_r_deg"};
-
-const Json& at(const Json& j, const std::string& k) {
-  static const Json null_json;
-  return j.is_object() && j.contains(k) ? j[k] : null_json;
-}
 
 std::vector<std::string> metric_keys(const Json& m) {
   std::vector<std::string> keys;
