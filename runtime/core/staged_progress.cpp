@@ -47,17 +47,21 @@ void StagedProgress::begin(size_t stage) {
       stages_[k].measured_s = 0.0;
     }
   current_ = long(stage);
-  done_ = total_ = first_ = 0;
+  done_ = total_ = 0;
+  rate_started_ = false;
   stage_start_ = std::chrono::steady_clock::now();
   print("", true);
 }
 
-void StagedProgress::update(long done, long total, const std::string& extra, long first) {
+void StagedProgress::update(long done, long total, const std::string& extra) {
   if (current_ < 0) return;
-  if (done_ == 0 && total_ == 0 && first > 0) stage_start_ = std::chrono::steady_clock::now();
+  if (!rate_started_) {
+    rate_started_ = true;
+    rate_done0_ = done;
+    rate_t0_ = std::chrono::steady_clock::now();
+  }
   done_ = done;
   total_ = total;
-  first_ = first;
   print(extra, false);
 }
 
@@ -75,13 +79,15 @@ double StagedProgress::eta_s() const {
     const Stage& s = stages_[k];
     if (s.ended) continue;
     if (long(k) == current_) {
-      const double t = stage_elapsed_s();
-      const long ran = done_ - first_;
+      const long ran = rate_started_ ? done_ - rate_done0_ : 0;
+      const double t = rate_started_ ? std::chrono::duration<double>(
+                                           std::chrono::steady_clock::now() - rate_t0_).count()
+                                     : 0.0;
       if (ran > 0 && t > 0 && total_ > 0) {
         eta += double(total_ - done_) * t / double(ran);
       } else {
         if (s.estimate_s < 0) return -1.0;
-        eta += std::max(0.0, s.estimate_s - t);
+        eta += std::max(0.0, s.estimate_s - stage_elapsed_s());
       }
       continue;
     }

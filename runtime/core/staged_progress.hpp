@@ -3,6 +3,8 @@
 // caller refines as it learns the real cost; the line shows the stage and its own progress, the
 // job's elapsed time and its ETA: the running stage's remaining time (from its own rate once it
 // has one, else its estimate minus its elapsed time) plus the estimates of the stages after it.
+// A stage's rate runs from its first update on: work before it (a training's geometric stage
+// before step 1, a resumed run's earlier steps) does not dilute it.
 // An estimate of < 0 means "not known yet": the ETA reads "?" until it is known.
 // Output goes to stderr like Progress: one rewritten line on a terminal, plain lines at most
 // every `plain_every_s` seconds otherwise.
@@ -23,9 +25,8 @@ class StagedProgress {
   // Starts `stage` (its clock and counters); stages before it that were not ended count as
   // done earlier (a resumed job), with no time.
   void begin(size_t stage);
-  // The running stage has `done` of `total` units; `first`: the units done before this process
-  // started it (a resumed training), which its rate does not count.
-  void update(long done, long total, const std::string& extra = "", long first = 0);
+  // The running stage has `done` of `total` units.
+  void update(long done, long total, const std::string& extra = "");
   // Ends the running stage: its measured time replaces its estimate.
   void end();
   // The last line, with the job's total time.
@@ -50,7 +51,10 @@ class StagedProgress {
   std::string label_;
   std::vector<Stage> stages_;
   long current_ = -1;
-  long done_ = 0, total_ = 0, first_ = 0;
+  long done_ = 0, total_ = 0;
+  bool rate_started_ = false;
+  long rate_done0_ = 0;  // units at the stage's first update
+  std::chrono::steady_clock::time_point rate_t0_;  // time of the stage's first update
   double plain_every_s_;
   bool tty_;
   bool finished_ = false;

@@ -83,7 +83,7 @@ Json odometry_stage(const Dataset& d, const std::string& run_dir, const std::vec
   const odometry::OdometryConfig cfg;
   const auto res = odometry::estimate_trajectory(
       scans, stamps, cfg, d.sensor, [&](size_t k, const odometry::FrameResult&) {
-        progress.update(long(k + 1), long(scans.size()), "", 0);
+        progress.update(long(k + 1), long(scans.size()));
       });
   const fs::path dir = fs::path(run_dir) / "odometry";
   fs::create_directories(dir);
@@ -186,16 +186,23 @@ Json reconstruct(cl::Runtime& rt, const ReconstructRequest& req) {
   if (!record.done("train")) {
     progress.begin(kTrain);
     // Rendering estimates from the training's measured throughput, refreshed as it runs.
-    const auto t_stage = std::chrono::steady_clock::now();
-    tr.on_progress = [&](long done, long end, long first, const std::string& text) {
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_stage).count();
-      if (done > first && s > 0) {
-        const double rate = double(done - first) * samples_per_step / s;
+    // From the first logged step on (not the geometric stage before it).
+    std::chrono::steady_clock::time_point t_first;
+    long step_first = -1;
+    tr.on_progress = [&](long done, long end, long, const std::string& text) {
+      const auto now = std::chrono::steady_clock::now();
+      if (step_first < 0) {
+        step_first = done;
+        t_first = now;
+      }
+      const double s = std::chrono::duration<double>(now - t_first).count();
+      if (done > step_first && s > 0) {
+        const double rate = double(done - step_first) * samples_per_step / s;
         const double r = render_estimate_s(cfg, d.sensor, views, rate);
         progress.estimate(kEvaluate, r);
         progress.estimate(kRender, r);
       }
-      progress.update(done, end, text, first);
+      progress.update(done, end, text);
     };
     const Json summary = pipeline::train_run(rt, tr);
     record.finish("train", summary);
