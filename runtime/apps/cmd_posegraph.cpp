@@ -1,6 +1,7 @@
 // `sgnlf posegraph --data <dataset> [--pose-init noisy|identity|gt] [--steps N] [--points N]
 // [--tau-scale X] [--lr-rot X] [--lr-trans X] [--lr-final X] [--offsets 1,2] [--out DIR]
-// [--graph sequential|confidence] [--graph-config FILE] [--confidence-start X]`:
+// [--graph sequential|confidence] [--graph-config FILE] [--confidence-start X] [--sensor NAME|FILE]
+// [--frequency standard|low|HZ]`:
 // GeoNLF's geometric pose optimiser alone (no field; method.md §3) from the protocol's initial
 // poses, as the coarse alignment that starts a GeoNLF run (posegraph/annealed_run.hpp). Prints the ATE/RPE after each call; with --out writes
 // the trajectories (pipeline/run/trajectory_files.hpp) and a JSON log.
@@ -15,6 +16,7 @@
 #include <iostream>
 
 #include "apps/command.hpp"
+#include "apps/sensor_rate_options.hpp"
 #include "datasets/loader.hpp"
 #include "datasets/protocol.hpp"
 #include "metrics/pose_errors.hpp"
@@ -36,6 +38,7 @@ struct PoseGraphArgs {
   posegraph::GeometricConfig cfg;
   double tau_scale = 1.5, lr_final = 0.05;
   LoadOptions load;
+  SensorRateOptions sensor_rate;
 };
 
 const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a dataset", [](CLI::App& sub) {
@@ -65,7 +68,9 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
   sub.add_option("--sequence", a->load.sequence, "Sequence / drive / scene of a real layout");
   sub.add_option("--start", a->load.start, "First frame id of the window");
   sub.add_option("--frames", a->load.frames, "Frames in the window");
+  a->sensor_rate.add(sub);
   return std::function<int()>([a] {
+    a->sensor_rate.apply(a->load);
     if (a->steps < 1 || a->per_call < 1) throw ConfigError("--steps and --per-call must be >= 1");
     if (a->graph == "sequential" && !a->graph_config.empty())
       throw ConfigError("--graph-config needs --graph confidence");

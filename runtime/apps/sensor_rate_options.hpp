@@ -1,5 +1,5 @@
 // `--sensor NAME|FILE` and `--frequency standard|low|HZ`, shared by every command that loads
-// data (train, odometry, inspect, eval); parsed by datasets/load_args.hpp when the command runs,
+// data (train, odometry, inspect, eval, posegraph, reconstruct); parsed by datasets/load_args.hpp when the command runs,
 // so a bad value fails with a message naming the option and the value.
 #pragma once
 #include <string>
