@@ -6,26 +6,18 @@
 // real kill(2) from this process at a time drawn from the project's generator.
 #include <catch2/catch.hpp>
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <time.h>
-#include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <thread>
 
 #include "core/config.hpp"
 #include "core/rng.hpp"
 #include "pipeline/train/checkpoint.hpp"
 #include "pipeline/train/trainer.hpp"
+#include "support/spawn.hpp"
 #include "support/test_device.hpp"
 #include "tiny_scene.hpp"
-
-extern char** environ;
 
 SGNLF_DEVICE_TESTS;
 using namespace sgnlf;
@@ -33,12 +25,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Outcome {
-  bool exited = false;
-  int code = -1;
-  int signal = 0;
-  double seconds = 0.0;
-};
+using Outcome = test::ProcessOutcome;
 
 // Runs `sgnlf train --method method` on `data` into `out` (output to <out>.log); `fault` goes to
 // SGNLF_FAULT_KILL; kill_after_s >= 0 sends SIGKILL after that many seconds.
@@ -48,48 +35,10 @@ Outcome run_train(const std::string& data, const std::string& out, const std::st
   std::vector<std::string> args = {SGNLF_BIN, "train", "--method", method, "--preset", "smoke",
                                    "--data", data, "--out", out, "--seed", "7"};
   if (!config.empty()) args.insert(args.end(), {"--config", config});
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  std::vector<std::string> env_s;
-  for (char** e = environ; *e; ++e)
-    if (std::string(*e).rfind("SGNLF_FAULT_KILL=", 0) != 0) env_s.emplace_back(*e);
-  if (!fault.empty()) env_s.push_back("SGNLF_FAULT_KILL=" + fault);
-  std::vector<char*> envp;
-  for (auto& e : env_s) envp.push_back(e.data());
-  envp.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  const std::string log = out + ".log";
-  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-  posix_spawn_file_actions_adddup2(&fa, 1, 2);
-  pid_t pid = 0;
-  const auto t0 = std::chrono::steady_clock::now();
-  REQUIRE(posix_spawn(&pid, SGNLF_BIN, &fa, nullptr, argv.data(), envp.data()) == 0);
-  posix_spawn_file_actions_destroy(&fa);
-  int status = 0;
-  bool reaped = false;
-  if (kill_after_s >= 0) {
-    const auto deadline = t0 + std::chrono::duration<double>(kill_after_s);
-    while (!reaped && std::chrono::steady_clock::now() < deadline) {
-      reaped = waitpid(pid, &status, WNOHANG) == pid;
-      if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    if (!reaped) kill(pid, SIGKILL);
-  }
-  if (!reaped) REQUIRE(waitpid(pid, &status, 0) == pid);
-  Outcome o;
-  o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  o.exited = WIFEXITED(status);
-  o.code = o.exited ? WEXITSTATUS(status) : -1;
-  o.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
-  return o;
+  return test::run_process(args, out + ".log", {"SGNLF_FAULT_KILL=" + fault}, kill_after_s);
 }
 
-std::string contents(const std::string& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
+std::string contents(const std::string& p) { return test::file_contents(p); }
 
 std::vector<long> logged_steps(const std::string& run_dir) {
   std::ifstream in(run_dir + "/train_log.jsonl");

@@ -4,8 +4,11 @@
 // reference; a rerun skips every stage, a rerun after a kill past the training resumes from
 // the evaluation without training again, a rerun with reference poses adds ATE/RPE; another
 // request on the folder, a method that does not recover poses, and the poses-needing starts on
-// scans without poses are refused.
+// scans without poses are refused. And `sgnlf reconstruct` killed with SIGKILL during the
+// training, run again, ends equal to the uninterrupted job.
 #include <catch2/catch.hpp>
+
+#include <signal.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -16,7 +19,10 @@
 #include "io/cloud_writers.hpp"
 #include "io/pcd_reader.hpp"
 #include "io/trajectory_io.hpp"
+#include "pipeline/train/checkpoint.hpp"
+#include "pipeline/train/trainer.hpp"
 #include "pipeline/train/pose_init.hpp"
+#include "support/spawn.hpp"
 #include "support/test_device.hpp"
 #include "workflow/reconstruct.hpp"
 #include "../pipeline/tiny_scene.hpp"
@@ -166,4 +172,40 @@ TEST_CASE("reconstruct: scans to poses, field, metrics, renders, cloud and repor
   CHECK(pipeline::initial_poses(plain, pi).size() == plain.frames.size());
   const auto lidar_nerf = test::tiny_config();
   CHECK_THROWS_WITH(pipeline::make_run_scene(plain, lidar_nerf), Catch::Contains("without them"));
+}
+
+TEST_CASE("sgnlf reconstruct killed during training and run again equals the uninterrupted job",
+          "[workflow][reconstruct][crash]") {
+  const fs::path root = test::temp_dir("reconstruct_kill");
+  const ScanFolder s = write_scan_folder(root);
+  auto job = [&](const std::string& out, const std::string& fault) {
+    return test::run_process({SGNLF_BIN, "reconstruct", "--scans", s.dir, "--out", out, "--preset",
+                              "smoke", "--config", s.config, "--sensor", s.sensor},
+                             out + ".log", {"SGNLF_FAULT_KILL=" + fault});
+  };
+  const std::string a = (root / "uninterrupted").string();
+  const auto full = job(a, "");
+  INFO(test::file_contents(a + ".log"));
+  REQUIRE(full.exited);
+  REQUIRE(full.code == 0);
+  CHECK(test::file_contents(a + ".log").find("no reference poses") != std::string::npos);
+
+  // Killed after step 17 of 28 (checkpoints every 7): the odometry is recorded, the training not.
+  const std::string b = (root / "killed").string();
+  const auto killed = job(b, "after-step@17");
+  CHECK(killed.signal == SIGKILL);
+  const Json rec = load_json_file(b + "/reconstruct.json");
+  CHECK(rec.at("stages").contains("odometry"));
+  CHECK_FALSE(rec.at("stages").contains("train"));
+  CHECK(pipeline::load_checkpoint(pipeline::checkpoint_path(b)).step == 14);
+  const auto again = job(b, "");
+  INFO(test::file_contents(b + ".log"));
+  REQUIRE(again.exited);
+  REQUIRE(again.code == 0);
+
+  CHECK(test::file_contents(pipeline::checkpoint_path(b)) ==
+        test::file_contents(pipeline::checkpoint_path(a)));
+  for (const char* f : {"/odometry/odometry.kitti.txt", "/trajectories/optimised.kitti.txt", "/scene.pcd"})
+    CHECK(test::file_contents(b + f) == test::file_contents(a + f));
+  CHECK(load_json_file(b + "/metrics.json").at("metrics") == load_json_file(a + "/metrics.json").at("metrics"));
 }
