@@ -136,10 +136,18 @@ double render_estimate_s(const pipeline::TrainConfig& c, const Sensor& s, size_t
   return double(views) * double(s.height) * double(s.width) * double(ns + ni) / train_samples_per_s;
 }
 
+// The folder as an absolute, lexically normal path without a trailing separator, so that the
+// same folder named another way ("scans/", "./scans", relative or absolute) is the same request.
+std::string absolute_folder(const std::string& path) {
+  fs::path p = fs::absolute(fs::path(path)).lexically_normal();
+  if (!p.has_filename() && p.has_parent_path() && p != p.root_path()) p = p.parent_path();
+  return p.string();
+}
+
 }  // namespace
 
 Json ReconstructRequest::to_json() const {
-  Json j{{"scans", scans},
+  Json j{{"scans", absolute_folder(scans)},
          {"method", method},
          {"preset", preset},
          {"seed", seed},
@@ -172,7 +180,7 @@ Json reconstruct(cl::Runtime& rt, const ReconstructRequest& req) {
   pipeline::TrainRequest tr;
   tr.manifest.method = req.method;
   tr.manifest.preset = req.preset;
-  tr.manifest.dataset = req.scans;
+  tr.manifest.dataset = absolute_folder(req.scans);
   tr.manifest.device = req.device;
   tr.manifest.seed = req.seed;
   tr.manifest.data_options = req.load;
@@ -260,22 +268,24 @@ Json reconstruct(cl::Runtime& rt, const ReconstructRequest& req) {
                                 {"frame", "world = the first scan's sensor frame (odometry start)"}});
     progress.end();
   }
-  if (!record.done("report")) {
+  // Pose errors against the reference, when there is one; recorded before the report, which
+  // shows them, and the report rewritten when they are (a later run that only adds
+  // --reference-poses changes no other stage).
+  if (!ref.empty()) {
+    const fs::path traj = fs::path(req.run_dir) / "trajectories";
+    const std::vector<Pose> odo = io::read_kitti_poses(record.stage("odometry").at("kitti").get<std::string>());
+    const std::vector<Pose> opt = io::read_kitti_poses((traj / "optimised.kitti.txt").string());
+    record.set("pose_errors", Json{{"odometry", pose_errors_json(odo, ref)},
+                                   {"optimised", pose_errors_json(opt, ref)}});
+  }
+  if (!record.done("report") || !ref.empty()) {
     progress.begin(kReport);
     const std::string page = report::write_report(req.run_dir);
     record.finish("report", Json{{"file", page}});
     progress.end();
   }
 
-  // Pose errors against the reference, when there is one.
   Json out = record.json();
-  if (!ref.empty()) {
-    const fs::path traj = fs::path(req.run_dir) / "trajectories";
-    const std::vector<Pose> odo = io::read_kitti_poses(record.stage("odometry").at("kitti").get<std::string>());
-    const std::vector<Pose> opt = io::read_kitti_poses((traj / "optimised.kitti.txt").string());
-    out["pose_errors"] = Json{{"odometry", pose_errors_json(odo, ref)},
-                              {"optimised", pose_errors_json(opt, ref)}};
-  }
   out["run_dir"] = req.run_dir;
   progress.finish(record.stage("report").at("file").get<std::string>());
   write_json_file(record.path(), out);

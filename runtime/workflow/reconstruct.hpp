@@ -41,7 +41,9 @@ struct ReconstructRequest {
   bool show_progress = true;
 
   // The request as recorded in reconstruct.json (what must match on resume: not the device,
-  // the reference poses, which only score the result, or the progress display).
+  // the reference poses, which only score the result, or the progress display). The scans
+  // folder is recorded as an absolute, normal path: naming it relatively, or with a trailing
+  // '/', on a later run is the same request.
   Json to_json() const;
 };
 

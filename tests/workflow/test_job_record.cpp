@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "support/test_device.hpp"
 #include "workflow/job_record.hpp"
+#include "workflow/reconstruct.hpp"
 
 using namespace sgnlf;
 namespace fs = std::filesystem;
@@ -42,4 +43,24 @@ TEST_CASE("JobRecord keeps finished stages and refuses another request", "[workf
 
   std::ofstream(path) << "[1, 2]";
   CHECK_THROWS_AS(workflow::JobRecord(path, req), IoError);
+}
+
+TEST_CASE("reconstruct request: one scans folder named another way is the same request",
+          "[workflow][record]") {
+  // canonical: the working directory below is read back with symbolic links resolved
+  const fs::path dir = fs::canonical(test::temp_dir("reconstruct_request"));
+  fs::create_directories(dir / "scans");
+  const fs::path cwd = fs::current_path();
+  fs::current_path(dir);
+  workflow::ReconstructRequest a, b, c, other;
+  a.scans = (dir / "scans").string();
+  b.scans = "scans/";
+  c.scans = "./scans/../scans";
+  other.scans = "scans2";
+  const Json ja = a.to_json(), jb = b.to_json(), jc = c.to_json(), jo = other.to_json();
+  fs::current_path(cwd);
+  CHECK(ja.at("scans") == (dir / "scans").lexically_normal().string());
+  CHECK(jb == ja);
+  CHECK(jc == ja);
+  CHECK(jo != ja);
 }
