@@ -34,6 +34,7 @@ RunFolder load_run_folder(const std::string& path) {
   r.summary = optional_json(r.file("summary.json"));
   r.metrics = optional_json(r.file("metrics.json"));
   r.metrics_fast = optional_json(r.file("metrics-fast.json"));
+  r.reconstruct = optional_json(r.file("reconstruct.json"));
   return r;
 }
 

@@ -1,6 +1,7 @@
 // What the report reads from a run folder (docs/training-and-run-folders.md,
 // pipeline/run/run_dir.hpp): run.json (required), summary.json and metrics.json /
-// metrics-fast.json when present, and the JSON-lines logs.
+// metrics-fast.json when present, reconstruct.json in a `sgnlf reconstruct` folder, and the
+// JSON-lines logs.
 #pragma once
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@ struct RunFolder {
   Json summary = nullptr;             // summary.json (after training), else null
   Json metrics = nullptr;             // metrics.json (after `sgnlf eval`), else null
   Json metrics_fast = nullptr;        // metrics-fast.json (`sgnlf eval --renderer fast`), else null
+  Json reconstruct = nullptr;         // reconstruct.json (`sgnlf reconstruct`), else null
   std::string file(const std::string& name) const;  // path/name
 };
 

@@ -1,6 +1,6 @@
 // The metrics section of a run's report (run_sections.hpp): metrics.json's means and per-frame
 // values beside the naive baseline's (the nearest training scan, protocol §4), and the poses'
-// ATE/RPE before and after optimisation.
+// ATE/RPE before and after optimisation (from reconstruct.json in a `sgnlf reconstruct` folder).
 #include <algorithm>
 #include <cmath>
 
@@ -84,12 +84,13 @@ std::string per_frame_table(const Json& frames, const Json& naive_frames) {
   return html_table(head, rows, "num");
 }
 
-std::string pose_table(const Json& initial, const Json& optimised) {
+std::string pose_table(const Json& initial, const Json& optimised,
+                       const std::string& initial_name = "initial poses") {
   std::vector<std::vector<std::string>> rows;
   for (const auto& k : kPose)
     rows.push_back({escape(metric_header(k)), escape(metric_value(k, at(initial, k))),
                     cell(k, at(optimised, k), at(initial, k))});
-  return html_table({"pose metric", "initial poses", "optimised poses"}, rows, "num");
+  return html_table({"pose metric", initial_name, "optimised poses"}, rows, "num");
 }
 
 std::string scored(const Json& m, const Json& fast, const std::string& file) {
@@ -130,6 +131,21 @@ std::string metrics_section(const RunFolder& r) {
   if (at(src, "pose_metrics").is_object())
     o += "<h3>Poses</h3>\n<p>After Umeyama alignment on the positions (protocol §4).</p>\n" +
          pose_table(at(src, "initial_pose_metrics"), src["pose_metrics"]);
+  else if (r.reconstruct.is_object()) {
+    // A `sgnlf reconstruct` folder: its scans have no reference poses in their layout; the
+    // record holds ATE/RPE only when --reference-poses scored them.
+    const Json& pe = at(r.reconstruct, "pose_errors");
+    o += "<h3>Poses</h3>\n";
+    if (pe.is_object())
+      o += "<p>Against the reference poses given to <code>sgnlf reconstruct "
+           "--reference-poses</code>, after Umeyama alignment on the positions (protocol "
+           "§4); reconstruct.json.</p>\n" +
+           pose_table(at(pe, "odometry"), at(pe, "optimised"), "odometry poses");
+    else
+      o += "<p class=\"note\">No reference poses, so no ATE: <code>sgnlf reconstruct "
+           "--reference-poses FILE</code> on this folder scores the odometry and the optimised "
+           "poses.</p>\n";
+  }
   return o + "</section>\n";
 }
 

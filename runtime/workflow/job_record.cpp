@@ -55,6 +55,12 @@ void JobRecord::finish(const std::string& stage, Json result) {
   write();
 }
 
+void JobRecord::set(const std::string& key, Json value) {
+  require(key != "request" && key != "stages", path_ + ": '" + key + "' is not settable");
+  j_[key] = std::move(value);
+  write();
+}
+
 void JobRecord::write() const {
   const fs::path p(path_);
   if (p.has_parent_path()) fs::create_directories(p.parent_path());

@@ -18,6 +18,8 @@ class JobRecord {
   const Json& stage(const std::string& stage) const;  // Error when not done
   // Marks `stage` done with its result and writes the file.
   void finish(const std::string& stage, Json result);
+  // Sets a top-level key beside request and stages (e.g. pose_errors) and writes the file.
+  void set(const std::string& key, Json value);
   const Json& json() const { return j_; }
   const std::string& path() const { return path_; }
 

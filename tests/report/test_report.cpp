@@ -70,6 +70,34 @@ TEST_CASE("report of a run: curves, metrics and context", "[report]") {
   CHECK(contains(html, "resolved config (run.json)"));
 }
 
+TEST_CASE("report of a reconstruct folder: its poses scored by reference poses, or said not to be",
+          "[report]") {
+  const std::string dir = test::temp_dir("report_reconstruct");
+  test::write_run_fixture(dir);
+  // A plain folder's run: no pose metrics in metrics.json or summary.json.
+  for (const char* name : {"/metrics.json", "/summary.json"}) {
+    Json j = load_json_file(dir + name);
+    j.erase("pose_metrics");
+    j.erase("initial_pose_metrics");
+    write_json_file(dir + name, j);
+  }
+  Json record{{"request", {{"scans", "/scans"}}}, {"stages", Json::object()}};
+  write_json_file(dir + "/reconstruct.json", record);
+  std::string html = report::build_report(dir);
+  CHECK(contains(html, "No reference poses, so no ATE"));
+  CHECK_FALSE(contains(html, "odometry poses"));
+
+  record["pose_errors"] = {
+      {"odometry", {{"ate_m", 0.2325}, {"rpe_t_cm", 7.48}, {"rpe_r_deg", 0.240}}},
+      {"optimised", {{"ate_m", 0.2239}, {"rpe_t_cm", 7.14}, {"rpe_r_deg", 0.207}}}};
+  write_json_file(dir + "/reconstruct.json", record);
+  html = report::build_report(dir);
+  CHECK_FALSE(contains(html, "No reference poses"));
+  CHECK(contains(html, "<th>odometry poses</th>"));
+  CHECK(contains(html, "<td>0.2325</td>"));
+  CHECK(contains(html, "<span class=\"better\">0.2239</span>"));
+}
+
 TEST_CASE("report: inserted text is escaped and nothing refers to the network", "[report]") {
   const std::string dir = test::temp_dir("report_escape");
   test::write_run_fixture(dir);

@@ -140,11 +140,20 @@ TEST_CASE("reconstruct: scans to poses, field, metrics, renders, cloud and repor
   CHECK(fs::exists(fs::path(out) / "scene.ply"));
   CHECK(resumed.at("stages").at("evaluate").at("metrics") == j.at("stages").at("evaluate").at("metrics"));
 
-  // With reference poses the same job reports ATE/RPE of the odometry and of the optimised poses.
+  // With reference poses the same job reports ATE/RPE of the odometry and of the optimised
+  // poses, records them and rewrites the report with them; a later run without keeps them.
+  const auto has = [&](const std::string& what) {
+    return test::file_contents(out + "/report.html").find(what) != std::string::npos;
+  };
+  CHECK(has("No reference poses, so no ATE"));
   auto with_ref = request(s, out);
   with_ref.reference_poses = s.reference;
   const Json scored = workflow::reconstruct(rt, with_ref);
   REQUIRE(scored.contains("pose_errors"));
+  CHECK(has("<th>odometry poses</th>"));
+  CHECK_FALSE(has("No reference poses"));
+  CHECK(load_json_file(out + "/reconstruct.json").at("pose_errors") == scored.at("pose_errors"));
+  CHECK(workflow::reconstruct(rt, request(s, out)).at("pose_errors") == scored.at("pose_errors"));
   CHECK(scored.at("pose_errors").at("odometry").at("ate_m").get<double>() < 0.5);
   CHECK(scored.at("pose_errors").at("optimised").at("ate_m").get<double>() < 0.5);
   CHECK(scored.at("pose_errors").at("optimised").at("frames") == plain.frames.size());

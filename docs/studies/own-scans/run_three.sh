@@ -3,7 +3,8 @@
 # (convert_scans.py), each through `sgnlf reconstruct --scans DIR --out RUN` with no other
 # option, one after another; then the trajectories compared with each other and the odometry
 # with `sgnlf odometry` on the genuine layout, and the poses scored against the scene's
-# reference poses (a rerun with --reference-poses: every stage is skipped).
+# reference poses (a rerun with --reference-poses: nothing is trained, evaluated or rendered again;
+# the errors go into reconstruct.json and the report is rewritten with them).
 #   SGNLF=path/to/sgnlf OUT=dir bash run_three.sh
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
