@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/staged_progress.hpp"
+#include "harness/context.hpp"
 #include "datasets/protocol.hpp"
 #include "io/cloud_writers.hpp"
 #include "io/trajectory_io.hpp"
@@ -212,7 +213,9 @@ Json reconstruct(cl::Runtime& rt, const ReconstructRequest& req) {
       }
       progress.update(done, end, text);
     };
-    const Json summary = pipeline::train_run(rt, tr);
+    Json summary = pipeline::train_run(rt, tr);
+    // Where the training ran: git, build, machine, OpenCL device (the report's build row).
+    summary["context"] = harness::context_block(&rt.device());
     record.finish("train", summary);
     progress.end();
   }

@@ -100,6 +100,10 @@ TEST_CASE("reconstruct: scans to poses, field, metrics, renders, cloud and repor
   const Json j = workflow::reconstruct(rt, request(s, out));
   for (const char* st : workflow::kReconstructStages) CHECK(j.at("stages").contains(st));
   CHECK_FALSE(j.contains("pose_errors"));
+  // Where it trained, for the report's build row.
+  CHECK(j.at("stages").at("train").at("context").at("build").at("git").is_object());
+  CHECK(test::file_contents(out + "/report.html").find("not recorded in the run folder") ==
+        std::string::npos);
   for (const char* f : {"odometry/odometry.kitti.txt", "odometry/odometry.tum.txt",
                         "odometry/odometry.json", "run.json", "summary.json", "metrics.json",
                         "trajectories/optimised.kitti.txt", "scene.ply", "scene.pcd", "report.html",
