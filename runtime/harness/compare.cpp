@@ -13,7 +13,7 @@
 namespace sgnlf::harness {
 namespace {
 
-// Null for a missing key or a non-object (core/config.hpp): never throws.
+// Null for a missing key or a non-object (core/json_lookup.hpp): never throws.
 constexpr auto at = &member_or_null;
 
 // Typed look-ups that never throw: a results file of another shape (hand-edited, truncated, from

@@ -14,7 +14,7 @@ namespace sgnlf::report {
 namespace fs = std::filesystem;
 namespace {
 
-// Null for a missing key or a non-object (core/config.hpp): never throws.
+// Null for a missing key or a non-object (core/json_lookup.hpp): never throws.
 constexpr auto at = &member_or_null;
 
 std::string str(const Json& j, const std::string& k) {

@@ -9,7 +9,7 @@
 namespace sgnlf::report {
 namespace {
 
-// Null for a missing key or a non-object (core/config.hpp): never throws.
+// Null for a missing key or a non-object (core/json_lookup.hpp): never throws.
 constexpr auto at = &member_or_null;
 
 std::string text_of(const Json& v) {

@@ -13,7 +13,7 @@
 namespace sgnlf::report {
 namespace {
 
-// Null for a missing key or a non-object (core/config.hpp): never throws.
+// Null for a missing key or a non-object (core/json_lookup.hpp): never throws.
 constexpr auto at = &member_or_null;
 
 // Table order; keys a metrics file has beyond these follow them.
