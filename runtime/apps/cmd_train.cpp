@@ -8,6 +8,7 @@
 
 #include "apps/command.hpp"
 #include "apps/sensor_rate_options.hpp"
+#include "harness/context.hpp"
 #include "pipeline/methods/registry.hpp"
 #include "pipeline/config/presets.hpp"
 #include "pipeline/run/session.hpp"
@@ -78,6 +79,7 @@ const Registrar reg("train", "Train a method on a dataset into a run folder", []
     req.resume = !a->no_resume;
     req.stop_at = a->stop_at;
     cl::Runtime rt(a->device);
+    req.context = harness::context_block(&rt.device());
     const Json s = pipeline::train_run(rt, req);
     std::cout << s.dump(2) << "\n";
     return 0;

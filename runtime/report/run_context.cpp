@@ -71,9 +71,7 @@ std::string context_section(const RunFolder& r) {
     add("parameters", at(sum, "parameters"));
     add("finished", at(sum, "finished"));
   }
-  // A bench run's run.json or summary.json; a `sgnlf reconstruct` folder's training stage.
-  const Json& ctx = first_of({&at(run, "context"), &at(sum, "context"),
-                              &at(at(at(r.reconstruct, "stages"), "train"), "context")});
+  const Json& ctx = first_of({&at(run, "context"), &at(sum, "context")});
   if (ctx.is_object()) build_rows(ctx, rows);
   else rows.push_back({"build", "<span class=\"note\">not recorded in the run folder</span>"});
 

@@ -213,9 +213,8 @@ Json reconstruct(cl::Runtime& rt, const ReconstructRequest& req) {
       }
       progress.update(done, end, text);
     };
-    Json summary = pipeline::train_run(rt, tr);
-    // Where the training ran: git, build, machine, OpenCL device (the report's build row).
-    summary["context"] = harness::context_block(&rt.device());
+    tr.context = harness::context_block(&rt.device());  // the report's build row
+    const Json summary = pipeline::train_run(rt, tr);
     record.finish("train", summary);
     progress.end();
   }

@@ -97,6 +97,8 @@ TEST_CASE("sgnlf train killed with SIGKILL and resumed equals the uninterrupted 
   CHECK(contents(pipeline::checkpoint_path(b)) == contents(pipeline::checkpoint_path(a)));
   CHECK(logged_steps(b) == logged_steps(a));
   CHECK(logged_steps(a) == std::vector<long>{1, 10, 20, 30, 40, 50, 60});
+  // `sgnlf train` records where it ran (the report's build row).
+  CHECK(load_json_file(a + "/summary.json").at("context").at("build").at("git").is_object());
   CHECK_FALSE(fs::exists(pipeline::checkpoint_path(b) + ".tmp"));
 }
 

@@ -1,7 +1,7 @@
 // The run folder of `sgnlf train/render/eval` (issue item 6):
 //   <run>/run.json           method, preset, seed, dataset path, device, resolved config, hash
 //   <run>/checkpoints/latest.ckpt, <run>/train_log.jsonl, <run>/eval_log.jsonl (trainer.hpp)
-//   <run>/summary.json       training summary (steps, seconds, samples/s, losses)
+//   <run>/summary.json       training summary (steps, seconds, samples/s, losses, context)
 //   <run>/metrics.json       `sgnlf eval`: per-frame and mean metrics, model and naive baseline
 //   <run>/renders/           `sgnlf render` default output
 //   <run>/sensor.json        the sensor estimated from plain scans (datasets/sensor_estimate.hpp),

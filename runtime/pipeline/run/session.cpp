@@ -118,6 +118,7 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
          {"first_loss", loss_json(s.first_loss)},
          {"last_loss", loss_json(s.last_loss)},
          {"device", rt.device().describe()}};
+  if (!req.context.is_null()) j["context"] = req.context;
   if (pose_step) {
     if (d.has_reference_poses) {
       j["pose_metrics"] = pose_metrics_json(current_poses(), gt_poses(d));

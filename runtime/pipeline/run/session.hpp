@@ -21,6 +21,9 @@ struct TrainRequest {
   bool show_progress = true;
   // Passed to TrainOptions::on_progress (done, end step, first step, text).
   std::function<void(long, long, long, const std::string&)> on_progress;
+  // Where the training runs (git, build, machine, device: harness::context_block, which the
+  // command fills in); written into summary.json as "context" when not null.
+  Json context = nullptr;
 };
 
 // Writes run.json (or checks that an existing one has the same config and seed), trains, and
