@@ -124,7 +124,6 @@ class Mlp {
   std::vector<Layer> layers_;
   Layer group_{};  // layer 0's grouped part: n_in_group inputs, linear, into group_pre
   cl::Buffer d_pre_[2], partial_, wt_, d_group_;
-  size_t group_rows_ = 0;
   size_t scratch_points_ = 0, partial_floats_ = 0;
 };
 

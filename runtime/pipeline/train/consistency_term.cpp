@@ -11,8 +11,7 @@ namespace sgnlf::pipeline {
 
 ConsistencyTerm::ConsistencyTerm(cl::Runtime& rt, const Scene& scene,
                                  const ConsistencyConfig& cfg, int max_rays)
-    : scene_(scene),
-      cfg_(cfg),
+    : cfg_(cfg),
       sensor_i_(consistency_render_sensor(cfg, scene.sensor)),
       sensor_j_(consistency_image_sensor(cfg, scene.sensor)),
       scale_(scene.norm.scale),

@@ -63,7 +63,6 @@ class ConsistencyTerm {
   const render::ReprojectionImages& last_reprojection() const { return last_img_; }
 
  private:
-  const Scene& scene_;
   ConsistencyConfig cfg_;
   Sensor sensor_i_, sensor_j_;
   double scale_;                   // normalised depth units per metre
