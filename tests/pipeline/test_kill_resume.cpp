@@ -15,6 +15,7 @@
 #include "core/rng.hpp"
 #include "pipeline/train/checkpoint.hpp"
 #include "pipeline/train/trainer.hpp"
+#include "support/files.hpp"
 #include "support/spawn.hpp"
 #include "support/test_device.hpp"
 #include "tiny_scene.hpp"

@@ -9,8 +9,8 @@
 
 #include "core/config.hpp"
 #include "io/png_writer.hpp"
-#include "io/scan_io.hpp"
 #include "io/trajectory_io.hpp"
+#include "support/files.hpp"
 
 namespace sgnlf::test {
 
@@ -19,11 +19,6 @@ inline const std::string kNastyName = "seq <b>&\"x'";
 inline void write_text(const std::string& path, const std::string& text) {
   std::filesystem::create_directories(std::filesystem::path(path).parent_path());
   std::ofstream(path, std::ios::binary) << text;
-}
-
-inline std::string file_text(const std::string& path) {
-  const auto b = io::read_file_bytes(path);
-  return std::string(b.begin(), b.end());
 }
 
 inline Json metric_block(double s) {

@@ -48,8 +48,8 @@ Browsed open_in_chromium(const std::string& chromium, const std::string& html_fi
   const int rc = std::system(cmd.c_str());
   INFO(cmd);
   REQUIRE(rc == 0);
-  Browsed b{test::file_text(dom), ""};
-  std::stringstream lines(test::file_text(log));
+  Browsed b{test::file_contents(dom), ""};
+  std::stringstream lines(test::file_contents(log));
   for (std::string l; std::getline(lines, l);)
     if (l.find(":CONSOLE") != std::string::npos) b.console += l + "\n";
   return b;
@@ -68,7 +68,7 @@ TEST_CASE("report page in headless Chromium: every picture decodes, no console m
   const std::string dir = test::temp_dir("report_browser");
   test::write_run_fixture(dir);
   const std::string page = report::write_report(dir);
-  const size_t n = test::img_sources(test::file_text(page)).size();
+  const size_t n = test::img_sources(test::file_contents(page)).size();
   REQUIRE(n == 4);
   const Browsed b = open_in_chromium(chromium, page);
   INFO(b.console);

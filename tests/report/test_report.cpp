@@ -36,11 +36,11 @@ TEST_CASE("report of a run: every picture is embedded with the file's exact byte
   // top view, latest pose graph, the two renders in frame order
   REQUIRE(srcs.size() == 4);
   for (const auto& s : srcs) CHECK(s.rfind("data:", 0) == 0);
-  CHECK(decode_data_uri(srcs[0], "image/svg+xml") == test::file_text(dir + "/trajectories/top_view.svg"));
-  CHECK(decode_data_uri(srcs[1], "image/svg+xml") == test::file_text(dir + "/pose_graph/epoch_00010.svg"));
-  CHECK(decode_data_uri(srcs[2], "image/png") == test::file_text(pngs[0]));
-  CHECK(decode_data_uri(srcs[3], "image/png") == test::file_text(pngs[1]));
-  CHECK(test::file_text(pngs[0]).substr(1, 3) == "PNG");
+  CHECK(decode_data_uri(srcs[0], "image/svg+xml") == test::file_contents(dir + "/trajectories/top_view.svg"));
+  CHECK(decode_data_uri(srcs[1], "image/svg+xml") == test::file_contents(dir + "/pose_graph/epoch_00010.svg"));
+  CHECK(decode_data_uri(srcs[2], "image/png") == test::file_contents(pngs[0]));
+  CHECK(decode_data_uri(srcs[3], "image/png") == test::file_contents(pngs[1]));
+  CHECK(test::file_contents(pngs[0]).substr(1, 3) == "PNG");
   CHECK(contains(html, "frame 3 (3.png): depth PSNR"));
   CHECK(test::count_of(html, "class=\"tag top\">rendered<") == 2);
 }
@@ -128,7 +128,7 @@ TEST_CASE("report: the top view is drawn from the TUM files; missing renders are
   CHECK(test::img_sources(two).size() == 3);
   const std::string one = report::build_report(dir, {other + "/renders", 1});
   REQUIRE(test::img_sources(one).size() == 2);
-  CHECK(decode_data_uri(test::img_sources(one)[1], "image/png") == test::file_text(pngs[0]));
+  CHECK(decode_data_uri(test::img_sources(one)[1], "image/png") == test::file_contents(pngs[0]));
   CHECK(contains(one, "1 more pictures not embedded"));
 }
 
@@ -136,7 +136,7 @@ TEST_CASE("report: write_report writes <dir>/report.html or --out", "[report]") 
   const std::string dir = test::temp_dir("report_write");
   test::write_run_fixture(dir);
   CHECK(report::write_report(dir) == dir + "/report.html");
-  CHECK(test::file_text(dir + "/report.html") == report::build_report(dir));
+  CHECK(test::file_contents(dir + "/report.html") == report::build_report(dir));
   const std::string out = test::temp_dir("report_write_out") + "/page.html";
   CHECK(report::write_report(dir, out) == out);
   CHECK(fs::file_size(out) > 1000);

@@ -19,7 +19,4 @@ struct ProcessOutcome {
 ProcessOutcome run_process(const std::vector<std::string>& args, const std::string& log_path,
                            const std::vector<std::string>& env = {}, double kill_after_s = -1.0);
 
-// The whole contents of a file ("" when missing).
-std::string file_contents(const std::string& path);
-
 }  // namespace sgnlf::test

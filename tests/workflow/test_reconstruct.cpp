@@ -22,6 +22,7 @@
 #include "pipeline/train/checkpoint.hpp"
 #include "pipeline/train/trainer.hpp"
 #include "pipeline/train/pose_init.hpp"
+#include "support/files.hpp"
 #include "support/spawn.hpp"
 #include "support/test_device.hpp"
 #include "workflow/reconstruct.hpp"
