@@ -198,7 +198,7 @@ Json reconstruct(cl::Runtime& rt, const ReconstructRequest& req) {
     // From the first logged step on (not the geometric stage before it).
     std::chrono::steady_clock::time_point t_first;
     long step_first = -1;
-    tr.on_progress = [&](long done, long end, long, const std::string& text) {
+    tr.on_progress = [&](long done, long end, const std::string& text) {
       const auto now = std::chrono::steady_clock::now();
       if (step_first < 0) {
         step_first = done;

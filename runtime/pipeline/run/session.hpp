@@ -19,8 +19,8 @@ struct TrainRequest {
   bool resume = true;
   long stop_at = -1;
   bool show_progress = true;
-  // Passed to TrainOptions::on_progress (done, end step, first step, text).
-  std::function<void(long, long, long, const std::string&)> on_progress;
+  // Passed to TrainOptions::on_progress (done, end step, text).
+  std::function<void(long, long, const std::string&)> on_progress;
   // Where the training runs (git, build, machine, device: harness::context_block, which the
   // command fills in); written into summary.json as "context" when not null.
   Json context = nullptr;

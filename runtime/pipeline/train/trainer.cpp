@@ -191,7 +191,7 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
       char extra[96];
       std::snprintf(extra, sizeof extra, "loss %.5f  lr %.2e", total_loss, double(lr));
       if (opt.show_progress) progress.update(done, extra + policy.progress_text());
-      if (opt.on_progress) opt.on_progress(done, end, sum.start_step, extra + policy.progress_text());
+      if (opt.on_progress) opt.on_progress(done, end, extra + policy.progress_text());
     }
     if (ck_due) save(done);
     if (eval_due) {

@@ -26,10 +26,10 @@ struct TrainOptions {
   bool resume = true;         // continue from <run>/checkpoints/latest.ckpt when present
   long stop_at = -1;          // stop (with a checkpoint) after this step; −1 = run to the end
   bool show_progress = true;
-  // When set, called with (done, end step, first step of this process, text) wherever the
+  // When set, called with (done, end step, text) wherever the
   // progress line would be updated, so that a caller can show the steps in its own line
   // (sgnlf reconstruct: one line over the whole job); independent of show_progress.
-  std::function<void(long, long, long, const std::string&)> on_progress;
+  std::function<void(long, long, const std::string&)> on_progress;
   // Called every eval_every steps with the step; returns metrics JSON written to eval_log.jsonl.
   std::function<Json(long)> evaluate;
   // What a step does (hooks per step and per epoch); nullptr = GroundTruthPoseStep.
