@@ -36,6 +36,12 @@ std::string join_list(const std::string& flag, const std::vector<T>& v) {
   return s;
 }
 
+std::string join_names(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : " | ") + n;
+  return s;
+}
+
 int list_tables() {
   for (const auto& name : harness::table_names()) {
     const auto t = harness::table_def(name);
@@ -59,9 +65,8 @@ const Registrar reg("bench", "Run a table of the paper (every row on every seque
   auto o = std::make_shared<harness::BenchOptions>();
   auto list = std::make_shared<bool>(false);
   auto no_roofline = std::make_shared<bool>(false);
-  sub.add_option("--table", o->table,
-                 "kitti360-low | kitti360-standard | nuscenes-low | ablation-nuscenes");
-  sub.add_option("--scale", o->scale, "smoke | quick | paper")->capture_default_str();
+  sub.add_option("--table", o->table, join_names(harness::table_names()));
+  sub.add_option("--scale", o->scale, join_names(harness::scale_names()))->capture_default_str();
   sub.add_option("--data-root", o->data_root, "Real KITTI-360 / nuScenes in their own layout");
   sub.add_option("--real-root", o->real_root,
                  "Folder of the real datasets that a synthetic scale's real sequences read "
