@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# The README's main command (about 36 minutes on 2 CPU cores after the build): installs the
+# The README's main command (about 18 minutes on 2 CPU cores after the build): installs the
 # dependencies, builds, checks the OpenCL device, trains SG-NLF pose-free from the protocol's
 # noisy start on one low-frequency KITTI-360 twin (kitti360-low-a, 36 frames at 2 Hz) at the
-# quick scale, renders its test views, prints its table beside the paper's and checks it against
-# the committed table. OUT=<dir> changes where the results go (default runs/main).
+# quick scale, renders its test views, writes its report page, prints its table beside the
+# paper's and checks it against the committed table. OUT=<dir> changes where the results go (default runs/main).
 # The full reproduction of a table: scripts/reproduce.sh (README, "Reproduce a table").
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,6 +17,7 @@ start=$(date +%s)
   --seed 1 --out "$OUT" --estimate-from "$TABLE/results.json"
 RUN="$OUT/runs/sg-nlf/kitti360-low-a"
 ./build/bin/sgnlf render --run "$RUN" --out "$OUT/renders"
+./build/bin/sgnlf report "$RUN" --renders "$OUT/renders" --out "$OUT/report.html"
 echo
 cat "$OUT/table.md"
 echo
@@ -25,6 +26,7 @@ echo
 ./build/bin/sgnlf compare --subset --no-timings "$OUT/results.json" "$TABLE/results.json"
 echo
 echo "run.sh: $(( ($(date +%s) - start) / 60 )) min after the build. What to look at:"
+echo "  $OUT/report.html                       one page: metrics against the naive baseline, curves, trajectories, renders"
 echo "  $OUT/table.md                          SG-NLF beside the paper and the naive baseline"
 echo "  $RUN/trajectories/top_view.svg  optimised vs ground-truth vs initial trajectory"
 echo "  $RUN/pose_graph/latest.json     the confidence-aware pose graph (epoch_*.svg: its edges)"
