@@ -118,7 +118,7 @@ Json run_cell(const BenchOptions& opt, const BenchHooks& hooks, long index, Json
   log::info("[bench] cell ", cell_name(c), " of ", plan.cells.size());
   const double t0 = now_s();
   std::map<std::string, PreparedSequence> cache;
-  const CellOutcome o = execute_cell(opt, hooks, plan, c, cache);
+  const CellOutcome o = execute_cell(opt, hooks, plan, c, cache, context);
   if (o.status == "failed") log::warn("[bench] cell ", cell_name(c), " failed: ", o.error);
   if (o.status == "missing" || o.status == "unloadable")
     log::warn("[bench] cell ", cell_name(c), ": sequence skipped: ", o.error);

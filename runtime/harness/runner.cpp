@@ -194,7 +194,8 @@ CellOutcome CellOutcome::from_json(const Json& j, const std::string& where) {
 }
 
 CellOutcome execute_cell(const BenchOptions& opt, const BenchHooks& hooks, const TablePlan& plan,
-                         const Cell& cell, std::map<std::string, PreparedSequence>& cache) {
+                         const Cell& cell, std::map<std::string, PreparedSequence>& cache,
+                         const Json& context) {
   const auto it = std::find_if(plan.sequences.begin(), plan.sequences.end(),
                                [&](const SequenceDef& d) { return d.name == cell.sequence; });
   require(it != plan.sequences.end(), "execute_cell: the plan has no sequence " + cell.sequence);
@@ -241,6 +242,7 @@ CellOutcome execute_cell(const BenchOptions& opt, const BenchHooks& hooks, const
   req.seed = cell.seed;
   req.device = opt.device;
   req.overrides = ps.overrides;
+  req.context = context;
   try {
     const double tr = now_s();
     const pipeline::MethodResult res = hooks.run(req);
@@ -438,7 +440,7 @@ Json run_table(const BenchOptions& opt, const BenchHooks& hooks, Json context) {
     prog.phase(ri, plan.table.rows.size(), c.method, si, plan.sequences.size(), seq_label,
                "train + evaluate");
     CellOutcome& o = outcomes[c.index];
-    o = execute_cell(opt, hooks, plan, c, cache);
+    o = execute_cell(opt, hooks, plan, c, cache, context);
     if (o.status == "ok") {
       ++prog.done;
     } else if (o.status == "unloadable") {

@@ -113,10 +113,12 @@ struct CellOutcome {
   static CellOutcome from_json(const Json& j, const std::string& where);  // ConfigError
 };
 
-// Runs one cell: prepares its sequence (unless `cache` has it) and trains + evaluates.
+// Runs one cell: prepares its sequence (unless `cache` has it) and trains + evaluates; the
+// run folder's summary.json records `context` (the bench's context block) as where it ran.
 // Failures are recorded in the outcome, not thrown.
 CellOutcome execute_cell(const BenchOptions& opt, const BenchHooks& hooks, const TablePlan& plan,
-                         const Cell& cell, std::map<std::string, PreparedSequence>& cache);
+                         const Cell& cell, std::map<std::string, PreparedSequence>& cache,
+                         const Json& context);
 
 // The table's results JSON from the cells' outcomes (indexed like plan.cells; a cell may be
 // absent only after its row stopped or its sequence was skipped). Replays the one-process

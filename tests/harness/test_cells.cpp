@@ -119,3 +119,21 @@ TEST_CASE("merge refuses missing, repeated and foreign cells, naming the files",
                     Catch::Contains("cell2.json: outcome.status 'great'"));
   CHECK_THROWS_AS(harness::merge_cells({}, "m", "/x"), ConfigError);
 }
+
+TEST_CASE("every run of a table or a cell is told the bench's context (its summary.json keeps it)",
+          "[harness][cells]") {
+  auto h = test::fake_hooks();
+  std::vector<Json> seen;
+  const auto run = h.run;
+  h.run = [&seen, run](const pipeline::MethodRequest& r) {
+    seen.push_back(r.context);
+    return run(r);
+  };
+  harness::run_table(test::fake_options(), h, test::fake_context());
+  REQUIRE(seen.size() == 4);
+  for (const auto& c : seen) CHECK(c == test::fake_context());
+  seen.clear();
+  harness::run_cell(test::fake_options(), h, 2, test::fake_context());
+  REQUIRE(seen.size() == 1);
+  CHECK(seen[0] == test::fake_context());
+}

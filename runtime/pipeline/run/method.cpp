@@ -42,6 +42,7 @@ MethodResult run_method(const MethodRequest& req) {
   tr.manifest = m;
   tr.run_dir = req.out_dir;
   tr.show_progress = true;
+  tr.context = req.context;
   const Json summary = train_run(rt, tr);
   const auto t0 = std::chrono::steady_clock::now();
   LoadedRun run = load_run(rt, req.out_dir);

@@ -18,6 +18,7 @@ struct MethodRequest {
   uint64_t seed = 1;
   std::string device;       // OpenCL device spec ("" = default)
   Json overrides = Json::object();  // config keys overriding the preset
+  Json context = nullptr;  // where it runs (harness::context_block), into summary.json; or null
 };
 
 struct MethodResult {
