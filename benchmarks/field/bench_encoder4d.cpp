@@ -83,8 +83,10 @@ static void BM_KPlanesBwdWithDx(benchmark::State& s) { kplanes_bwd(s, true); }
 BENCHMARK(BM_KPlanesBwd)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_KPlanesBwdWithDx)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 
-// Forward: per point and level, 3 planes × 2 time slices × 4 corners × F floats.
-static void BM_TimeHashGridFwd(benchmark::State& state) {
+// Forward: per point and level, 3 planes × 2 time slices × 4 corners × F floats; at one time
+// for all points (forward_at) 3 planes × 4 corners of the blended one-slice table, after the
+// blend pass over the two slices (2 reads and a write per entry).
+static void time_hash_fwd(benchmark::State& state, bool at_time) {
   auto& rt = bench::runtime();
   field::TimeHashGrid grid(rt, field::TimeHashGridConfig{});
   const int n = int(state.range(0)), w = grid.n_output(), f = grid.config().features;
@@ -94,14 +96,23 @@ static void BM_TimeHashGridFwd(benchmark::State& state) {
   auto b_x = cl::Buffer::from(rt, bench::ray_points(n / 64, 64, 2));
   auto b_t = cl::Buffer::from(rt, std::vector<float>(size_t(n), 0.4f));
   cl::Buffer b_enc(rt, size_t(n) * w * 4);
-  const double secs = run_timed(state, [&] { grid.forward(b_p, 0, b_x, b_t, n, b_enc); });
-  const double corners = double(grid.config().levels) * 3 * 2 * 4;
-  set_counters(state, secs, n, 0, double(n) * (corners * f * 4 + 16 + w * 4));
+  const double secs = run_timed(state, [&] {
+    if (at_time)
+      grid.forward_at(b_p, 0, b_x, 0.4f, n, b_enc);
+    else
+      grid.forward(b_p, 0, b_x, b_t, n, b_enc);
+  });
+  const double slices = at_time ? 1 : 2, corners = double(grid.config().levels) * 3 * slices * 4;
+  const double blend = at_time ? double(params.size()) / grid.config().time_slices * 3 * 4 : 0;
+  set_counters(state, secs, n, 0, double(n) * (corners * f * 4 + 16 + w * 4) + blend);
   set_gathers(state, secs, double(n) * corners);
 }
+static void BM_TimeHashGridFwd(benchmark::State& s) { time_hash_fwd(s, false); }
+static void BM_TimeHashGridFwdAtTime(benchmark::State& s) { time_hash_fwd(s, true); }
 BENCHMARK(BM_TimeHashGridFwd)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TimeHashGridFwdAtTime)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 
-static void time_hash_bwd(benchmark::State& state, bool with_dx) {
+static void time_hash_bwd(benchmark::State& state, bool with_dx, bool at_time = false) {
   auto& rt = bench::runtime();
   field::TimeHashGrid grid(rt, field::TimeHashGridConfig{});
   const int n = int(state.range(0)), w = grid.n_output(), f = grid.config().features;
@@ -112,14 +123,23 @@ static void time_hash_bwd(benchmark::State& state, bool with_dx) {
   auto b_t = cl::Buffer::from(rt, std::vector<float>(size_t(n), 0.4f));
   auto b_d = cl::Buffer::from(rt, uniform(size_t(n) * w, -1, 1, 3));
   cl::Buffer b_g(rt, params.size() * 4), b_dx(rt, size_t(n) * 12);
-  const double secs = run_timed(
-      state, [&] { grid.backward(b_p, 0, b_x, b_t, n, b_d, b_g, 0, with_dx ? &b_dx : nullptr); });
+  const double secs = run_timed(state, [&] {
+    cl::Buffer* dx = with_dx ? &b_dx : nullptr;
+    if (at_time)
+      grid.backward_at(b_p, 0, b_x, 0.4f, n, b_d, b_g, 0, dx);
+    else
+      grid.backward(b_p, 0, b_x, b_t, n, b_d, b_g, 0, dx);
+  });
   // Per level: 3 planes × 2 slices × 4 corners read, and as many gradient entries read and
-  // written; d_x comes from the same reads (3 floats per level written, then summed).
-  const double levels = grid.config().levels, corners = levels * 3 * (3 * 2 * 4);
+  // written; d_x comes from the same reads (3 floats per level written, then summed). At one
+  // time: one slice, plus the blend (2 reads, 1 write per one-slice entry) and the spread
+  // (1 read, 2 read-modify-writes per one-slice entry).
+  const double levels = grid.config().levels;
+  const double corners = levels * 3 * (3 * (at_time ? 1 : 2) * 4);
+  const double slice_bytes = double(params.size()) / grid.config().time_slices * 4;
   const double bytes =
       double(n) * (corners * f * 4 + 16 + w * 4 + (with_dx ? levels * 24 + 12 : 0)) +
-      double(params.size()) * 4;
+      double(params.size()) * 4 + (at_time ? slice_bytes * (3 + 5) : 0);
   set_counters(state, secs, n, 0, bytes);
   set_gathers(state, secs, double(n) * corners);
 }
@@ -127,3 +147,7 @@ static void BM_TimeHashGridBwd(benchmark::State& s) { time_hash_bwd(s, false); }
 static void BM_TimeHashGridBwdWithDx(benchmark::State& s) { time_hash_bwd(s, true); }
 BENCHMARK(BM_TimeHashGridBwd)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TimeHashGridBwdWithDx)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
+static void BM_TimeHashGridBwdAtTime(benchmark::State& s) { time_hash_bwd(s, false, true); }
+static void BM_TimeHashGridBwdAtTimeWithDx(benchmark::State& s) { time_hash_bwd(s, true, true); }
+BENCHMARK(BM_TimeHashGridBwdAtTime)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TimeHashGridBwdAtTimeWithDx)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);

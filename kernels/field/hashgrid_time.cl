@@ -16,6 +16,11 @@
 // u = clamp(t, 0, 1)·(T − 1), slices s0 = floor(u), s1 = min(s0 + 1, T − 1), weights
 // (1 − (u − s0), u − s0).
 // Encoding columns: enc[i·stride + col + l·F + f].
+// One time for every point (LiDAR4D's batches are one frame each): field_hashgrid_time_blend
+// writes the two slices' blend w0·slice s0 + w1·slice s1 of each plane as a one-slice table,
+// which the SLICES = 1 build of the forward and backward reads (4 corner reads per plane
+// instead of 8, and no t), and field_hashgrid_time_spread adds that one-slice gradient back to
+// the two slices with the same weights.
 #ifndef LEVELS
 #error "LEVELS must be defined"
 #endif
@@ -35,14 +40,32 @@
 inline int th_axis_a(int p) { return p == 2 ? 1 : 0; }
 inline int th_axis_b(int p) { return p == 0 ? 1 : 2; }
 
-// The neighbouring time slices of point i and the weight of the later one.
-inline int th_slices(__global const float* t, int i, int* s1, float* w1) {
-  const float u = clamp(t[i], 0.0f, 1.0f) * (float)(SLICES - 1);
+// The neighbouring time slices of time tv and the weight of the later one.
+inline int th_slices_at(float tv, int* s1, float* w1) {
+  const float u = clamp(tv, 0.0f, 1.0f) * (float)(SLICES - 1);
   const int s0 = min((int)floor(u), SLICES - 1);
   *s1 = min(s0 + 1, SLICES - 1);
   *w1 = u - (float)s0;
   return s0;
 }
+
+// ... of point i (with one slice t is not read: slice 0, weight 0).
+inline int th_slices(__global const float* t, int i, int* s1, float* w1) {
+#if SLICES == 1
+  *s1 = 0;
+  *w1 = 0.0f;
+  return 0;
+#else
+  return th_slices_at(t[i], s1, w1);
+#endif
+}
+
+// Time blend of a corner entry of the two slices (one slice: the entry itself).
+#if SLICES == 1
+#define TH_BLEND(t0, t1, w0, w1, e) LOADF((t0) + (e))
+#else
+#define TH_BLEND(t0, t1, w0, w1, e) ((w0) * LOADF((t0) + (e)) + (w1) * LOADF((t1) + (e)))
+#endif
 
 // Grid cell and fraction of point i on plane p at level scale sc.
 inline float2 th_locate(__global const float* x, int i, int p, float sc, uint2* g) {
@@ -61,10 +84,10 @@ inline featv th_bilerp(__global const float* t0, __global const float* t1, float
   const size_t e10 = (size_t)hg_index(g.x + 1u, g.y, 0u, m) * FEATURES;
   const size_t e01 = (size_t)hg_index(g.x, g.y + 1u, 0u, m) * FEATURES;
   const size_t e11 = (size_t)hg_index(g.x + 1u, g.y + 1u, 0u, m) * FEATURES;
-  const featv v00 = w0 * LOADF(t0 + e00) + w1 * LOADF(t1 + e00);
-  const featv v10 = w0 * LOADF(t0 + e10) + w1 * LOADF(t1 + e10);
-  const featv v01 = w0 * LOADF(t0 + e01) + w1 * LOADF(t1 + e01);
-  const featv v11 = w0 * LOADF(t0 + e11) + w1 * LOADF(t1 + e11);
+  const featv v00 = TH_BLEND(t0, t1, w0, w1, e00);
+  const featv v10 = TH_BLEND(t0, t1, w0, w1, e10);
+  const featv v01 = TH_BLEND(t0, t1, w0, w1, e01);
+  const featv v11 = TH_BLEND(t0, t1, w0, w1, e11);
   const featv lo = fma((featv)(fr.x), v10 - v00, v00), hi = fma((featv)(fr.x), v11 - v01, v01);
   if (da) {
     *da = fma((featv)(fr.y), (v11 - v01) - (v10 - v00), v10 - v00);
@@ -164,8 +187,8 @@ __kernel void field_hashgrid_time_bwd(const int n, __global const float* params,
         w[p][c] = (cx ? fr.x : 1.0f - fr.x) * (cy ? fr.y : 1.0f - fr.y);
         e0[p][c] = o0 + e;
         e1[p][c] = o1 + e;
-        cv[c] = w0 * LOADF(tbl + (size_t)e0[p][c] * FEATURES) +
-                w1 * LOADF(tbl + (size_t)e1[p][c] * FEATURES);
+        cv[c] = TH_BLEND(tbl + (size_t)e0[p][c] * FEATURES, tbl + (size_t)e1[p][c] * FEATURES,
+                         w0, w1, 0);
       }
       v[p] = w[p][0] * cv[0] + w[p][1] * cv[1] + w[p][2] * cv[2] + w[p][3] * cv[3];
       da[p] = (0.5f * sc) * fma((featv)(fr.y), (cv[3] - cv[2]) - (cv[1] - cv[0]), cv[1] - cv[0]);
@@ -176,8 +199,10 @@ __kernel void field_hashgrid_time_bwd(const int n, __global const float* params,
       for (int c = 0; c < 4; ++c) {
         __global float* q0 = gr + (size_t)e0[p][c] * FEATURES;
         STOREF(fma((featv)(w0 * w[p][c]), gq[p], LOADF(q0)), q0);
+#if SLICES > 1
         __global float* q1 = gr + (size_t)e1[p][c] * FEATURES;
         STOREF(fma((featv)(w1 * w[p][c]), gq[p], LOADF(q1)), q1);
+#endif
       }
     if (with_dx)  // xy, xz, yz: x from xy and xz, y from xy and yz, z from xz and yz
       vstore3((float3)(hg_sum(gq[0] * da[0] + gq[1] * da[1]), hg_sum(gq[0] * db[0] + gq[2] * da[2]),
@@ -194,4 +219,56 @@ __kernel void field_hashgrid_time_dx_reduce(const int n, __global const float* p
   float3 acc = vload3(i, part);
   for (int l = 1; l < LEVELS; ++l) acc += vload3((size_t)l * n + i, part);
   vstore3(acc, i, d_x);
+}
+
+// One time tv for every point: out (planes' one-slice tables one after another, pmeta[p].y
+// entries each, plane p from entry bmeta[p]) = w0 · slice s0 + w1 · slice s1 of each plane.
+// One work-item per entry of the three planes (gid < total).
+__kernel void field_hashgrid_time_blend(const int total, const float tv,
+                                        __global const float* params, const uint param_offset,
+                                        __global const uint2* pmeta, __global const uint* bmeta,
+                                        __global float* out) {
+  const int gid = get_global_id(0);
+  if (gid >= total) return;
+  const int p = gid >= (int)bmeta[2] ? 2 : (gid >= (int)bmeta[1] ? 1 : 0);
+  const uint e = (uint)gid - bmeta[p];
+  int s1;
+  float w1;
+  const int s0 = th_slices_at(tv, &s1, &w1);
+  const float w0 = 1.0f - w1;
+  __global const float* tbl = params + param_offset;
+  const uint2 pm = pmeta[p];
+  const featv v = TH_BLEND(tbl + (size_t)(pm.x + (uint)s0 * pm.y + e) * FEATURES,
+                           tbl + (size_t)(pm.x + (uint)s1 * pm.y + e) * FEATURES, w0, w1, 0);
+  STOREF(v, out + (size_t)gid * FEATURES);
+}
+
+// The gradient of the blend: grad slice s0 += w0 · g_blend, slice s1 += w1 · g_blend (the
+// same entry; one work-item per entry of the three planes, so s0 = s1 at t = 1 is no race).
+// Without accumulate the caller has zeroed the module's gradient first.
+__kernel void field_hashgrid_time_spread(const int total, const float tv,
+                                         __global const uint2* pmeta, __global const uint* bmeta,
+                                         __global const float* g_blend, __global float* grad,
+                                         const uint grad_offset) {
+  const int gid = get_global_id(0);
+  if (gid >= total) return;
+  const int p = gid >= (int)bmeta[2] ? 2 : (gid >= (int)bmeta[1] ? 1 : 0);
+  const uint e = (uint)gid - bmeta[p];
+  int s1;
+  float w1;
+  const int s0 = th_slices_at(tv, &s1, &w1);
+  const float w0 = 1.0f - w1;
+  const uint2 pm = pmeta[p];
+  const featv g = LOADF(g_blend + (size_t)gid * FEATURES);
+  __global float* q0 = grad + grad_offset + (size_t)(pm.x + (uint)s0 * pm.y + e) * FEATURES;
+  STOREF(fma((featv)(w0), g, LOADF(q0)), q0);
+  __global float* q1 = grad + grad_offset + (size_t)(pm.x + (uint)s1 * pm.y + e) * FEATURES;
+  STOREF(fma((featv)(w1), g, LOADF(q1)), q1);
+}
+
+// Zero grad[grad_offset, + count) (count floats; one work-item each).
+__kernel void field_hashgrid_time_zero(const uint count, __global float* grad,
+                                       const uint grad_offset) {
+  const uint i = get_global_id(0);
+  if (i < count) grad[grad_offset + i] = 0.0f;
 }

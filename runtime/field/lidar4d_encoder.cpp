@@ -110,7 +110,7 @@ void Lidar4DEncoder::forward(const cl::Buffer& params, size_t offset, const cl::
   cols_set_.set_args(n, W, P, H, hs_, enc);
   cols_set_.launch({cl::round_up(size_t(n), 64)}, {64});
   planes_.forward(params, po, x, t0_, n, enc, PlaneGroups::Dynamic, W, S);
-  thash_.forward(params, to, x, t0_, n, enc, W, S + P);
+  thash_.forward_at(params, to, x, t_, n, enc, W, S + P);
   float w0, w1, w2;
   weights(w0, w1, w2);
   if (!uses_flow()) return;
@@ -120,10 +120,10 @@ void Lidar4DEncoder::forward(const cl::Buffer& params, size_t offset, const cl::
     offset_.launch({cl::round_up(size_t(n), 64)}, {64});
     fill(tn, 0, n, t);
     planes_.forward(params, po, xn, tn, n, nb, PlaneGroups::Dynamic, D, 0);
-    thash_.forward(params, to, xn, tn, n, nb, D, P);
+    thash_.forward_at(params, to, xn, t, n, nb, D, P);
   };
-  if (w1 != 0.0f) neighbour(0, std::min(1.0f, t_ + dt_), x1_, t1_, nb1_);
-  if (w2 != 0.0f) neighbour(3, std::max(0.0f, t_ - dt_), x2_, t2_, nb2_);
+  if (w1 != 0.0f) neighbour(0, next_time(), x1_, t1_, nb1_);
+  if (w2 != 0.0f) neighbour(3, prev_time(), x2_, t2_, nb2_);
   blend_fwd_.set_args(n, W, S, D, w0, w1, w2, enc, nb1_, nb2_);
   blend_fwd_.launch({cl::round_up(size_t(n), 64)}, {64});
 }
@@ -157,7 +157,7 @@ void Lidar4DEncoder::backward(const cl::Buffer& params, size_t offset, const cl:
   planes_.backward(params, po, x, t0_, n, d_own_, grad, gp, tmp, PlaneGroups::Dynamic, false, D,
                    0);
   if (d_x) add(dx_tmp_, *d_x, n * 3);
-  thash_.backward(params, to, x, t0_, n, d_own_, grad, gt, tmp, false, D, P);
+  thash_.backward_at(params, to, x, t_, n, d_own_, grad, gt, tmp, false, D, P);
   if (d_x) add(dx_tmp_, *d_x, n * 3);
   const size_t gf = grad_offset + off_.flow;
   if (!uses_flow()) {
@@ -165,15 +165,16 @@ void Lidar4DEncoder::backward(const cl::Buffer& params, size_t offset, const cl:
     return;
   }
   // Neighbours: parameters accumulate; their position gradient is the flow's (and x's).
-  auto neighbour = [&](cl::Buffer& xn, cl::Buffer& tn, cl::Buffer& d_nb, cl::Buffer& dxn) {
+  auto neighbour = [&](cl::Buffer& xn, cl::Buffer& tn, float t, cl::Buffer& d_nb,
+                       cl::Buffer& dxn) {
     planes_.backward(params, po, xn, tn, n, d_nb, grad, gp, &dxn, PlaneGroups::Dynamic, true, D,
                      0);
-    thash_.backward(params, to, xn, tn, n, d_nb, grad, gt, &dx_tmp_, true, D, P);
+    thash_.backward_at(params, to, xn, t, n, d_nb, grad, gt, &dx_tmp_, true, D, P);
     add(dx_tmp_, dxn, n * 3);
     if (d_x) add(dxn, *d_x, n * 3);
   };
-  if (w1 != 0.0f) neighbour(x1_, t1_, d_nb1_, dx1_);
-  if (w2 != 0.0f) neighbour(x2_, t2_, d_nb2_, dx2_);
+  if (w1 != 0.0f) neighbour(x1_, t1_, next_time(), d_nb1_, dx1_);
+  if (w2 != 0.0f) neighbour(x2_, t2_, prev_time(), d_nb2_, dx2_);
   pack_.set_args(n, int(w1 != 0.0f), int(w2 != 0.0f), dx1_, dx2_, d_flow_);
   pack_.launch({cl::round_up(size_t(n), 64)}, {64});
   flow_.backward(params, offset + off_.flow, x, t0_, n, flow_out_, d_flow_, grad, gf, tmp);

@@ -18,6 +18,7 @@
 // (planes and hash) pass gradients to their parameters and through x + flow to the flow field.
 // Parameters in the model's slice: planes, static hash, time hash, flow field, in this order.
 #pragma once
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -90,6 +91,9 @@ class Lidar4DEncoder : public Encoder {
   size_t capacity_ = 0;
   int last_n_ = -1;
   bool uses_flow() const { return cfg_.blend && (has_prev_ || has_next_); }
+  // The neighbouring frames' times the flowed points are encoded at.
+  float next_time() const { return std::min(1.0f, t_ + dt_); }
+  float prev_time() const { return std::max(0.0f, t_ - dt_); }
   void weights(float& w0, float& w1, float& w2) const;
   void ensure(int n);
   void fill(cl::Buffer& b, size_t offset, int n, float v);

@@ -65,6 +65,26 @@ TimeHashGrid::TimeHashGrid(cl::Runtime& rt, const TimeHashGridConfig& cfg)
   fwd_ = rt_.kernel(file, "field_hashgrid_time_fwd", opt);
   bwd_ = rt_.kernel(file, "field_hashgrid_time_bwd", opt);
   dx_reduce_ = rt_.kernel(file, "field_hashgrid_time_dx_reduce", opt);
+  blend_ = rt_.kernel(file, "field_hashgrid_time_blend", opt);
+  spread_ = rt_.kernel(file, "field_hashgrid_time_spread", opt);
+  zero_ = rt_.kernel(file, "field_hashgrid_time_zero", opt);
+  const std::string opt1 = "-DLEVELS=" + std::to_string(cfg_.levels) +
+                           " -DFEATURES=" + std::to_string(cfg_.features) +
+                           " -DSLICES=1 -DCHUNK=" + std::to_string(chunk_);
+  fwd1_ = rt_.kernel(file, "field_hashgrid_time_fwd", opt1);
+  bwd1_ = rt_.kernel(file, "field_hashgrid_time_bwd", opt1);
+  std::vector<uint32_t> bmeta, pmeta1;
+  uint32_t entries = 0;
+  for (const auto& p : planes_) {
+    bmeta.push_back(entries);
+    pmeta1.insert(pmeta1.end(), {entries, p.slice_entries});
+    entries += p.slice_entries;
+  }
+  blend_entries_ = int(entries);
+  bmeta_ = cl::Buffer::from(rt_, bmeta);
+  pmeta1_ = cl::Buffer::from(rt_, pmeta1);
+  blended_ = cl::Buffer(rt_, size_t(entries) * size_t(cfg_.features) * sizeof(float));
+  g_blended_ = cl::Buffer(rt_, size_t(entries) * size_t(cfg_.features) * sizeof(float));
 }
 
 void TimeHashGrid::init_params(std::vector<float>& host_params, size_t offset,
@@ -85,7 +105,7 @@ static void check_bytes(const cl::Buffer& b, size_t floats, const char* what) {
 }
 
 void TimeHashGrid::check(const cl::Buffer& params, size_t offset, const cl::Buffer& x,
-                         const cl::Buffer& t, int n, const cl::Buffer& enc, int stride, int col,
+                         const cl::Buffer* t, int n, const cl::Buffer& enc, int stride, int col,
                          const char* what) const {
   if (n < 0) throw Error("TimeHashGrid: negative point count " + std::to_string(n));
   if (col < 0 || col + n_output() > stride)
@@ -93,14 +113,14 @@ void TimeHashGrid::check(const cl::Buffer& params, size_t offset, const cl::Buff
                 std::to_string(n_output()) + ") do not fit a row of " + std::to_string(stride));
   check_bytes(params, offset + n_params_, "params");
   check_bytes(x, size_t(n) * 3, "x");
-  check_bytes(t, size_t(n), "t");
+  if (t) check_bytes(*t, size_t(n), "t");
   if (n > 0) check_bytes(enc, size_t(n - 1) * size_t(stride) + size_t(col + n_output()), what);
 }
 
 void TimeHashGrid::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& x,
                            const cl::Buffer& t, int n, cl::Buffer& enc, int stride, int col) {
   if (stride == 0) stride = n_output();
-  check(params, offset, x, t, n, enc, stride, col, "enc");
+  check(params, offset, x, &t, n, enc, stride, col, "enc");
   if (n == 0) return;
   fwd_.set_args(n, params, uint32_t(offset), x, t, scale_, meta_, pmeta_, enc, stride, col);
   launch_points(fwd_, n);
@@ -111,21 +131,67 @@ void TimeHashGrid::backward(const cl::Buffer& params, size_t offset, const cl::B
                             cl::Buffer& grad, size_t grad_offset, cl::Buffer* d_x,
                             bool accumulate, int stride, int col) {
   if (stride == 0) stride = n_output();
-  check(params, offset, x, t, n, d_enc, stride, col, "d_enc");
+  check(params, offset, x, &t, n, d_enc, stride, col, "d_enc");
   check_bytes(grad, grad_offset + n_params_, "grad");
   const bool dx = d_x && n > 0;
-  if (dx) {
-    check_bytes(*d_x, size_t(n) * 3, "d_x");
-    const size_t part = size_t(n) * size_t(cfg_.levels) * 3;
-    if (dx_part_floats_ < part) {
-      dx_part_ = cl::Buffer(rt_, part * sizeof(float));
-      dx_part_floats_ = part;
-    }
-  }
+  if (dx) ensure_dx_part(n);
+  if (d_x) check_bytes(*d_x, size_t(n) * 3, "d_x");
   bwd_.set_args(n, params, uint32_t(offset), x, t, scale_, meta_, pmeta_, d_enc, stride, col,
                 grad, uint32_t(grad_offset), accumulate ? 1 : 0, dx ? 1 : 0,
                 dx ? dx_part_ : scale_);  // without d_x the part argument is never written
   bwd_.launch({size_t(cfg_.levels)}, {1});
+  if (!dx) return;
+  dx_reduce_.set_args(n, dx_part_, *d_x);
+  dx_reduce_.launch({cl::round_up(size_t(n), 64)}, {64});
+}
+
+void TimeHashGrid::ensure_dx_part(int n) {
+  const size_t part = size_t(n) * size_t(cfg_.levels) * 3;
+  if (dx_part_floats_ < part) {
+    dx_part_ = cl::Buffer(rt_, part * sizeof(float));
+    dx_part_floats_ = part;
+  }
+}
+
+void TimeHashGrid::blend(const cl::Buffer& params, size_t offset, float t) {
+  if (!std::isfinite(t))
+    throw Error("TimeHashGrid: time " + std::to_string(t) + " is not a finite number");
+  blend_.set_args(blend_entries_, t, params, uint32_t(offset), pmeta_, bmeta_, blended_);
+  blend_.launch({cl::round_up(size_t(blend_entries_), 64)}, {64});
+}
+
+void TimeHashGrid::forward_at(const cl::Buffer& params, size_t offset, const cl::Buffer& x,
+                              float t, int n, cl::Buffer& enc, int stride, int col) {
+  if (stride == 0) stride = n_output();
+  check(params, offset, x, nullptr, n, enc, stride, col, "enc");
+  if (n == 0) return;
+  blend(params, offset, t);
+  // The one-slice build never reads its t argument: x stands in for it.
+  fwd1_.set_args(n, blended_, 0u, x, x, scale_, meta_, pmeta1_, enc, stride, col);
+  launch_points(fwd1_, n);
+}
+
+void TimeHashGrid::backward_at(const cl::Buffer& params, size_t offset, const cl::Buffer& x,
+                               float t, int n, const cl::Buffer& d_enc, cl::Buffer& grad,
+                               size_t grad_offset, cl::Buffer* d_x, bool accumulate, int stride,
+                               int col) {
+  if (stride == 0) stride = n_output();
+  check(params, offset, x, nullptr, n, d_enc, stride, col, "d_enc");
+  check_bytes(grad, grad_offset + n_params_, "grad");
+  if (d_x) check_bytes(*d_x, size_t(n) * 3, "d_x");
+  if (!accumulate) {
+    zero_.set_args(uint32_t(n_params_), grad, uint32_t(grad_offset));
+    zero_.launch({cl::round_up(n_params_, 64)}, {64});
+  }
+  if (n == 0) return;
+  const bool dx = d_x != nullptr;
+  if (dx) ensure_dx_part(n);
+  blend(params, offset, t);  // the table the forward read
+  bwd1_.set_args(n, blended_, 0u, x, x, scale_, meta_, pmeta1_, d_enc, stride, col, g_blended_,
+                 0u, 0, dx ? 1 : 0, dx ? dx_part_ : scale_);
+  bwd1_.launch({size_t(cfg_.levels)}, {1});
+  spread_.set_args(blend_entries_, t, pmeta_, bmeta_, g_blended_, grad, uint32_t(grad_offset));
+  spread_.launch({cl::round_up(size_t(blend_entries_), 64)}, {64});
   if (!dx) return;
   dx_reduce_.set_args(n, dx_part_, *d_x);
   dx_reduce_.launch({cl::round_up(size_t(n), 64)}, {64});

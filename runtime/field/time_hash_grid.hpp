@@ -58,6 +58,17 @@ class TimeHashGrid {
                 size_t grad_offset, cl::Buffer* d_x = nullptr, bool accumulate = false,
                 int stride = 0, int col = 0);
 
+  // The same at one time t for every point (LiDAR4D's ray batches are one frame each; t is
+  // clamped to [0, 1], a non-finite t is refused): the two neighbouring slices are blended once
+  // into a one-slice table that the points read (4 corner reads per plane instead of 8), and
+  // the backward spreads that table's gradient back onto the two slices.
+  void forward_at(const cl::Buffer& params, size_t offset, const cl::Buffer& x, float t, int n,
+                  cl::Buffer& enc, int stride = 0, int col = 0);
+  void backward_at(const cl::Buffer& params, size_t offset, const cl::Buffer& x, float t, int n,
+                   const cl::Buffer& d_enc, cl::Buffer& grad, size_t grad_offset,
+                   cl::Buffer* d_x = nullptr, bool accumulate = false, int stride = 0,
+                   int col = 0);
+
  private:
   cl::Runtime& rt_;
   TimeHashGridConfig cfg_;
@@ -66,10 +77,18 @@ class TimeHashGrid {
   int chunk_ = 1;
   cl::Buffer scale_, meta_, pmeta_;
   cl::Kernel fwd_, bwd_, dx_reduce_;
+  // One time for all points: the blend and spread kernels, the one-slice build of the forward
+  // and backward (-DSLICES=1), the planes' entries in the one-slice table (bmeta_: first entry
+  // of each plane; pmeta1_: as pmeta_ for that table), the table and its gradient.
+  cl::Kernel blend_, spread_, zero_, fwd1_, bwd1_;
+  cl::Buffer bmeta_, pmeta1_, blended_, g_blended_;
+  int blend_entries_ = 0;
   cl::Buffer dx_part_;
   size_t dx_part_floats_ = 0;
-  void check(const cl::Buffer& params, size_t offset, const cl::Buffer& x, const cl::Buffer& t,
+  void check(const cl::Buffer& params, size_t offset, const cl::Buffer& x, const cl::Buffer* t,
              int n, const cl::Buffer& enc, int stride, int col, const char* what) const;
+  void ensure_dx_part(int n);
+  void blend(const cl::Buffer& params, size_t offset, float t);
   void launch_points(cl::Kernel& k, int n);
 };
 

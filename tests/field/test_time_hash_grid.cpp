@@ -184,6 +184,107 @@ TEST_CASE("time hash grid gradients agree with finite differences of the device 
   test::check_4d_gradients(rt, grid, params, x, t, r, w, h, 5);
 }
 
+namespace {
+// The grid at one time for every point (forward_at / backward_at) behind the launchers'
+// (params, offset, x, t, n, ...) signature that check_4d_gradients calls; t is not read.
+struct AtTime {
+  field::TimeHashGrid& grid;
+  float t;
+  void forward(const cl::Buffer& p, size_t off, const cl::Buffer& x, const cl::Buffer&, int n,
+               cl::Buffer& enc) {
+    grid.forward_at(p, off, x, t, n, enc);
+  }
+  void backward(const cl::Buffer& p, size_t off, const cl::Buffer& x, const cl::Buffer&, int n,
+                const cl::Buffer& d, cl::Buffer& g, size_t goff, cl::Buffer* dx) {
+    grid.backward_at(p, off, x, t, n, d, g, goff, dx);
+  }
+};
+}  // namespace
+
+TEST_CASE("time hash grid at one time for all points matches the host reference",
+          "[field][timehash]") {
+  auto& rt = test::runtime();
+  for (int variant = 0; variant < 3; ++variant) {
+    auto cfg = small_config();
+    cfg.chunk = variant == 1 ? 1 : 0;
+    if (variant == 2) cfg.time_slices = 1;
+    field::TimeHashGrid grid(rt, cfg);
+    const int n = 1500, w = grid.n_output(), stride = w + 3, col = 2;
+    const size_t off = 16;
+    const auto table = uniform(grid.n_params(), -1.0f, 1.0f, 51);
+    std::vector<float> params(off, 0.0f);
+    params.insert(params.end(), table.begin(), table.end());
+    const auto x = uniform(size_t(n) * 3, -1.1f, 1.1f, 52);
+    const auto d_enc = uniform(size_t(n) * w, -1.0f, 1.0f, 53);
+    std::vector<float> d_row(size_t(n) * stride, 9.0f);
+    for (int i = 0; i < n; ++i)
+      for (int c = 0; c < w; ++c) d_row[size_t(i) * stride + col + c] = d_enc[size_t(i) * w + c];
+    auto b_params = cl::Buffer::from(rt, params), b_x = cl::Buffer::from(rt, x);
+    auto b_d = cl::Buffer::from(rt, d_row);
+    // On a slice, between slices, the last slice, and clamped from outside [0, 1].
+    for (const float time : {0.0f, 1.0f / 3.0f, 0.55f, 1.0f, -0.2f, 1.3f}) {
+      INFO("variant " << variant << ", t = " << time);
+      const std::vector<float> t(size_t(n), time);
+      auto b_enc = cl::Buffer::from(rt, std::vector<float>(size_t(n) * stride, 5.0f));
+      auto b_grad = cl::Buffer::from(rt, std::vector<float>(params.size(), 3.0f));
+      cl::Buffer b_dx(rt, size_t(n) * 12);
+      grid.forward_at(b_params, off, b_x, time, n, b_enc, stride, col);
+      grid.backward_at(b_params, off, b_x, time, n, b_d, b_grad, off, &b_dx, false, stride, col);
+      const auto row = b_enc.read_vec<float>(size_t(n) * stride);
+      std::vector<float> enc;
+      for (int i = 0; i < n; ++i) {
+        REQUIRE(row[size_t(i) * stride + col - 1] == 5.0f);
+        REQUIRE(row[size_t(i) * stride + col + w] == 5.0f);
+        for (int c = 0; c < w; ++c) enc.push_back(row[size_t(i) * stride + col + c]);
+      }
+      CHECK(test::max_sym_rel_err(enc, test::ref::time_hash_fwd(cfg, table, x, t), 1e-2) < 1e-5);
+      const auto grad = b_grad.read_vec<float>(params.size());
+      CHECK(grad[off - 1] == 3.0f);  // outside the module's slice: untouched
+      const std::vector<float> g_dev(grad.begin() + long(off), grad.end());
+      const auto g_ref = test::ref::time_hash_bwd(cfg, table, x, t, d_enc);
+      CHECK(test::max_sym_rel_err(g_dev, g_ref, 1.0) < 2e-5);
+      const auto dx = b_dx.read_vec<float>(size_t(n) * 3);
+      CHECK(test::max_sym_rel_err(dx, test::ref::time_hash_bwd_dx(cfg, table, x, t, d_enc), 1.0) <
+            1e-5);
+      grid.backward_at(b_params, off, b_x, time, n, b_d, b_grad, off, nullptr, true, stride, col);
+      const auto grad2 = b_grad.read_vec<float>(params.size());
+      std::vector<float> g2(grad2.begin() + long(off), grad2.end()), g2_ref(g_ref.size());
+      for (size_t k = 0; k < g_ref.size(); ++k) g2_ref[k] = 2.0f * g_ref[k];
+      CHECK(test::max_sym_rel_err(g2, g2_ref, 1.0) < 2e-5);
+    }
+    cl::Buffer b_enc(rt, size_t(n) * stride * 4);
+    CHECK_THROWS_WITH(grid.forward_at(b_params, off, b_x, std::nanf(""), n, b_enc, stride, col),
+                      Catch::Matchers::Contains("not a finite number"));
+  }
+}
+
+TEST_CASE("time hash grid at one time: gradients agree with finite differences",
+          "[field][timehash][fd]") {
+  auto& rt = test::runtime();
+  field::TimeHashGrid grid(rt, small_config());
+  const auto& levels = grid.planes()[0].levels;
+  const int n = 48, w = grid.n_output();
+  const auto params = uniform(grid.n_params(), 0.2f, 1.2f, 61);
+  const auto r = uniform(size_t(n) * w, -1.0f, 1.0f, 63);
+  const float h = 1e-3f;
+  std::vector<float> x;
+  Rng rng(62);
+  while (x.size() < size_t(n) * 3) {
+    float p[3];
+    bool ok = true;
+    for (float& v : p) {
+      v = rng.uniform(-0.95f, 0.95f);
+      for (const auto& lv : levels) {
+        const double pos = (v * 0.5 + 0.5) * lv.scale + 0.5, fr = pos - std::floor(pos);
+        ok = ok && fr > 4 * h * lv.scale && fr < 1 - 4 * h * lv.scale;
+      }
+    }
+    if (ok) x.insert(x.end(), p, p + 3);
+  }
+  AtTime at{grid, 0.6f};  // between slices 1 and 2 of 4
+  test::check_4d_gradients(rt, at, params, x, std::vector<float>(size_t(n), 0.6f), r, w, h, 3);
+}
+
 TEST_CASE("LiDAR4D's static hash grid is the HashGrid with its sizes", "[field][timehash]") {
   const auto cfg = field::lidar4d_static_hash_config();
   const auto levels = field::hash_grid_levels(cfg);
