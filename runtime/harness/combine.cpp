@@ -38,6 +38,7 @@ Json describe(const std::string& path, const Json& r) {
               {"git", Json{{"sha", at_path(r, {"context", "git", "sha"})},
                            {"dirty", at_path(r, {"context", "git", "dirty"})}}},
               {"build_git_sha", at_path(r, {"context", "build", "git", "sha"})},
+              {"build_git_dirty", at_path(r, {"context", "build", "git", "dirty"})},
               {"opencl", Json{{"device", at_path(r, {"context", "opencl", "device"})},
                               {"driver_version", at_path(r, {"context", "opencl", "driver_version"})}}}};
 }

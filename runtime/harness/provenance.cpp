@@ -6,6 +6,27 @@
 #include "harness/markdown.hpp"
 
 namespace sgnlf::harness {
+namespace {
+
+std::string short_sha(const Json& sha) {
+  return sha.is_string() ? sha.get<std::string>().substr(0, 7) : std::string("?");
+}
+
+// "commit X" with "(dirty)" when the checkout had uncommitted files; when the source records
+// the binary's own build stamp (build_git_sha, build_git_dirty) and it says more, that too: a
+// binary copied aside from a clean commit is still clean while its checkout moves on.
+std::string commit_label(const Json& f) {
+  const Json git = f.value("git", Json::object());
+  const Json sha = git.is_object() ? git.value("sha", Json()) : Json();
+  const bool dirty = git.is_object() && git.value("dirty", Json()) == Json(true);
+  std::string s = "commit " + short_sha(sha) + (dirty ? " (dirty)" : "");
+  const Json bsha = f.value("build_git_sha", Json()), bdirty = f.value("build_git_dirty", Json());
+  if (bsha.is_string() && bdirty.is_boolean() && (dirty || bsha != sha))
+    s += ", binary of " + std::string(bdirty.get<bool>() ? "dirty " : "clean ") + short_sha(bsha);
+  return s;
+}
+
+}  // namespace
 
 std::string render_provenance(const Json& r) {
   if (!r.contains("combined_from") || !r["combined_from"].is_object()) return "";
@@ -17,10 +38,7 @@ std::string render_provenance(const Json& r) {
     << ". Sources:\n\n";
   for (size_t i = 0; i < files.size(); ++i) {
     const Json& f = files[i];
-    const Json sha = f.contains("git") ? f["git"].value("sha", Json()) : Json();
-    o << "- [" << i << "] `" << f.value("file", "") << "`: commit "
-      << (sha.is_string() ? sha.get<std::string>().substr(0, 7) : std::string("?"))
-      << (f.contains("git") && f["git"].value("dirty", Json()) == Json(true) ? " (dirty)" : "")
+    o << "- [" << i << "] `" << f.value("file", "") << "`: " << commit_label(f)
       << ", " << f.value("created_utc", "") << ", harness config " << f.value("config_hash", "")
       << "; `" << f.value("command", "") << "`\n";
   }

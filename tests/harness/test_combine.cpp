@@ -208,3 +208,22 @@ TEST_CASE("committed tables are checked against the table definition and their m
   Json refreshed = combine({{"t", c}}, false, h);
   CHECK(check(refreshed).empty());
 }
+
+TEST_CASE("provenance names the binary's build when it differs from the checkout's state",
+          "[harness][combine]") {
+  Json a = partial({"lidar-nerf"});
+  a["context"]["git"] = Json{{"sha", "aaaaaaa1111"}, {"dirty", true}};
+  a["context"]["build"]["git"] = Json{{"sha", "aaaaaaa1111"}, {"dirty", false}};
+  Json b = partial({"sg-nlf"});
+  b["context"]["git"] = Json{{"sha", "bbbbbbb2222"}, {"dirty", false}};
+  b["context"]["build"]["git"] = Json{{"sha", "bbbbbbb2222"}, {"dirty", false}};
+  const Json c = combine({{"a/results.json", a}, {"b/results.json", b}});
+  CHECK(c["combined_from"]["files"][0]["build_git_dirty"] == false);
+  const std::string md = harness::render_markdown(c);
+  CHECK_THAT(md, Catch::Contains("`a/results.json`: commit aaaaaaa (dirty), binary of clean aaaaaaa,"));
+  CHECK_THAT(md, Catch::Contains("`b/results.json`: commit bbbbbbb, "));  // nothing more to say
+  // A binary built from another commit than the checkout's is named too.
+  b["context"]["build"]["git"] = Json{{"sha", "ccccccc3333"}, {"dirty", true}};
+  const std::string md2 = harness::render_markdown(combine({{"b/results.json", b}}));
+  CHECK_THAT(md2, Catch::Contains("commit bbbbbbb, binary of dirty ccccccc,"));
+}
