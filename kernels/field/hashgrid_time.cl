@@ -221,6 +221,21 @@ __kernel void field_hashgrid_time_dx_reduce(const int n, __global const float* p
   vstore3(acc, i, d_x);
 }
 
+// Entry gid of the one-slice table (plane p from entry bmeta[p]): the float offsets of the same
+// entry in slices s0 and s1 of the module slice, and their weights at time tv.
+inline void th_entry_slices(int gid, float tv, __global const uint2* pmeta,
+                            __global const uint* bmeta, size_t* o0, size_t* o1, float* w0,
+                            float* w1) {
+  const int p = gid >= (int)bmeta[2] ? 2 : (gid >= (int)bmeta[1] ? 1 : 0);
+  const uint e = (uint)gid - bmeta[p];
+  int s1;
+  const int s0 = th_slices_at(tv, &s1, w1);
+  *w0 = 1.0f - *w1;
+  const uint2 pm = pmeta[p];
+  *o0 = (size_t)(pm.x + (uint)s0 * pm.y + e) * FEATURES;
+  *o1 = (size_t)(pm.x + (uint)s1 * pm.y + e) * FEATURES;
+}
+
 // One time tv for every point: out (planes' one-slice tables one after another, pmeta[p].y
 // entries each, plane p from entry bmeta[p]) = w0 · slice s0 + w1 · slice s1 of each plane.
 // One work-item per entry of the three planes (gid < total).
@@ -230,17 +245,11 @@ __kernel void field_hashgrid_time_blend(const int total, const float tv,
                                         __global float* out) {
   const int gid = get_global_id(0);
   if (gid >= total) return;
-  const int p = gid >= (int)bmeta[2] ? 2 : (gid >= (int)bmeta[1] ? 1 : 0);
-  const uint e = (uint)gid - bmeta[p];
-  int s1;
-  float w1;
-  const int s0 = th_slices_at(tv, &s1, &w1);
-  const float w0 = 1.0f - w1;
+  size_t o0, o1;
+  float w0, w1;
+  th_entry_slices(gid, tv, pmeta, bmeta, &o0, &o1, &w0, &w1);
   __global const float* tbl = params + param_offset;
-  const uint2 pm = pmeta[p];
-  const featv v = TH_BLEND(tbl + (size_t)(pm.x + (uint)s0 * pm.y + e) * FEATURES,
-                           tbl + (size_t)(pm.x + (uint)s1 * pm.y + e) * FEATURES, w0, w1, 0);
-  STOREF(v, out + (size_t)gid * FEATURES);
+  STOREF(TH_BLEND(tbl + o0, tbl + o1, w0, w1, 0), out + (size_t)gid * FEATURES);
 }
 
 // The gradient of the blend: grad slice s0 += w0 · g_blend, slice s1 += w1 · g_blend (the
@@ -252,17 +261,13 @@ __kernel void field_hashgrid_time_spread(const int total, const float tv,
                                          const uint grad_offset) {
   const int gid = get_global_id(0);
   if (gid >= total) return;
-  const int p = gid >= (int)bmeta[2] ? 2 : (gid >= (int)bmeta[1] ? 1 : 0);
-  const uint e = (uint)gid - bmeta[p];
-  int s1;
-  float w1;
-  const int s0 = th_slices_at(tv, &s1, &w1);
-  const float w0 = 1.0f - w1;
-  const uint2 pm = pmeta[p];
+  size_t o0, o1;
+  float w0, w1;
+  th_entry_slices(gid, tv, pmeta, bmeta, &o0, &o1, &w0, &w1);
   const featv g = LOADF(g_blend + (size_t)gid * FEATURES);
-  __global float* q0 = grad + grad_offset + (size_t)(pm.x + (uint)s0 * pm.y + e) * FEATURES;
+  __global float* q0 = grad + grad_offset + o0;
   STOREF(fma((featv)(w0), g, LOADF(q0)), q0);
-  __global float* q1 = grad + grad_offset + (size_t)(pm.x + (uint)s1 * pm.y + e) * FEATURES;
+  __global float* q1 = grad + grad_offset + o1;
   STOREF(fma((featv)(w1), g, LOADF(q1)), q1);
 }
 
