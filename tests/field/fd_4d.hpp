@@ -4,12 +4,36 @@
 #pragma once
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <vector>
 
 #include "cl/runtime.hpp"
+#include "core/rng.hpp"
+#include "field/hash_grid.hpp"
 #include "support/test_device.hpp"
 
 namespace sgnlf::test {
+
+// n points in [−0.95, 0.95]³ whose every coordinate stays more than 4h (in grid cells) from
+// the cell faces of every level, so a grid encoding is smooth around them.
+inline std::vector<float> fd_points(const std::vector<field::HashGridLevel>& levels, int n,
+                                    float h, uint64_t seed) {
+  std::vector<float> x;
+  Rng rng(seed);
+  while (x.size() < size_t(n) * 3) {
+    float p[3];
+    bool ok = true;
+    for (float& v : p) {
+      v = rng.uniform(-0.95f, 0.95f);
+      for (const auto& lv : levels) {
+        const double pos = (v * 0.5 + 0.5) * lv.scale + 0.5, fr = pos - std::floor(pos);
+        ok = ok && fr > 4 * h * lv.scale && fr < 1 - 4 * h * lv.scale;
+      }
+    }
+    if (ok) x.insert(x.end(), p, p + 3);
+  }
+  return x;
+}
 
 inline double dot(const std::vector<float>& a, const std::vector<float>& b) {
   double s = 0;

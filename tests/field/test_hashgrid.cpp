@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/rng.hpp"
+#include "fd_4d.hpp"
 #include "field/hash_grid.hpp"
 #include "reference.hpp"
 #include "support/test_device.hpp"
@@ -117,21 +118,7 @@ TEST_CASE("hash grid gradients agree with finite differences of the device forwa
   const auto params = uniform(grid.n_params(), -1.0f, 1.0f, 21);
   const auto r = uniform(size_t(n) * lf, -1.0f, 1.0f, 23);  // L = Σ r · enc
   const float h = 1e-3f;
-  // Points at least 4h·scale away from every cell face at every level, so L is smooth in x.
-  std::vector<float> x;
-  Rng rng(22);
-  while (x.size() < size_t(n) * 3) {
-    float p[3];
-    bool ok = true;
-    for (float& v : p) {
-      v = rng.uniform(-0.95f, 0.95f);
-      for (const auto& lv : levels) {
-        const double pos = (v * 0.5 + 0.5) * lv.scale + 0.5, fr = pos - std::floor(pos);
-        ok = ok && fr > 4 * h * lv.scale && fr < 1 - 4 * h * lv.scale;
-      }
-    }
-    if (ok) x.insert(x.end(), p, p + 3);
-  }
+  const auto x = test::fd_points(levels, n, h, 22);  // L is smooth around them
   grid.set_level_weights({1.0f, 0.5f, 1.0f, 0.8f});
   auto b_params = cl::Buffer::from(rt, params), b_x = cl::Buffer::from(rt, x);
   auto b_r = cl::Buffer::from(rt, r);

@@ -36,26 +36,6 @@ std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
   for (auto& x : v) x = r.uniform(lo, hi);
   return v;
 }
-// n points in [−0.95, 0.95]³ whose every coordinate stays more than 4h (in grid cells) from
-// the cell boundaries of every level: the encoding is smooth within a cell.
-std::vector<float> fd_points(const std::vector<field::HashGridLevel>& levels, int n, float h,
-                             uint64_t seed) {
-  std::vector<float> x;
-  Rng rng(seed);
-  while (x.size() < size_t(n) * 3) {
-    float p[3];
-    bool ok = true;
-    for (float& v : p) {
-      v = rng.uniform(-0.95f, 0.95f);
-      for (const auto& lv : levels) {
-        const double pos = (v * 0.5 + 0.5) * lv.scale + 0.5, fr = pos - std::floor(pos);
-        ok = ok && fr > 4 * h * lv.scale && fr < 1 - 4 * h * lv.scale;
-      }
-    }
-    if (ok) x.insert(x.end(), p, p + 3);
-  }
-  return x;
-}
 }  // namespace
 
 TEST_CASE("time hash grid tables and config refusals", "[field][timehash]") {
@@ -187,7 +167,7 @@ TEST_CASE("time hash grid gradients agree with finite differences of the device 
   const auto r = uniform(size_t(n) * w, -1.0f, 1.0f, 23);
   const auto t = uniform(size_t(n), 0.0f, 1.0f, 24);
   const float h = 1e-3f;
-  const auto x = fd_points(levels, n, h, 22);
+  const auto x = test::fd_points(levels, n, h, 22);
   test::check_4d_gradients(rt, grid, params, x, t, r, w, h, 5);
 }
 
@@ -274,7 +254,7 @@ TEST_CASE("time hash grid at one time: gradients agree with finite differences",
   const auto params = uniform(grid.n_params(), 0.2f, 1.2f, 61);
   const auto r = uniform(size_t(n) * w, -1.0f, 1.0f, 63);
   const float h = 1e-3f;
-  const auto x = fd_points(levels, n, h, 62);
+  const auto x = test::fd_points(levels, n, h, 62);
   AtTime at{grid, 0.6f};  // between slices 1 and 2 of 4
   test::check_4d_gradients(rt, at, params, x, std::vector<float>(size_t(n), 0.6f), r, w, h, 3);
 }
