@@ -264,3 +264,11 @@ __kernel void field_mlp_group_sum(const int n_groups, const int group,
     acc += vload16(0, d_pre + (size_t)k * OUT_PAD + o0);
   vstore16(acc, 0, d_group + (size_t)g * OUT_PAD + o0);
 }
+
+// Towers (runtime/field/mlp.hpp): zeroes the gradient of the structurally zero off-tower
+// weights, grad[g_off + k] = 0 where keep[k] == 0, over the slice from layer 1 on.
+__kernel void field_mlp_tower_mask(const int count, __global const uchar* keep,
+                                   __global float* grad, const uint g_off) {
+  const int k = get_global_id(0);
+  if (k < count && !keep[k]) grad[g_off + k] = 0.0f;
+}

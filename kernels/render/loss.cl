@@ -11,18 +11,19 @@
 inline float render_sign(float v) { return v > 0.0f ? 1.0f : (v < 0.0f ? -1.0f : 0.0f); }
 
 // Per ray r with mask m = label (GT return):
-//   depth  a_d |m (D - R)|,  return  a_r (P - m)^2,  intensity  a_i (m (I - I*))^2.
+//   depth  a_d |m (D - R)|,  return  a_r (P - clamp(m, s, 1 - s))^2,  intensity  a_i (m (I - I*))^2
+// with the ray-drop label smoothing s (LiDAR4D; 0: the label itself).
 // terms (n x 3) gets the three weighted terms; grad_out = inv_n * their derivatives
 // (gradient of the batch mean; inv_n = 1 / n_rays).
 __kernel void render_loss_range(const int n_rays, const float a_d, const float a_r, const float a_i,
-                                const float inv_n, __global const float* out,
+                                const float smooth, const float inv_n, __global const float* out,
                                 __global const float* target, __global float* terms,
                                 __global float* grad_out) {
   const int r = get_global_id(0);
   if (r >= n_rays) return;
   const float m = target[3 * r + 2];
   const float e_d = m * (out[3 * r] - target[3 * r]);
-  const float e_r = out[3 * r + 1] - m;
+  const float e_r = out[3 * r + 1] - clamp(m, smooth, 1.0f - smooth);
   const float e_i = m * (out[3 * r + 2] - target[3 * r + 1]);
   terms[3 * r + 0] = a_d * fabs(e_d);
   terms[3 * r + 1] = a_r * e_r * e_r;

@@ -34,8 +34,14 @@ void MlpSpec::validate() const {
   if (in_stride == 0 && in_offset != 0)
     throw ConfigError("mlp: 'in_offset' needs an explicit 'in_stride'");
   if (layers.empty()) throw ConfigError("mlp: at least one layer is required");
-  for (size_t l = 0; l < layers.size(); ++l)
-    check_range("mlp", "layers[" + std::to_string(l) + "].width", layers[l].width, 1, 128);
+  check_range("mlp", "towers", towers, 1, 8);
+  for (size_t l = 0; l < layers.size(); ++l) {
+    const std::string key = "layers[" + std::to_string(l) + "].width";
+    check_range("mlp", key, layers[l].width, 1, 128);
+    if (layers[l].width % towers != 0)
+      throw ConfigError("mlp: '" + key + "' = " + std::to_string(layers[l].width) +
+                        " is not divisible by towers = " + std::to_string(towers));
+  }
 }
 
 double MlpSpec::macs_per_point() const {
@@ -62,6 +68,7 @@ Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec) : rt_(rt), spec_(spec) {
   const int n_layers = int(spec_.layers.size());
   const int n_group = spec_.n_in_group;
   // Compiles a layer's kernels, specialised by -D defines (kernels/field/mlp.cl).
+  std::string last_opt;
   auto build = [&](Layer& L, int in_off, int prev_act, bool prev_pre, bool group_bias) {
     auto d = [](const char* k, int v) { return std::string(" -D") + k + "=" + std::to_string(v); };
     const std::string opt = d("N_IN", L.n_in) + d("IN_STRIDE", L.in_stride) +
@@ -80,6 +87,7 @@ Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec) : rt_(rt), spec_(spec) {
     L.transpose = rt_.kernel(f, "field_mlp_transpose", opt);
     L.bwd_in = rt_.kernel(f, "field_mlp_bwd_in", opt);
     if (group_bias) L.group_sum = rt_.kernel(f, "field_mlp_group_sum", opt);
+    last_opt = opt;
   };
   int n_in = spec_.n_in;
   for (int l = 0; l < n_layers; ++l) {
@@ -112,6 +120,24 @@ Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec) : rt_(rt), spec_(spec) {
     layers_.push_back(std::move(L));
     n_in = ls.width;
   }
+  if (spec_.towers > 1 && n_layers > 1) {
+    // The mask of the off-tower weights; its kernel reuses the last layer's program.
+    std::vector<uint8_t> keep;
+    keep.reserve(n_params_ - layer_off_[1]);
+    for (size_t l = 1; l < layers_.size(); ++l)
+      for (int i = 0; i <= layers_[l].n_rows; ++i)
+        for (int o = 0; o < layers_[l].out_pad; ++o) keep.push_back(off_tower(l, i, o) ? 0 : 1);
+    tower_count_ = keep.size();
+    tower_keep_ = cl::Buffer::from(rt_, keep);
+    tower_mask_ = rt_.kernel("field/mlp.cl", "field_mlp_tower_mask", last_opt);
+  }
+}
+
+bool Mlp::off_tower(size_t l, int i, int o) const {
+  const Layer& L = layers_[l];
+  const int T = spec_.towers;
+  if (T <= 1 || l == 0 || i >= L.n_rows || o >= L.out) return false;
+  return i / (L.n_in / T) != o / (L.out / T);
 }
 
 void Mlp::init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) const {
@@ -122,12 +148,15 @@ void Mlp::init_params(std::vector<float>& host_params, size_t offset, uint64_t s
   for (size_t l = 0; l < layers_.size(); ++l) {
     const Layer& L = layers_[l];
     const double gain = L.act == Activation::Relu ? 6.0 : 3.0;
-    const float bound = float(std::sqrt(gain / L.n_rows));  // fan-in includes grouped inputs
+    // Fan-in includes grouped inputs; after layer 0 a tower's units see n_in / T inputs.
+    const int fan_in = l == 0 ? L.n_rows : L.n_rows / spec_.towers;
+    const float bound = float(std::sqrt(gain / fan_in));
     float* w = host_params.data() + offset + layer_off_[l];
     for (int i = 0; i <= L.n_rows; ++i)
       for (int o = 0; o < L.out_pad; ++o) {
         const float u = rng.uniform(-bound, bound);  // drawn for every slot: layout-stable
-        w[size_t(i) * L.out_pad + o] = (i < L.n_rows && o < L.out) ? u : 0.0f;
+        w[size_t(i) * L.out_pad + o] =
+            (i < L.n_rows && o < L.out && !off_tower(l, i, o)) ? u : 0.0f;
       }
   }
 }
@@ -289,6 +318,11 @@ void Mlp::backward(const cl::Buffer& params, size_t offset, const MlpContext& ct
     L.bwd_in.set_args(n, wt_, d_pre_[cur], prev, dst);
     L.bwd_in.launch({groups, size_t(pad16(L.n_in) / 16)}, {kLocal, size_t(pad16(L.n_in) / 16)});
     cur = 1 - cur;
+  }
+  if (tower_count_ > 0) {  // off-tower weights: exactly zero gradient
+    tower_mask_.set_args(int(tower_count_), tower_keep_, grad,
+                         uint32_t(grad_offset + layer_off_[1]));
+    tower_mask_.launch({cl::round_up(tower_count_, 64)}, {64});
   }
 }
 

@@ -19,6 +19,16 @@
 // ray after early ray termination; a group may be empty).
 // The per-point input may be a column range of a wider row (in_stride, in_offset); d_in is then
 // written into the same columns of a buffer with that layout, other columns untouched.
+//
+// Towers (spec.towers = T > 1): T separate networks of 1/T the width side by side in one Mlp
+// (LiDAR4D's intensity and ray-drop MLPs on the same input: one N × T output). Every layer's
+// width is divisible by T. Layer 0 is dense (all inputs, grouped ones included, feed every
+// unit); its output o belongs to tower o / (width / T). In every later layer W_t[i][o] exists
+// only where input i's tower i / (n_in / T) equals output o's tower o / (out / T); the other
+// weights are structurally zero: init_params writes 0 there and backward() gives them exactly
+// zero gradient (so Adam keeps them at 0). Biases are free. Forward and d_in need nothing
+// else (zero weights contribute exactly 0), so the Mlp computes the T separate networks.
+// macs_per_point() still counts the dense products, which is what is computed.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -44,6 +54,7 @@ struct MlpSpec {
   // false: every layer is bias-free (LiDAR4D's flow MLP): the bias rows stay in the layout,
   // are never read, keep their zero init and always receive a zero gradient.
   bool bias = true;
+  int towers = 1;  // block-diagonal separate sub-networks after layer 0 (see above), 1..8
   void validate() const;  // throws ConfigError
   int n_out() const { return layers.empty() ? 0 : layers.back().width; }
   // Multiply-adds per point of a forward pass (×2 for FLOPs; backward ≈ 2× forward); with
@@ -90,6 +101,8 @@ class Mlp {
   static int pad16(int w) { return (w + 15) / 16 * 16; }
 
   // Fan-in uniform init: relu layers U(±√(6/fan_in)) (He), others U(±√(3/fan_in)); bias 0.
+  // With towers, a later layer's fan-in is a tower's (n_in / T) and off-tower weights are 0;
+  // a value is drawn for every slot either way (layout-stable stream).
   void init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) const;
 
   // out (N × n_out) = MLP(in (N × row_stride)). With grouped inputs, group_in holds N / group
@@ -114,6 +127,8 @@ class Mlp {
     bool store_pre;
     cl::Kernel fwd, bwd_out, wgt, reduce, transpose, bwd_in, group_sum;
   };
+  // Whether W_t[i][o] of layer l is a structurally zero off-tower weight (never the bias row).
+  bool off_tower(size_t l, int i, int o) const;
   void ensure(MlpContext& ctx, int n) const;
   void ensure_scratch(int n);
 
@@ -125,6 +140,11 @@ class Mlp {
   Layer group_{};  // layer 0's grouped part: n_in_group inputs, linear, into group_pre
   cl::Buffer d_pre_[2], partial_, wt_, d_group_;
   size_t scratch_points_ = 0, partial_floats_ = 0;
+  // Towers: 0/1 mask of the slice from layer 1 on (tower_count_ entries, at layer_offset(1));
+  // backward() zeroes the gradient where it is 0. Unset with towers = 1 or a single layer.
+  cl::Kernel tower_mask_;
+  cl::Buffer tower_keep_;
+  size_t tower_count_ = 0;
 };
 
 }  // namespace sgnlf::field

@@ -16,9 +16,11 @@ size_t reduce_group_size(const cl::Runtime& rt) {
 }
 }  // namespace
 
-RangeLoss::RangeLoss(cl::Runtime& rt, const RenderConfig& cfg, float scene_scale)
+RangeLoss::RangeLoss(cl::Runtime& rt, const RenderConfig& cfg, float scene_scale,
+                     float label_smoothing)
     : cfg_(cfg),
       scene_scale_(scene_scale),
+      smooth_(label_smoothing),
       reduce_wg_(reduce_group_size(rt)),
       range_k_(rt.kernel("render/loss.cl", "render_loss_range")),
       patch_k_(rt.kernel("render/loss.cl", "render_loss_patchgrad")),
@@ -26,6 +28,8 @@ RangeLoss::RangeLoss(cl::Runtime& rt, const RenderConfig& cfg, float scene_scale
                           "-DRENDER_REDUCE_WG=" + std::to_string(reduce_wg_))) {
   cfg_.validate("RangeLoss");
   require(scene_scale > 0.0f, "RangeLoss: scene_scale must be positive");
+  require(label_smoothing >= 0.0f && label_smoothing < 0.5f,
+          "RangeLoss: label_smoothing must be in [0, 0.5), got " + std::to_string(label_smoothing));
 }
 
 cl::Event RangeLoss::reduce(const cl::Buffer& in, int n, int stride, int offset, float scale,
@@ -44,8 +48,8 @@ cl::Event RangeLoss::range(const cl::Buffer& out, const cl::Buffer& target, int 
   check_floats(terms, n3, "RangeLoss::range terms");
   check_floats(loss, kLossFloats, "RangeLoss::range loss");
   const float inv_n = 1.0f / float(n_rays);
-  range_k_.set_args(n_rays, cfg_.weights.depth, cfg_.weights.ret, cfg_.weights.intensity, inv_n,
-                    out, target, terms, grad_out);
+  range_k_.set_args(n_rays, cfg_.weights.depth, cfg_.weights.ret, cfg_.weights.intensity, smooth_,
+                    inv_n, out, target, terms, grad_out);
   launch_1d(range_k_, size_t(n_rays));
   reduce(terms, n_rays, 3, 0, inv_n, loss, 0);
   reduce(terms, n_rays, 3, 1, inv_n, loss, 1);

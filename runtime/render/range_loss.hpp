@@ -19,7 +19,11 @@ inline constexpr size_t kLossFloats = 4;
 
 class RangeLoss {
  public:
-  RangeLoss(cl::Runtime& rt, const RenderConfig& cfg, float scene_scale);
+  // label_smoothing s in [0, 0.5): the return term's target is clamp(label, s, 1 − s)
+  // (LiDAR4D's ray-drop label smoothing); the depth and intensity masks stay the 0/1 label.
+  RangeLoss(cl::Runtime& rt, const RenderConfig& cfg, float scene_scale,
+            float label_smoothing = 0.0f);
+  float label_smoothing() const { return smooth_; }
 
   // Writes grad_out (n_rays x 3) = d(mean loss)/d out, terms (n_rays x 3) and loss[0..2].
   cl::Event range(const cl::Buffer& out, const cl::Buffer& target, int n_rays, cl::Buffer& grad_out,
@@ -41,6 +45,7 @@ class RangeLoss {
                    cl::Buffer& loss, int index);
   RenderConfig cfg_;
   float scene_scale_;
+  float smooth_ = 0.0f;
   size_t reduce_wg_;
   cl::Kernel range_k_, patch_k_, reduce_k_;
 };

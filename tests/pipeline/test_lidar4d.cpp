@@ -221,3 +221,65 @@ TEST_CASE("lidar4d model: the Chamfer term and renders at the frame's time",
   CHECK(render_view(model, scene, T, 512) .range == r3.range);  // frame 3 is nearest to its pose
   CHECK(nearest_frame(scene, T) == 3);
 }
+
+TEST_CASE("lidar4d model: separate intensity and ray-drop heads stay separate in training",
+          "[pipeline][lidar4d]") {
+  const Scene scene = make_scene(test::tiny_dataset());
+  const TrainConfig c = tiny_lidar4d();
+  REQUIRE(c.lidar4d->separate_heads);
+  CHECK(c.lidar4d->ray_drop_label_smoothing == Approx(0.2));
+  const TrainConfig one = tiny_lidar4d(Json{{"lidar4d", {{"separate_heads", false}}}});
+  LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), model_capacity(c));
+  LidarNerfModel shared(test::runtime(), one, float(scene.norm.scale), model_capacity(one));
+  const field::ParamSlice& head = model.layout().slice("head_mlp");
+  CHECK(head.count > shared.layout().slice("head_mlp").count);
+
+  // The head's layout (field/mlp.hpp): per layer W_t[rows][out_pad] then the bias row; two
+  // towers of head_hidden, the first return probability's, the second intensity's. Past the
+  // first layer a weight between the towers is structurally zero, before and after training.
+  const int hidden = c.field.head_hidden, layers = c.field.head_layers;
+  const int rows0 = c.field.geo_features + 6 * c.field.dir_frequencies;
+  const auto off_tower = [&](const std::vector<float>& p) {
+    size_t at = head.offset + size_t(rows0 + 1) * size_t(2 * hidden), zeros = 0, count = 0;
+    for (int l = 1; l <= layers; ++l) {
+      const int out = l == layers ? 2 : 2 * hidden, out_pad = (out + 15) / 16 * 16;
+      const int per_out = out / 2;
+      for (int i = 0; i < 2 * hidden; ++i)
+        for (int o = 0; o < out; ++o)
+          if (i / hidden != o / per_out) {
+            ++count;
+            zeros += p[at + size_t(i) * out_pad + size_t(o)] == 0.0f ? 1 : 0;
+          }
+      at += size_t(2 * hidden + 1) * size_t(out_pad);
+    }
+    CHECK(at == head.offset + head.count);
+    return std::make_pair(zeros, count);
+  };
+  model.init_params(5);
+  const auto init = off_tower(model.state().params);
+  CHECK(init.second > 0);
+  CHECK(init.first == init.second);
+  const Trained t = train_lidar4d(scene, c, 5, "l4d_heads");
+  const auto trained = off_tower(t.params);
+  CHECK(trained.first == trained.second);
+  // The towers themselves trained: the head's first layer moved.
+  ModelState st = model.state();
+  size_t moved = 0;
+  for (size_t i = head.offset; i < head.offset + head.count; ++i)
+    moved += t.params[i] != st.params[i] ? 1 : 0;
+  CHECK(moved > head.count / 4);
+  // Label smoothing moves the return term only: same batch, same parameters, the depth and
+  // intensity terms are equal and the return term differs.
+  const TrainConfig unsmoothed = tiny_lidar4d(Json{{"lidar4d", {{"ray_drop_label_smoothing", 0.0}}}});
+  LidarNerfModel plain(test::runtime(), unsmoothed, float(scene.norm.scale), model_capacity(unsmoothed));
+  plain.init_params(5);
+  const RayBatch b = draw_ray_batch(scene, c, 6, 1);
+  model.set_frame(b.frame, int(scene.T_world_lidar.size()));
+  plain.set_frame(b.frame, int(scene.T_world_lidar.size()));
+  model.forward_backward(b, 6, 1);
+  plain.forward_backward(b, 6, 1);
+  const render::LossValues ls = model.read_loss(), lp = plain.read_loss();
+  CHECK(ls.depth == lp.depth);
+  CHECK(ls.intensity == lp.intensity);
+  CHECK(ls.ret != lp.ret);
+}

@@ -214,17 +214,18 @@ void ref_raygrad_rows(int n_rays, int M, T bound, const std::vector<int>& offset
     }
 }
 
-// render_loss_range: returns the batch-mean terms (depth, ret, intensity) and its gradient.
+// render_loss_range: returns the batch-mean terms (depth, ret, intensity) and its gradient;
+// `smooth`: the return term's target is the label clamped to [smooth, 1 − smooth].
 template <typename T>
 std::array<T, 3> ref_range_loss(int n, T a_d, T a_r, T a_i, const Vec<T>& out, const Vec<T>& target,
-                                Vec<T>& grad_out) {
+                                Vec<T>& grad_out, T smooth = T(0)) {
   std::array<T, 3> L{0, 0, 0};
   grad_out.assign(size_t(n) * 3, T(0));
   const T inv_n = T(1) / T(n);
   for (int r = 0; r < n; ++r) {
     const T m = target[3 * r + 2];
     const T e_d = m * (out[3 * r] - target[3 * r]);
-    const T e_r = out[3 * r + 1] - m;
+    const T e_r = out[3 * r + 1] - std::min(std::max(m, smooth), T(1) - smooth);
     const T e_i = m * (out[3 * r + 2] - target[3 * r + 1]);
     L[0] += a_d * std::abs(e_d) * inv_n;
     L[1] += a_r * e_r * e_r * inv_n;

@@ -98,6 +98,58 @@ TEST_CASE("Range loss gradient matches finite differences", "[render][loss]") {
   CHECK(test::max_sym_rel_err(dev, fd, 1e-6) < 1e-4);
 }
 
+TEST_CASE("Range loss with ray-drop label smoothing equals the reference and finite differences",
+          "[render][loss]") {
+  auto& rt = test::runtime();
+  const auto cfg = render::RenderConfig::preset("kitti360");
+  const int n = 257;
+  const auto target = make_target(n, 31);
+  const auto out = test::make_uniform(3 * size_t(n), 0.f, 1.f, 32);
+  auto bout = cl::Buffer::from(rt, out), btar = cl::Buffer::from(rt, target);
+  cl::Buffer grad(rt, 3 * n * 4), terms(rt, 3 * n * 4), loss(rt, 16);
+  render::RangeLoss plain(rt, cfg, kScale);
+  plain.range(bout, btar, n, grad, terms, loss).wait();
+  const auto plain_values = render::RangeLoss::read_losses(loss);
+  const auto plain_grad = grad.read_vec<float>(3 * n);
+
+  render::RangeLoss smooth(rt, cfg, kScale, 0.2f);
+  CHECK(smooth.label_smoothing() == 0.2f);
+  smooth.range(bout, btar, n, grad, terms, loss).wait();
+  const auto values = render::RangeLoss::read_losses(loss);
+  const auto dev = grad.read_vec<float>(3 * n);
+  std::vector<float> ref_grad;
+  const auto ref = test::ref_range_loss<float>(n, 1000.f, 1.f, 10.f, out, target, ref_grad, 0.2f);
+  CHECK(values.ret == Approx(ref[1]).epsilon(1e-5));
+  CHECK(test::max_sym_rel_err(dev, ref_grad, 1e-12) < 1e-6);
+  // Only the return term moves: its targets are 0.2 and 0.8 instead of 0 and 1.
+  CHECK(values.depth == plain_values.depth);
+  CHECK(values.intensity == plain_values.intensity);
+  CHECK(values.ret != plain_values.ret);
+  for (int r = 0; r < n; ++r) {
+    REQUIRE(dev[3 * r] == plain_grad[3 * r]);
+    REQUIRE(dev[3 * r + 2] == plain_grad[3 * r + 2]);
+    const float label = target[3 * r + 2] > 0.5f ? 0.8f : 0.2f;
+    REQUIRE(dev[3 * r + 1] == Approx(2.f * (out[3 * r + 1] - label) / n).epsilon(1e-5));
+  }
+  // The return term alone against finite differences (the other columns equal the unsmoothed
+  // loss's, tested above): the device's targets are 0.2f and 0.8f, so the reference uses those
+  // constants.
+  std::vector<double> od(out.begin(), out.end());
+  const std::vector<double> td(target.begin(), target.end());
+  const auto fd = central_diff(od, [&]() {
+    std::vector<double> g;
+    return test::ref_range_loss<double>(n, 1000, 1, 10, od, td, g, double(0.2f))[1];
+  });
+  std::vector<float> dev_ret, fd_ret;
+  for (int r = 0; r < n; ++r) {
+    dev_ret.push_back(dev[3 * r + 1]);
+    fd_ret.push_back(fd[3 * r + 1]);
+  }
+  CHECK(test::max_sym_rel_err(dev_ret, fd_ret, 1e-6) < 1e-4);
+  CHECK_THROWS(render::RangeLoss(rt, cfg, kScale, 0.5f));
+  CHECK_THROWS(render::RangeLoss(rt, cfg, kScale, -0.1f));
+}
+
 TEST_CASE(
     "Patch gradient loss (L1 and L2, rectangular patches) equals the reference and "
     "finite differences",

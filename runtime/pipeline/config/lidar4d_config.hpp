@@ -49,12 +49,22 @@ struct Lidar4DConfig {
   // LiDAR4D's Chamfer term between the predicted and observed ray endpoints of a batch
   // (render/chamfer_loss.hpp, in metres², mean over rays); 0 turns it off.
   double chamfer_weight = 1.0;
+  // LiDAR4D's separate intensity and ray-drop MLPs (model/lidar4d.py: intensity_net and
+  // raydrop_net, each field.head_layers layers of field.head_hidden on the same input): the
+  // head becomes one field::Mlp of two towers (MlpSpec::towers), each field.head_hidden wide,
+  // which computes exactly two separate networks. false: LiDAR-NeRF's one head, two outputs.
+  bool separate_heads = true;
+  // Ray-drop label smoothing (LiDAR4D's smooth_factor 0.2): the return term's label is
+  // clamped to [s, 1 − s]; the masks of the depth and intensity terms stay 0/1.
+  double ray_drop_label_smoothing = 0.2;
   FlowSupervisionConfig flow;
   template <class Self, class V>
   static void fields(Self& s, V& v) {
     v.object("encoder", s.encoder);
     v("network_lr_scale", s.network_lr_scale, 0.0, 10.0);
     v("chamfer_weight", s.chamfer_weight, 0.0, 1e6);
+    v("separate_heads", s.separate_heads);
+    v("ray_drop_label_smoothing", s.ray_drop_label_smoothing, 0.0, 0.49);
     v.section("flow", s.flow);
   }
 

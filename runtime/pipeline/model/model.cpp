@@ -39,10 +39,15 @@ field::AdamConfig adam_config(const OptimConfig& o) {
 // LiDAR head on [geo, dir_enc] (method.md §0) with the direction encoding as a grouped input:
 // the same function and parameter layout as an MLP on the 87-wide concatenation, but the
 // direction part of the first layer is computed once per ray; the 15 geometric features are
-// read in place from columns 1..15 of the density output.
-field::MlpSpec head_spec(const FieldSizes& f) {
-  field::MlpSpec s = field::make_mlp_spec(f.geo_features, f.head_hidden, f.head_layers, 2,
-                                          field::Activation::Relu);
+// read in place from columns 1..15 of the density output. With LiDAR4D's separate heads
+// (lidar4d.separate_heads) it is two towers of head_hidden each, the return probability's and
+// the intensity's: two separate networks on the same input (field::MlpSpec::towers).
+field::MlpSpec head_spec(const TrainConfig& c) {
+  const FieldSizes& f = c.field;
+  const int towers = c.lidar4d && c.lidar4d->separate_heads ? 2 : 1;
+  field::MlpSpec s = field::make_mlp_spec(f.geo_features, towers * f.head_hidden, f.head_layers,
+                                          2, field::Activation::Relu);
+  s.towers = towers;
   s.n_in_group = 6 * f.dir_frequencies;
   s.in_stride = kDensStride;
   s.in_offset = 1;
@@ -80,11 +85,12 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
       density_(rt, field::make_mlp_spec(encoder_->width(),
                                         c.field.density_hidden, 1, 1 + c.field.geo_features,
                                         field::Activation::Relu)),
-      head_(rt, head_spec(c.field)),
+      head_(rt, head_spec(c)),
       dirs_(rt, c.field.dir_frequencies, c.field.geo_features, 1, 1 + c.field.geo_features),
       sampler_(rt, c.render, scene_scale),
       renderer_(rt, c.render, scene_scale),
-      loss_(rt, c.render, scene_scale),
+      loss_(rt, c.render, scene_scale,
+            c.lidar4d ? float(c.lidar4d->ray_drop_label_smoothing) : 0.0f),
       ray_grad_(rt) {
   if (1 + c.field.geo_features != kDensStride)
     throw ConfigError("config.field: 'geo_features' must be 15 (density output 1 + 15 = 16)");
