@@ -23,13 +23,7 @@ using namespace sgnlf::pipeline;
 
 namespace {
 
-// The LiDAR4D smoke preset shrunk to the tiny scene.
-TrainConfig tiny_lidar4d(const Json& extra = Json::object()) {
-  Json o{{"schedule", {{"iterations", 16}, {"checkpoint_every", 8}, {"log_every", 2},
-                       {"rays_per_batch", 128}, {"render_chunk_rays", 512}}},
-         {"render", {{"n_samples", 16}, {"n_importance", 4}}}};
-  return resolve_config("lidar4d", "smoke", merge_config_json(o, extra));
-}
+using test::tiny_lidar4d;  // the LiDAR4D smoke preset shrunk to the tiny scene
 
 std::string config_error(const Json& overrides) {
   try {
@@ -89,6 +83,40 @@ TEST_CASE("lidar4d config: presets resolve, the section round-trips, bad keys ar
   CHECK(config_error(Json{{"lidar4d", {{"flow", {{"steps", 3}}}}}}).find("steps") !=
         std::string::npos);
   CHECK(config_error(Json{{"lidar4d", {{"chamfer", 1.0}}}}).find("chamfer") != std::string::npos);
+  // The ray-drop refinement: the presets' U-Net sizes, a partial unet object keeping the
+  // preset's other keys, bad keys in refine and in refine.unet refused by name.
+  const TrainConfig smoke = resolve_config("lidar4d", "smoke");
+  CHECK(smoke.lidar4d->refine.enabled);
+  CHECK(smoke.lidar4d->refine.frames == 2);
+  CHECK(smoke.lidar4d->refine.unet.depth == 2);
+  CHECK(smoke.lidar4d->refine.unet.steps == 4);
+  CHECK(resolve_config("lidar4d", "quick").lidar4d->refine.frames == 8);
+  CHECK(resolve_config("lidar4d", "quick").lidar4d->refine.unet.steps == 250);
+  CHECK(p.lidar4d->refine.frames == 0);
+  CHECK(p.lidar4d->refine.unet.channels == 32);
+  CHECK(p.lidar4d->refine.unet.steps == 1000);
+  const TrainConfig r = resolve_config(
+      "lidar4d", "smoke",
+      Json{{"lidar4d", {{"refine", {{"enabled", false}, {"frames", 5}, {"unet", {{"lr", 5e-4}}}}}}}});
+  CHECK_FALSE(r.lidar4d->refine.enabled);
+  CHECK(r.lidar4d->refine.frames == 5);
+  CHECK(r.lidar4d->refine.unet.lr == Approx(5e-4));
+  CHECK(r.lidar4d->refine.unet.channels == 16);
+  const TrainConfig r_back = train_config_from_json(train_config_to_json(r), "round trip");
+  CHECK(train_config_to_json(r_back) == train_config_to_json(r));
+  CHECK(r_back.hash() == r.hash());
+  CHECK(r.hash() != smoke.hash());
+  const std::string bad_refine = config_error(Json{{"lidar4d", {{"refine", {{"frmaes", 2}}}}}});
+  CHECK(bad_refine.find("frmaes") != std::string::npos);
+  CHECK(bad_refine.find("refine") != std::string::npos);
+  const std::string bad_unet =
+      config_error(Json{{"lidar4d", {{"refine", {{"unet", {{"chanels", 16}}}}}}}});
+  CHECK(bad_unet.find("chanels") != std::string::npos);
+  CHECK(bad_unet.find("refine.unet") != std::string::npos);
+  CHECK(config_error(Json{{"lidar4d", {{"refine", {{"frames", -1}}}}}}).find("frames") !=
+        std::string::npos);
+  CHECK(config_error(Json{{"lidar4d", {{"refine", {{"unet", {{"channels", 24}}}}}}}})
+            .find("channels") != std::string::npos);
   // Other methods' configs carry no lidar4d section and refuse one.
   CHECK_FALSE(resolve_config("lidar-nerf", "smoke").lidar4d.has_value());
   CHECK_THROWS_AS(resolve_config("lidar-nerf", "smoke", Json{{"lidar4d", Json::object()}}),

@@ -35,6 +35,14 @@ inline pipeline::TrainConfig tiny_config(const Json& extra = Json::object()) {
   return pipeline::resolve_config("lidar-nerf", "smoke", pipeline::merge_config_json(o, extra));
 }
 
+// The LiDAR4D smoke preset shrunk to the tiny scene (16 steps, checkpoints every 8).
+inline pipeline::TrainConfig tiny_lidar4d(const Json& extra = Json::object()) {
+  Json o{{"schedule", {{"iterations", 16}, {"checkpoint_every", 8}, {"log_every", 2},
+                       {"rays_per_batch", 128}, {"render_chunk_rays", 512}}},
+         {"render", {{"n_samples", 16}, {"n_importance", 4}}}};
+  return pipeline::resolve_config("lidar4d", "smoke", pipeline::merge_config_json(o, extra));
+}
+
 // The SG-NLF smoke preset shrunk to the tiny scene (28 steps, checkpoints every 7, graph from
 // epoch 1, λ ramping over steps 4–14); with_consistency adds the adversarial term (every 2
 // steps after 4, one-scale discriminator on 8 × 32 renders). Config overrides, as JSON.

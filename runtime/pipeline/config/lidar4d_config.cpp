@@ -6,6 +6,7 @@ namespace sgnlf::pipeline {
 void Lidar4DConfig::validate(const std::string& where) const {
   encoder.validate(where + ".lidar4d.encoder");
   config::check_fields(*this, where + ".lidar4d");
+  refine.unet.validate(where + ".lidar4d.refine.unet");
 }
 
 Lidar4DConfig Lidar4DConfig::from_json(ConfigReader& r) {

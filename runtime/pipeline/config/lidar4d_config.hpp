@@ -1,12 +1,14 @@
 // Configuration of LiDAR4D (method.md §2), the config's "lidar4d" section: the 4D encoder that
 // replaces the hash grid (field/lidar4d_encoder_config.hpp), the learning rate of the networks
-// beside the encodings', the Chamfer term on ray points and the scene-flow supervision.
+// beside the encodings', the Chamfer term on ray points, the scene-flow supervision and the
+// ray-drop U-Net refinement after training.
 // Present only in the configs of methods built on the 4D field (ConfigSections::lidar4d,
 // methods/), so other methods' config hashes do not change.
 #pragma once
 #include "core/config.hpp"
 #include "core/config_fields.hpp"
 #include "field/lidar4d_encoder_config.hpp"
+#include "refine/ray_drop_unet_config.hpp"
 
 namespace sgnlf::pipeline {
 
@@ -41,6 +43,23 @@ struct FlowSupervisionConfig {
   }
 };
 
+// LiDAR4D's ray-drop refinement (Trainer.refine(); run/ray_drop_stage.hpp): after the field's
+// training, the U-Net learns the training frames' return masks from their rendered (return
+// probability, intensity, depth) images; every later render's return probability is its output.
+struct RayDropRefinementConfig {
+  bool enabled = true;
+  // Training frames rendered for it: 0 = every one (LiDAR4D), else that many evenly spaced over
+  // the training split, the first and the last included.
+  int frames = 0;
+  refine::RayDropUNetConfig unet;  // LiDAR4D's U-Net and schedule by default
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("enabled", s.enabled);
+    v("frames", s.frames, 0, 1000000);
+    v.object("unet", s.unet);
+  }
+};
+
 struct Lidar4DConfig {
   field::Lidar4DEncoderConfig encoder;
   // The density and LiDAR-head MLPs and the flow field learn at lr · network_lr_scale, the
@@ -58,6 +77,7 @@ struct Lidar4DConfig {
   // clamped to [s, 1 − s]; the masks of the depth and intensity terms stay 0/1.
   double ray_drop_label_smoothing = 0.2;
   FlowSupervisionConfig flow;
+  RayDropRefinementConfig refine;
   template <class Self, class V>
   static void fields(Self& s, V& v) {
     v.object("encoder", s.encoder);
@@ -66,6 +86,7 @@ struct Lidar4DConfig {
     v("separate_heads", s.separate_heads);
     v("ray_drop_label_smoothing", s.ray_drop_label_smoothing, 0.0, 0.49);
     v.section("flow", s.flow);
+    v.section("refine", s.refine);
   }
 
   void validate(const std::string& where) const;

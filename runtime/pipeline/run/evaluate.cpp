@@ -6,6 +6,7 @@
 #include "metrics/evaluate.hpp"
 #include "metrics/naive_baseline.hpp"
 #include "pipeline/model/render_view.hpp"
+#include "pipeline/run/ray_drop_stage.hpp"
 
 namespace sgnlf::pipeline {
 namespace {
@@ -23,17 +24,19 @@ void add_view(ViewSet& vs, std::vector<Json>& views, const Dataset& d, int f, Ra
 
 ViewSet evaluate_model(LidarNerfModel& model, const Dataset& d, const Scene& scene,
                        int chunk_rays, const std::vector<Pose>& T_world_lidar,
-                       FastRenderer* fast) {
+                       FastRenderer* fast, const RayDropStage* refine) {
   if (d.split.test.empty()) throw Error("dataset " + d.name + ": no test frames to evaluate");
   require(T_world_lidar.size() == d.frames.size(),
           "evaluate_model: " + std::to_string(T_world_lidar.size()) + " poses for " +
               std::to_string(d.frames.size()) + " frames");
   ViewSet vs;
   std::vector<Json> views;
-  for (int f : d.split.test)
-    add_view(vs, views, d, f,
-             fast ? fast->render(T_world_lidar[size_t(f)], f)
-                  : render_view(model, scene, T_world_lidar[size_t(f)], chunk_rays, f));
+  for (int f : d.split.test) {
+    RangeImage pred = fast ? fast->render(T_world_lidar[size_t(f)], f)
+                           : render_view(model, scene, T_world_lidar[size_t(f)], chunk_rays, f);
+    if (refine) refine->apply(pred);
+    add_view(vs, views, d, f, std::move(pred));
+  }
   vs.mean = metrics::mean_metrics(views);
   return vs;
 }

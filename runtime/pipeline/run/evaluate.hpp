@@ -11,6 +11,8 @@
 
 namespace sgnlf::pipeline {
 
+class RayDropStage;
+
 struct ViewSet {
   Json per_frame = Json::array();  // [{frame: id, metrics...}, ...]
   Json mean;                       // mean over test frames
@@ -20,10 +22,11 @@ struct ViewSet {
 // Renders every test frame at T_world_lidar[frame] (metres: the ground truth for the GT-pose
 // methods, the optimised pose for the pose-free ones, protocol §3) and scores it against the
 // frame's observed range image. With `fast`, through the fast renderer (a diagnostic of its
-// agreement: the tables use the protocol's renderer).
+// agreement: the tables use the protocol's renderer). With `refine`, every view's return
+// probability is the ray-drop U-Net's (LiDAR4D, ray_drop_stage.hpp) before it is scored.
 ViewSet evaluate_model(LidarNerfModel& model, const Dataset& d, const Scene& scene,
                        int chunk_rays, const std::vector<Pose>& T_world_lidar,
-                       FastRenderer* fast = nullptr);
+                       FastRenderer* fast = nullptr, const RayDropStage* refine = nullptr);
 // The naive baseline (nearest training scan moved with GT poses, metrics/naive_baseline.hpp).
 ViewSet evaluate_naive(const Dataset& d);
 // The same with the scans moved by `T_world_lidar` (one per frame, metres): for scans without

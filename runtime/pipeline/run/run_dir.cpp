@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "core/log.hpp"
 #include "datasets/loader.hpp"
 #include "datasets/protocol.hpp"
 #include "pipeline/train/checkpoint.hpp"
@@ -114,6 +115,16 @@ LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
   restore_hybrid_encoder(*run.model, c, ck);
   run.step = ck.step;
   run.pose_free = c.is_pose_free();
+  if (c.lidar4d && c.lidar4d->refine.enabled) {
+    const std::string file = ray_drop_unet_path(run_dir);
+    if (fs::exists(file)) {
+      run.ray_drop = std::make_unique<RayDropStage>(rt, c.lidar4d->refine);
+      run.ray_drop->load(file);
+    } else {
+      log::warn(file, ": missing (the run did not finish, or trained before the ray-drop "
+                "refinement existed); rendering without the ray-drop U-Net");
+    }
+  }
   run.T_world_lidar = run.T_world_lidar_init;
   if (run.pose_free) {
     PoseSet poses(run.scene->T_world_lidar, c.pose_free->pose_optim);

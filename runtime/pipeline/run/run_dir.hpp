@@ -6,6 +6,7 @@
 //   <run>/renders/           `sgnlf render` default output
 //   <run>/sensor.json        the sensor estimated from plain scans (datasets/sensor_estimate.hpp),
 //                            when train estimated one; eval/render load with it
+//   <run>/ray_drop_unet.bin  LiDAR4D's ray-drop U-Net, trained after the field (ray_drop_stage.hpp)
 #pragma once
 #include <memory>
 #include <string>
@@ -16,6 +17,7 @@
 #include "pipeline/model/model.hpp"
 #include "pipeline/model/scene.hpp"
 #include "pipeline/config/train_config.hpp"
+#include "pipeline/run/ray_drop_stage.hpp"
 
 namespace sgnlf::pipeline {
 
@@ -59,6 +61,9 @@ struct LoadedRun {
   bool pose_free = false;
   std::vector<Pose> T_world_lidar;       // per frame, metres: ground truth, or the optimised poses
   std::vector<Pose> T_world_lidar_init;  // per frame, metres: the initial poses
+  // LiDAR4D's ray-drop U-Net, which eval and render apply to every view: loaded when the config
+  // enables the refinement and <run>/ray_drop_unet.bin exists (null otherwise).
+  std::unique_ptr<RayDropStage> ray_drop;
 };
 
 // Sampling used when rendering a loaded run (a finer sampling than training's is allowed: the

@@ -13,6 +13,7 @@
 #include "io/png_writer.hpp"
 #include "io/range_array.hpp"
 #include "pipeline/run/evaluate.hpp"
+#include "pipeline/run/ray_drop_stage.hpp"
 #include "pipeline/model/render_view.hpp"
 #include "datasets/protocol.hpp"
 #include "metrics/evaluate.hpp"
@@ -137,6 +138,10 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
       log::warn(d.name, ": the poses did NOT converge (", chk.reason,
                 "); the run's metrics describe a broken trajectory (summary.json trajectory_check)");
   }
+  // LiDAR4D's ray-drop U-Net after the field (ray_drop_stage.hpp), once the run is finished.
+  if (s.finished && c.lidar4d && c.lidar4d->refine.enabled)
+    j["ray_drop_refinement"] =
+        refine_finished_run(rt, c, model, scene, d, current_poses(), req.run_dir);
   write_json_file((run / "summary.json").string(), j);
   return j;
 }
@@ -149,10 +154,11 @@ Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast) 
   for (size_t k = 0; k < d.split.test.size(); ++k) {
     const Frame& fr = d.frames[size_t(d.split.test[k])];
     const Pose& T = run.T_world_lidar[size_t(d.split.test[k])];
-    const RangeImage pred =
+    RangeImage pred =
         fast ? fast->render(T, d.split.test[k])
              : render_view(*run.model, *run.scene, T,
                            run.manifest.config.schedule.render_chunk_rays, d.split.test[k]);
+    if (run.ray_drop) run.ray_drop->apply(pred);
     const std::string stem = (fs::path(out_dir) / std::to_string(fr.id)).string();
     io::write_range_npy(stem + "_pred.npy", pred);
     io::write_range_npy(stem + "_gt.npy", fr.image);
@@ -183,10 +189,11 @@ Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
     if (o.cwiseAbs().maxCoeff() > 1.0)
       log::warn("render_poses: pose ", k, " has its origin at (", o.x(), ", ", o.y(), ", ", o.z(),
                 ") in the normalised scene, outside the trained box [-1, 1]^3");
-    const RangeImage pred =
+    RangeImage pred =
         fast ? fast->render(T_world_lidar[k], -1, &view)
              : render_view(*run.model, view, T_world_lidar[k],
                            run.manifest.config.schedule.render_chunk_rays);
+    if (run.ray_drop) run.ray_drop->apply(pred);
     char name[32];
     std::snprintf(name, sizeof name, "pose_%04zu", k);
     const std::string stem = (fs::path(out_dir) / name).string();
@@ -206,7 +213,7 @@ Json eval_run(LoadedRun& run, const std::string& run_dir, FastRenderer* fast) {
   const auto t0 = std::chrono::steady_clock::now();
   const ViewSet model = evaluate_model(*run.model, *run.dataset, *run.scene,
                                        run.manifest.config.schedule.render_chunk_rays,
-                                       run.T_world_lidar, fast);
+                                       run.T_world_lidar, fast, run.ray_drop.get());
   const double render_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // Without reference poses the naive baseline moves the scans with the run's own poses.
   const ViewSet naive = run.dataset->has_reference_poses ? evaluate_naive(*run.dataset)
@@ -226,6 +233,7 @@ Json eval_run(LoadedRun& run, const std::string& run_dir, FastRenderer* fast) {
          {"naive_baseline", {{"metrics", naive.mean}, {"per_frame", naive.per_frame}}},
          {"metric_definitions", metrics::definitions()}};
   j["reference_poses"] = run.dataset->has_reference_poses;
+  j["ray_drop_refinement"] = run.ray_drop != nullptr;
   if (run.pose_free) {
     if (run.dataset->has_reference_poses) {
       const auto gt = gt_poses(*run.dataset);

@@ -27,7 +27,10 @@ struct TrainRequest {
 };
 
 // Writes run.json (or checks that an existing one has the same config and seed), trains, and
-// writes summary.json. Returns the summary as JSON.
+// writes summary.json. Returns the summary as JSON. A finished run whose config enables
+// lidar4d.refine then trains (or, resumed, reloads) its ray-drop U-Net (ray_drop_stage.hpp):
+// summary.json "ray_drop_refinement". render_run, render_poses and eval_run apply the U-Net a
+// LoadedRun holds to every view (metrics.json "ray_drop_refinement": whether it did).
 Json train_run(cl::Runtime& rt, const TrainRequest& req);
 
 // Renders every test frame: <out>/<frame>_pred.npy, <frame>_gt.npy, <frame>_naive.npy (the naive
