@@ -4,6 +4,7 @@
 // box dropout drawn per step (box_dropout.hpp), and the frames' observed return masks; the
 // learning rate per step from one_cycle.hpp. Returns a summary instead of printing.
 #pragma once
+#include <functional>
 #include <vector>
 
 #include "cl/runtime.hpp"
@@ -21,8 +22,12 @@ struct RayDropTrainResult {
 
 // Trains `net` from its current parameters and Adam state (call net.reset() for a fresh start)
 // on n frames of h × w: inputs n × h × w × 3 (depth in metres), masks n × h × w (1 = return,
-// 0 = dropped ray). Blocks until done; the box draws depend on cfg.seed alone.
+// 0 = dropped ray). Blocks until done; the box draws depend on cfg.seed alone. `on_progress`,
+// when set, is called with the steps done every kProgressSteps steps (the queue is waited for
+// there; the result does not change).
+inline constexpr int kProgressSteps = 10;
 RayDropTrainResult train_ray_drop(RayDropUNet& net, const cl::Buffer& inputs,
-                                  const cl::Buffer& masks, int n, int h, int w);
+                                  const cl::Buffer& masks, int n, int h, int w,
+                                  const std::function<void(int)>& on_progress = {});
 
 }  // namespace sgnlf::refine

@@ -136,9 +136,14 @@ TEST_CASE("RayDropUNet training and inference are bit-identical for a seed",
   const auto pa = infer(a, f);
   CHECK(pa == infer(a, f));  // inference twice: identical
   CHECK(pa == infer(b, f));
-  // reset() restarts from the same initial state.
+  // reset() restarts from the same initial state; reporting progress (the queue waited for
+  // every 10 steps) changes nothing.
   a.reset();
-  CHECK(refine::train_ray_drop(a, in, masks, f.n, f.h, f.w).loss == ra.loss);
+  std::vector<int> reported;
+  CHECK(refine::train_ray_drop(a, in, masks, f.n, f.h, f.w,
+                               [&](int done) { reported.push_back(done); })
+            .loss == ra.loss);
+  CHECK(reported == std::vector<int>{10, 12});
   // Another seed: other weights and boxes, other losses.
   cfg.seed = 2;
   refine::RayDropUNet c(rt, cfg);

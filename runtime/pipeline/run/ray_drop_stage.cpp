@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "core/progress.hpp"
 #include "pipeline/model/render_view.hpp"
 #include "pipeline/train/checkpoint.hpp"
 #include "refine/ray_drop_training.hpp"
@@ -73,6 +74,7 @@ Json RayDropStage::train(LidarNerfModel& model, const Scene& scene, const Datase
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<float> inputs(size_t(n) * hw * refine::RayDropUNet::kInputChannels), masks(size_t(n) * hw);
   Json ids = Json::array();
+  Progress renders("ray-drop refinement: render", n);
   for (int k = 0; k < n; ++k) {
     const int f = frames[size_t(k)];
     const RangeImage& gt = d.frames[size_t(f)].image;
@@ -85,13 +87,18 @@ Json RayDropStage::train(LidarNerfModel& model, const Scene& scene, const Datase
     pack_view(pred, &inputs[size_t(k) * hw * refine::RayDropUNet::kInputChannels]);
     std::copy(gt.ray_drop.begin(), gt.ray_drop.end(), masks.begin() + long(size_t(k) * hw));
     ids.push_back(d.frames[size_t(f)].id);
+    renders.update(k + 1);
   }
+  renders.finish();
   const double render_s = seconds_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
   cl::Runtime& rt = net_->runtime();
   net_->reset();
-  const refine::RayDropTrainResult r = refine::train_ray_drop(
-      *net_, cl::Buffer::from(rt, inputs), cl::Buffer::from(rt, masks), n, h, w);
+  Progress steps("ray-drop refinement: U-Net", cfg_.unet.steps);
+  const refine::RayDropTrainResult r =
+      refine::train_ray_drop(*net_, cl::Buffer::from(rt, inputs), cl::Buffer::from(rt, masks), n,
+                             h, w, [&](int done) { steps.update(done); });
+  steps.finish();
   return Json{{"frames", ids},
               {"steps", r.steps},
               {"initial_bce", r.initial_loss},
