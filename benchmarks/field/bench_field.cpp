@@ -150,9 +150,12 @@ BENCHMARK(BM_MlpHeadBwd)->Arg(1 << 16)->Arg(1 << 18)->UseManualTime()->Unit(benc
 // The head as the model runs it: 15 geometric features read in place from the density output
 // (stride 16) and the 72-dim direction encoding as a grouped input, one group per ray of 64
 // samples. Same function as BM_MlpHead*; compare points/s. FLOPs counted as performed.
-static void mlp_grouped_head_bench(benchmark::State& state, bool backward) {
+// towers = 2: LiDAR4D's separate intensity and ray-drop heads (two towers of 64, one 128-wide
+// MLP with block-diagonal weights; the backward adds the off-tower gradient mask).
+static void mlp_grouped_head_bench(benchmark::State& state, bool backward, int towers = 1) {
   auto& rt = bench::runtime();
-  field::MlpSpec spec = field::make_mlp_spec(15, 64, 3, 2, Activation::Relu);
+  field::MlpSpec spec = field::make_mlp_spec(15, 64 * towers, 3, 2, Activation::Relu);
+  spec.towers = towers;
   spec.n_in_group = 72;
   spec.in_stride = 16;
   spec.in_offset = 1;
@@ -178,6 +181,10 @@ static void BM_MlpHeadGroupedFwd(benchmark::State& s) { mlp_grouped_head_bench(s
 static void BM_MlpHeadGroupedBwd(benchmark::State& s) { mlp_grouped_head_bench(s, true); }
 BENCHMARK(BM_MlpHeadGroupedFwd)->Arg(1 << 16)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MlpHeadGroupedBwd)->Arg(1 << 16)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
+static void BM_MlpHeadTowersFwd(benchmark::State& s) { mlp_grouped_head_bench(s, false, 2); }
+static void BM_MlpHeadTowersBwd(benchmark::State& s) { mlp_grouped_head_bench(s, true, 2); }
+BENCHMARK(BM_MlpHeadTowersFwd)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MlpHeadTowersBwd)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 // The shape of the prototype figure in performance.md: 32→64→64→16, forward + backward.
 static void BM_MlpProtoFwdBwd(benchmark::State& state) {

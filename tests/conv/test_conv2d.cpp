@@ -22,12 +22,7 @@ std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
   for (auto& x : v) x = r.uniform(lo, hi);
   return v;
 }
-// max |a − b| / max |b|: float sums against a double reference scale with the output.
-double norm_err(const std::vector<float>& a, const std::vector<float>& b) {
-  double m = 0;
-  for (float v : b) m = std::max(m, double(std::fabs(v)));
-  return test::max_abs_err(a, b) / std::max(m, 1e-30);
-}
+using test::norm_err;  // float sums against a double reference scale with the output
 // Zeroes the padding channels c.. of an NHWC buffer with channel stride cs.
 void zero_padding(std::vector<float>& v, int c, int cs) {
   for (size_t i = 0; i < v.size(); ++i)

@@ -21,12 +21,7 @@ std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
   for (auto& x : v) x = r.uniform(lo, hi);
   return v;
 }
-// max |a − b| / max |b|: float GEMM rounding scales with the magnitude of the whole output.
-double norm_err(const std::vector<float>& a, const std::vector<float>& b) {
-  double m = 0;
-  for (float v : b) m = std::max(m, double(std::fabs(v)));
-  return test::max_abs_err(a, b) / std::max(m, 1e-30);
-}
+using test::norm_err;
 double dot(const std::vector<float>& a, const std::vector<float>& b) {
   double s = 0;
   for (size_t i = 0; i < a.size(); ++i) s += double(a[i]) * b[i];

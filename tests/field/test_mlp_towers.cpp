@@ -25,12 +25,7 @@ std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
   for (auto& x : v) x = r.uniform(lo, hi);
   return v;
 }
-// max |a − b| / max |b|: float GEMM rounding scales with the magnitude of the whole output.
-double norm_err(const std::vector<float>& a, const std::vector<float>& b) {
-  double m = 0;
-  for (float v : b) m = std::max(m, double(std::fabs(v)));
-  return test::max_abs_err(a, b) / std::max(m, 1e-30);
-}
+using test::norm_err;
 // The LiDAR head's shape with T towers of `tower_width`: 15 per-point features read from
 // columns 1..15 of 16-wide rows, 24 grouped inputs, two hidden layers, T · `tower_out` outputs.
 field::MlpSpec head_spec(int towers, int tower_width, int tower_out, Activation hidden,

@@ -55,4 +55,10 @@ double max_abs_err(const std::vector<float>& a, const std::vector<float>& b) {
   return m;
 }
 
+double norm_err(const std::vector<float>& a, const std::vector<float>& b) {
+  double m = 0;
+  for (float v : b) m = std::max(m, double(std::fabs(v)));
+  return max_abs_err(a, b) / std::max(m, 1e-30);
+}
+
 }  // namespace sgnlf::test

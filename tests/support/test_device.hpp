@@ -28,6 +28,9 @@ std::string temp_dir(const std::string& name);  // fresh empty folder under the 
 double max_sym_rel_err(const std::vector<float>& a, const std::vector<float>& b,
                        double floor = 1e-6);
 double max_abs_err(const std::vector<float>& a, const std::vector<float>& b);
+// max_i |a_i − b_i| / max_i |b_i|: for float GEMM outputs, whose rounding scales with the
+// magnitude of the whole output rather than of each entry.
+double norm_err(const std::vector<float>& a, const std::vector<float>& b);
 
 }  // namespace sgnlf::test
 
