@@ -22,12 +22,7 @@ using adversarial::PatchDiscriminator;
 using adversarial::PatchDiscriminatorConfig;
 
 namespace {
-std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
-  Rng r(seed);
-  std::vector<float> v(n);
-  for (auto& x : v) x = r.uniform(lo, hi);
-  return v;
-}
+using test::uniform;
 // Host composition of the reference kernels: logits of every scale for n images (normalised
 // input x, [n][h][w][2]), parameters in the discriminator's flat layout.
 std::vector<std::vector<float>> ref_logits(const PatchDiscriminator& D, const std::vector<float>& p,

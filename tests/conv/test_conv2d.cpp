@@ -16,12 +16,7 @@ SGNLF_DEVICE_TESTS;
 using namespace sgnlf;
 
 namespace {
-std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
-  Rng r(seed);
-  std::vector<float> v(n);
-  for (auto& x : v) x = r.uniform(lo, hi);
-  return v;
-}
+using test::uniform;
 using test::norm_err;  // float sums against a double reference scale with the output
 // Zeroes the padding channels c.. of an NHWC buffer with channel stride cs.
 void zero_padding(std::vector<float>& v, int c, int cs) {

@@ -20,12 +20,7 @@ SGNLF_DEVICE_TESTS;
 using namespace sgnlf;
 
 namespace {
-std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
-  Rng r(seed);
-  std::vector<float> v(n);
-  for (auto& x : v) x = r.uniform(lo, hi);
-  return v;
-}
+using test::uniform;
 // Distinct values 0.01·k (k a random permutation), so no window has ties within 2 FD steps.
 std::vector<float> distinct(size_t n, uint64_t seed) {
   std::vector<float> v(n);

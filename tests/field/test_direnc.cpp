@@ -13,12 +13,7 @@ SGNLF_DEVICE_TESTS;
 using namespace sgnlf;
 
 namespace {
-std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
-  Rng r(seed);
-  std::vector<float> v(n);
-  for (auto& x : v) x = r.uniform(lo, hi);
-  return v;
-}
+using test::uniform;
 std::vector<float> unit_dirs(int n, uint64_t seed) {
   Rng r(seed);
   std::vector<float> d;

@@ -26,12 +26,7 @@ field::KPlanesConfig small_config() {
   c.features = 2;
   return c;
 }
-std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
-  Rng r(seed);
-  std::vector<float> v(n);
-  for (auto& x : v) x = r.uniform(lo, hi);
-  return v;
-}
+using test::uniform;
 const char* name(PlaneGroups g) {
   return g == PlaneGroups::Both ? "both" : g == PlaneGroups::Static ? "static" : "dynamic";
 }

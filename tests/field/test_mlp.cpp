@@ -15,12 +15,7 @@ using namespace sgnlf;
 using field::Activation;
 
 namespace {
-std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
-  Rng r(seed);
-  std::vector<float> v(n);
-  for (auto& x : v) x = r.uniform(lo, hi);
-  return v;
-}
+using test::uniform;
 using test::norm_err;
 double dot(const std::vector<float>& a, const std::vector<float>& b) {
   double s = 0;

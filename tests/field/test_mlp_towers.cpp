@@ -19,12 +19,7 @@ using namespace sgnlf;
 using field::Activation;
 
 namespace {
-std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
-  Rng r(seed);
-  std::vector<float> v(n);
-  for (auto& x : v) x = r.uniform(lo, hi);
-  return v;
-}
+using test::uniform;
 using test::norm_err;
 // The LiDAR head's shape with T towers of `tower_width`: 15 per-point features read from
 // columns 1..15 of 16-wide rows, 24 grouped inputs, two hidden layers, T · `tower_out` outputs.

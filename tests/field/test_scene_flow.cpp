@@ -14,12 +14,7 @@ SGNLF_DEVICE_TESTS;
 using namespace sgnlf;
 
 namespace {
-std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
-  Rng r(seed);
-  std::vector<float> v(n);
-  for (auto& x : v) x = r.uniform(lo, hi);
-  return v;
-}
+using test::uniform;
 double dot(const std::vector<float>& a, const std::vector<float>& b) {
   double s = 0;
   for (size_t i = 0; i < a.size(); ++i) s += double(a[i]) * b[i];

@@ -30,12 +30,7 @@ field::TimeHashGridConfig small_config() {
   c.time_slices = 4;
   return c;
 }
-std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
-  Rng r(seed);
-  std::vector<float> v(n);
-  for (auto& x : v) x = r.uniform(lo, hi);
-  return v;
-}
+using test::uniform;
 }  // namespace
 
 TEST_CASE("time hash grid tables and config refusals", "[field][timehash]") {

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <memory>
 
+#include "core/rng.hpp"
+
 namespace sgnlf::test {
 namespace {
 bool& needs_device_flag() {
@@ -53,6 +55,13 @@ double max_abs_err(const std::vector<float>& a, const std::vector<float>& b) {
   double m = 0;
   for (size_t i = 0; i < a.size(); ++i) m = std::max(m, std::fabs(double(a[i]) - b[i]));
   return m;
+}
+
+std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
+  Rng r(seed);
+  std::vector<float> v(n);
+  for (auto& x : v) x = r.uniform(lo, hi);
+  return v;
 }
 
 double norm_err(const std::vector<float>& a, const std::vector<float>& b) {

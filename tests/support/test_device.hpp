@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,8 @@ std::string temp_dir(const std::string& name);  // fresh empty folder under the 
 double max_sym_rel_err(const std::vector<float>& a, const std::vector<float>& b,
                        double floor = 1e-6);
 double max_abs_err(const std::vector<float>& a, const std::vector<float>& b);
+// n values uniform in [lo, hi) from the project's generator (core/rng.hpp) seeded with `seed`.
+std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed);
 // max_i |a_i − b_i| / max_i |b_i|: for float GEMM outputs, whose rounding scales with the
 // magnitude of the whole output rather than of each entry.
 double norm_err(const std::vector<float>& a, const std::vector<float>& b);
