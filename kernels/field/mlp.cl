@@ -16,7 +16,14 @@
 //   gbias[gidx[point]] when `indexed`, instead of the bias: layer 0 of an MLP with grouped
 //   inputs, see runtime/field/mlp.hpp),
 //   HAS_BIAS (0: a bias-free layer: the bias row is neither read nor given a gradient; it
-//   stays in the layout, zero, so that bias-free and biased MLPs share one layout).
+//   stays in the layout, zero, so that bias-free and biased MLPs share one layout),
+//   TOWER_IN, TOWER_OUT (a later layer of an MLP of towers: input i and output o are joined
+//   only when i / TOWER_IN == o / TOWER_OUT, every other weight is a structural zero; 0: dense).
+//   The kernels skip the zero blocks where a 16-wide tile lies in one tower (the forward's
+//   and the weight gradient's output tiles: TOWER_OUT % 16 == 0; the input backward's input
+//   tiles: TOWER_IN % 16 == 0). A skipped term is an exact zero (x · 0), so the results are
+//   those of the dense products; the off-tower weight gradient is zeroed by
+//   field_mlp_tower_mask in any case.
 #ifndef HAS_BIAS
 #define HAS_BIAS 1
 #endif
@@ -29,6 +36,15 @@
 #ifndef GROUP_BIAS
 #define GROUP_BIAS 0
 #endif
+#ifndef TOWER_IN
+#define TOWER_IN 0
+#endif
+#ifndef TOWER_OUT
+#define TOWER_OUT 0
+#endif
+// Output tiles within one tower (forward, weight gradient) / input tiles (input backward).
+#define TOWER_OUT_TILES (TOWER_IN > 0 && TOWER_OUT > 0 && TOWER_OUT % 16 == 0)
+#define TOWER_IN_TILES (TOWER_IN > 0 && TOWER_OUT > 0 && TOWER_IN % 16 == 0)
 // d_in rows are whole padded vectors (full-width stores) only without stride or offset.
 #if DIN_STRIDE == IN_PAD && DIN_OFFSET == 0
 #define DIN_DENSE 1
@@ -107,7 +123,12 @@ __kernel void field_mlp_fwd(const int n, __global const float* params, const uin
 #endif
     rows[p] = in + (size_t)min(p0 + p, n - 1) * IN_STRIDE + IN_OFFSET;
   }
-  for (int i = 0; i < N_IN; ++i) {
+#if TOWER_OUT_TILES
+  const int i_lo = (o0 / TOWER_OUT) * TOWER_IN, i_hi = min(N_IN, i_lo + TOWER_IN);
+#else
+  const int i_lo = 0, i_hi = N_IN;
+#endif
+  for (int i = i_lo; i < i_hi; ++i) {
     const float16 w = vload16(0, W + i * OUT_PAD + o0);
 #pragma unroll
     for (int p = 0; p < PTS; ++p) acc[p] = fma((float16)(rows[p][i]), w, acc[p]);
@@ -173,6 +194,16 @@ __kernel void field_mlp_bwd_wgt(const int n, const int chunk, __global const flo
     return;
   }
   const int r0 = rb * ROWS;
+#if TOWER_OUT_TILES
+  {  // A row block wholly outside this output tile's tower: structural zeros.
+    const int t_lo = (o0 / TOWER_OUT) * TOWER_IN;
+    if (r0 + ROWS <= t_lo || r0 >= t_lo + TOWER_IN) {
+      for (int r = 0; r < ROWS; ++r)
+        if (r0 + r < N_IN) vstore16((float16)(0.0f), 0, dst + (size_t)(r0 + r) * OUT_PAD + o0);
+      return;
+    }
+  }
+#endif
   float16 acc[ROWS];
   int col[ROWS];
 #pragma unroll
@@ -226,7 +257,12 @@ __kernel void field_mlp_bwd_in(const int n, __global const float* wt, __global c
     acc[p] = (float16)(0.0f);
     rows[p] = d_pre + (size_t)min(p0 + p, n - 1) * OUT_PAD;
   }
-  for (int o = 0; o < OUT; ++o) {
+#if TOWER_IN_TILES
+  const int o_lo = (i0 / TOWER_IN) * TOWER_OUT, o_hi = min(OUT, o_lo + TOWER_OUT);
+#else
+  const int o_lo = 0, o_hi = OUT;
+#endif
+  for (int o = o_lo; o < o_hi; ++o) {
     const float16 w = vload16(0, wt + o * IN_PAD + i0);
 #pragma unroll
     for (int p = 0; p < PTS; ++p) acc[p] = fma((float16)(rows[p][o]), w, acc[p]);

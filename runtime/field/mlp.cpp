@@ -47,9 +47,10 @@ void MlpSpec::validate() const {
 double MlpSpec::macs_per_point() const {
   double macs = 0;
   int in = n_in;
-  for (const auto& l : layers) {
-    macs += double(in) * l.width;
-    in = l.width;
+  for (size_t l = 0; l < layers.size(); ++l) {
+    // After layer 0 a tower's units see only their tower's inputs.
+    macs += double(in) * layers[l].width / (l == 0 ? 1 : towers);
+    in = layers[l].width;
   }
   return macs;
 }
@@ -69,7 +70,8 @@ Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec) : rt_(rt), spec_(spec) {
   const int n_group = spec_.n_in_group;
   // Compiles a layer's kernels, specialised by -D defines (kernels/field/mlp.cl).
   std::string last_opt;
-  auto build = [&](Layer& L, int in_off, int prev_act, bool prev_pre, bool group_bias) {
+  auto build = [&](Layer& L, int in_off, int prev_act, bool prev_pre, bool group_bias,
+                   bool towered) {
     auto d = [](const char* k, int v) { return std::string(" -D") + k + "=" + std::to_string(v); };
     const std::string opt = d("N_IN", L.n_in) + d("IN_STRIDE", L.in_stride) +
                             d("IN_OFFSET", in_off) + d("IN_PAD", pad16(L.n_in)) + d("OUT", L.out) +
@@ -78,7 +80,10 @@ Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec) : rt_(rt), spec_(spec) {
                             d("PREV_ACT", prev_act) + d("PREV_PRE", prev_pre) +
                             d("DIN_STRIDE", L.in_stride) + d("DIN_OFFSET", in_off) +
                             d("GROUP_BIAS", group_bias) + d("PTS", kPts) + d("ROWS", kRows) +
-                            d("HAS_BIAS", spec_.bias);
+                            d("HAS_BIAS", spec_.bias) +
+                            (towered ? d("TOWER_IN", L.n_in / spec_.towers) +
+                                           d("TOWER_OUT", L.out / spec_.towers)
+                                     : std::string());
     const std::string f = "field/mlp.cl";
     L.fwd = rt_.kernel(f, "field_mlp_fwd", opt);
     L.bwd_out = rt_.kernel(f, "field_mlp_bwd_out", opt);
@@ -106,7 +111,8 @@ Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec) : rt_(rt), spec_(spec) {
     n_params_ += size_t(L.n_rows + 1) * size_t(L.out_pad);
     const bool prev_pre = l > 0 && layers_.back().store_pre;
     const int prev_act = l > 0 ? int(layers_.back().act) : -1;
-    build(L, l == 0 ? spec_.in_offset : 0, prev_act, prev_pre, l == 0 && n_group > 0);
+    build(L, l == 0 ? spec_.in_offset : 0, prev_act, prev_pre, l == 0 && n_group > 0,
+          l > 0 && spec_.towers > 1);
     if (l == 0 && n_group > 0) {
       // The grouped part: a linear layer of n_group inputs whose weights are rows n_in .. of
       // layer 0 and whose bias is layer 0's bias (both follow at n_in · out_pad).
@@ -115,7 +121,7 @@ Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec) : rt_(rt), spec_(spec) {
       group_.out_pad = group_.out_stride = L.out_pad;
       group_.act = Activation::None;
       group_.store_pre = false;
-      build(group_, 0, -1, false, false);
+      build(group_, 0, -1, false, false, false);
     }
     layers_.push_back(std::move(L));
     n_in = ls.width;

@@ -27,8 +27,10 @@
 // only where input i's tower i / (n_in / T) equals output o's tower o / (out / T); the other
 // weights are structurally zero: init_params writes 0 there and backward() gives them exactly
 // zero gradient (so Adam keeps them at 0). Biases are free. Forward and d_in need nothing
-// else (zero weights contribute exactly 0), so the Mlp computes the T separate networks.
-// macs_per_point() still counts the dense products, which is what is computed.
+// else (zero weights contribute exactly 0), so the Mlp computes the T separate networks; the
+// kernels skip the zero blocks where a 16-wide tile lies within one tower (kernels/field/
+// mlp.cl, TOWER_IN / TOWER_OUT), with the same results. macs_per_point() counts the products
+// of the T networks (not the structural zeros).
 #pragma once
 #include <cstdint>
 #include <string>

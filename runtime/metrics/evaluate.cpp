@@ -51,7 +51,8 @@ const std::vector<std::string>& view_metric_keys() {
       "cd",           "fscore",          "depth_rmse",     "depth_medae",     "depth_ssim",
       "depth_psnr",   "depth_delta1",    "depth_lpips",    "intensity_rmse",  "intensity_medae",
       "intensity_ssim", "intensity_psnr", "raydrop_rmse",  "raydrop_acc",     "raydrop_f1",
-      "cd_pred_to_gt",  "cd_gt_to_pred"};
+      "cd_pred_to_gt",  "cd_gt_to_pred",  "depth_mse_returns", "depth_mse_missed",
+      "depth_mse_false", "raydrop_missed", "raydrop_false"};
   return keys;
 }
 
@@ -75,6 +76,7 @@ Json evaluate_view(const Sensor& sensor, const RangeImage& pred, const RangeImag
     log::warn("evaluate_view: empty point cloud (", ch.n_pred, " predicted, ", ch.n_gt,
               " ground-truth points): cd = null, fscore = 0");
   const DepthMetrics dm = depth_metrics(depth, gt_depth, gt.height, gt.width);
+  const DepthErrorParts parts = depth_error_parts(depth, gt_depth, pred.ray_drop, gt.ray_drop);
   const IntensityMetrics im = intensity_metrics(intensity, gt_intensity, gt.height, gt.width);
 
   Json j = Json::object();
@@ -96,6 +98,13 @@ Json evaluate_view(const Sensor& sensor, const RangeImage& pred, const RangeImag
   // The two directions of CD (not in the peers' tables): which side the error comes from.
   j["cd_pred_to_gt"] = number_or_null(ch.cd_pred_to_gt);
   j["cd_gt_to_pred"] = number_or_null(ch.cd_gt_to_pred);
+  // Where depth_rmse² comes from (not in the peers' tables either): range errors where both
+  // return, and the two kinds of wrong return decision (image_metrics.hpp, DepthErrorParts).
+  j["depth_mse_returns"] = number_or_null(parts.mse_returns);
+  j["depth_mse_missed"] = number_or_null(parts.mse_missed);
+  j["depth_mse_false"] = number_or_null(parts.mse_false);
+  j["raydrop_missed"] = number_or_null(parts.missed_frac);
+  j["raydrop_false"] = number_or_null(parts.false_frac);
   return j;
 }
 
@@ -146,7 +155,8 @@ Json definitions() {
                  {"psnr", "10 log10(80^2 / MSE)"},
                  {"ssim_data_range", "max(gt) - min(gt) after clipping"},
                  {"delta1", "fraction with max(gt/pred, pred/gt) < 1.25"},
-                 {"medae", "median |gt - pred|"}}},
+                 {"medae", "median |gt - pred|"},
+                 {"mse_parts", "depth_mse_returns + depth_mse_missed + depth_mse_false = depth_rmse^2 of each frame: the squared errors where both return, where the ground truth returns and the prediction drops, and where the prediction returns and the ground truth drops, each summed over its pixels and divided by all pixels; raydrop_missed and raydrop_false are those pixels' fractions"}}},
       {"intensity", {{"scale", "reflectance in [0, 1]: KITTI remission as stored, nuScenes intensity / 255, the twins' simulated reflectance"},
                      {"clip", {1e-6, 1.0}}, {"psnr", "10 log10(1 / MSE)"}}},
       {"raydrop", "rmse of the return probability against the label; acc and f1 of probability > 0.5"},

@@ -22,7 +22,10 @@ const std::vector<std::string>& view_metric_keys();
 // prediction and the masked GT image (range-0 pixels dropped).
 // Keys: cd, fscore, depth_rmse, depth_medae, depth_ssim, depth_psnr, depth_delta1,
 // depth_lpips (null), intensity_rmse, intensity_medae, intensity_ssim, intensity_psnr,
-// raydrop_rmse, raydrop_acc, raydrop_f1. Throws on size mismatch or non-finite inputs.
+// raydrop_rmse, raydrop_acc, raydrop_f1; beside them (not in the peers' tables) cd_pred_to_gt,
+// cd_gt_to_pred (CD's two terms) and depth_mse_returns, depth_mse_missed, depth_mse_false,
+// raydrop_missed, raydrop_false (where depth_rmse² comes from: DepthErrorParts).
+// Throws on size mismatch or non-finite inputs.
 Json evaluate_view(const Sensor& sensor, const RangeImage& pred, const RangeImage& gt);
 
 // Mean per key over views. Every view must have the same keys, each a number or null; a key

@@ -84,6 +84,32 @@ IntensityMetrics intensity_metrics(const std::vector<float>& pred, const std::ve
   return common_metrics<IntensityMetrics>(p, g, height, width, kIntensityMax);
 }
 
+DepthErrorParts depth_error_parts(const std::vector<float>& pred, const std::vector<float>& gt,
+                                  const std::vector<float>& prob, const std::vector<float>& label) {
+  require(!gt.empty(), "depth_error_parts: empty image");
+  check_inputs("depth_error_parts", pred, gt, gt.size());
+  check_inputs("depth_error_parts", prob, label, gt.size());
+  double se[3] = {0.0, 0.0, 0.0};  // returns, missed, false
+  size_t missed = 0, false_return = 0;
+  for (size_t i = 0; i < gt.size(); ++i) {
+    const double d = std::clamp(double(gt[i]), kDepthMin, kDepthMax) -
+                     std::clamp(double(pred[i]), kDepthMin, kDepthMax);
+    const bool hit = double(prob[i]) > kRaydropThreshold, truth = label[i] == 1.f;
+    if (hit && truth) {
+      se[0] += d * d;
+    } else if (truth) {
+      se[1] += d * d;
+      ++missed;
+    } else if (hit) {
+      se[2] += d * d;
+      ++false_return;
+    }
+    // Both dropped: both sides are masked to 0, clipped alike, and contribute nothing.
+  }
+  const double n = double(gt.size());
+  return {se[0] / n, se[1] / n, se[2] / n, double(missed) / n, double(false_return) / n};
+}
+
 RaydropMetrics raydrop_metrics(const std::vector<float>& prob, const std::vector<float>& label) {
   check_inputs("raydrop_metrics", prob, label, label.size());
   require(!label.empty(), "raydrop_metrics: empty image");

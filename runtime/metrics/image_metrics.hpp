@@ -26,6 +26,15 @@ struct IntensityMetrics {
 struct RaydropMetrics {
   double rmse = 0, acc = 0, f1 = 0;
 };
+// Where a view's depth MSE comes from (not in the peers' tables): the squared errors of the
+// masked, clipped depth of depth_metrics split by the pixel's two return decisions, each summed
+// and divided by all H×W pixels, so that returns + missed + false = depth_rmse² exactly.
+//   returns: both return (range error);  missed: ground truth returns, predicted dropped
+//   (≈ the ground-truth range²);  false: predicted return where the ground truth dropped.
+// missed_frac / false_frac: those pixels' share of all pixels (1 − raydrop_acc together).
+struct DepthErrorParts {
+  double mse_returns = 0, mse_missed = 0, mse_false = 0, missed_frac = 0, false_frac = 0;
+};
 
 // Median as numpy: the mean of the two middle values for an even count.
 double median(std::vector<double> v);
@@ -35,6 +44,9 @@ DepthMetrics depth_metrics(const std::vector<float>& pred, const std::vector<flo
                            int height, int width);
 IntensityMetrics intensity_metrics(const std::vector<float>& pred, const std::vector<float>& gt,
                                    int height, int width);
+// `pred` / `gt` as depth_metrics takes them, `prob` / `label` as raydrop_metrics.
+DepthErrorParts depth_error_parts(const std::vector<float>& pred, const std::vector<float>& gt,
+                                  const std::vector<float>& prob, const std::vector<float>& label);
 // `prob` = predicted return probability, `label` = ground-truth return label (0 or 1).
 RaydropMetrics raydrop_metrics(const std::vector<float>& prob, const std::vector<float>& label);
 

@@ -48,7 +48,7 @@ TEST_CASE("evaluate_view of a perfect prediction", "[metrics][evaluate]") {
   std::set<std::string> keys;
   for (const auto& [k, v] : j.items()) keys.insert(k);
   CHECK(keys == std::set<std::string>(view_metric_keys().begin(), view_metric_keys().end()));
-  CHECK(keys.size() == 17);
+  CHECK(keys.size() == 22);
   CHECK(j["cd"].get<double>() == 0.0);
   CHECK(j["fscore"].get<double>() == 1.0);
   CHECK(j["cd_pred_to_gt"].get<double>() == 0.0);
@@ -62,6 +62,9 @@ TEST_CASE("evaluate_view of a perfect prediction", "[metrics][evaluate]") {
   CHECK(j["raydrop_acc"].get<double>() == 1.0);
   CHECK(j["raydrop_f1"].get<double>() == 1.0);
   CHECK(j["raydrop_rmse"].get<double>() == Approx(0.1).epsilon(1e-6));
+  for (const char* k : {"depth_mse_returns", "depth_mse_missed", "depth_mse_false",
+                        "raydrop_missed", "raydrop_false"})
+    CHECK(j[k].get<double>() == 0.0);
 }
 
 TEST_CASE("evaluate_view masks the prediction by probability > 0.5", "[metrics][evaluate]") {
@@ -87,6 +90,13 @@ TEST_CASE("evaluate_view masks the prediction by probability > 0.5", "[metrics][
   CHECK(j["intensity_rmse"].get<double>() ==
         Approx((std::max(double(gt.intensity[k]), 1e-6) - 1e-6) / std::sqrt(n)).epsilon(1e-9));
   CHECK(j["raydrop_acc"].get<double>() == Approx((n - 1) / n));
+  // The one missed return is all of the depth error; the stray ground truth is no false return.
+  const double ek = double(gt.range[k]) - 1e-6;
+  CHECK(j["depth_mse_missed"].get<double>() == Approx(ek * ek / n).epsilon(1e-9));
+  CHECK(j["depth_mse_returns"].get<double>() == 0.0);
+  CHECK(j["depth_mse_false"].get<double>() == 0.0);
+  CHECK(j["raydrop_missed"].get<double>() == Approx(1.0 / n));
+  CHECK(j["raydrop_false"].get<double>() == 0.0);
   // CD: d1 all 0; d2 = 0 except GT point k, whose NN is its nearest other GT point.
   const auto gt_pts = unproject(s, gt);
   const Eigen::Vector3f pk = pixel_direction(s, int(k / s.width), int(k % s.width)) * gt.range[k];

@@ -92,3 +92,32 @@ TEST_CASE("ray-drop F1 is undefined without positives; bad inputs throw", "[metr
   CHECK_THROWS_AS(depth_metrics(std::vector<float>(49, 1.f), std::vector<float>(48, 1.f), 7, 7),
                   Error);
 }
+
+TEST_CASE("depth error parts: returns, missed and false returns sum to the depth MSE",
+          "[metrics][depth]") {
+  const int h = 7, w = 8, n = h * w;  // SSIM's 7×7 window needs 7 rows
+  // Ground truth: 10 m everywhere but pixels 2 and 3 (dropped); prediction masked as
+  // evaluate_view masks it (probability > 0.5).
+  std::vector<float> label(n, 1.f), prob(n, 0.9f), gt(n, 10.f), pred(n, 10.f);
+  label[2] = label[3] = 0.f;
+  gt[2] = gt[3] = 0.f;
+  pred[0] = 11.f;                    // both return: error 1
+  pred[1] = 100.f;                   // both return, clipped to 80: error 70
+  prob[2] = 0.2f, pred[2] = 0.f;     // both dropped: nothing
+  prob[3] = 0.7f, pred[3] = 30.f;    // false return: 30 − 1e-6
+  prob[4] = 0.5f, pred[4] = 0.f;     // missed return (0.5 is not > 0.5): 10 − 1e-6
+  prob[5] = 0.1f, pred[5] = 0.f;     // missed return
+  const DepthErrorParts p = depth_error_parts(pred, gt, prob, label);
+  const double e10 = 10.0 - 1e-6, e30 = 30.0 - 1e-6;
+  CHECK(p.mse_returns == Approx((1.0 + 4900.0) / n).epsilon(1e-12));
+  CHECK(p.mse_missed == Approx(2.0 * e10 * e10 / n).epsilon(1e-12));
+  CHECK(p.mse_false == Approx(e30 * e30 / n).epsilon(1e-12));
+  CHECK(p.missed_frac == Approx(2.0 / n));
+  CHECK(p.false_frac == Approx(1.0 / n));
+  const DepthMetrics m = depth_metrics(pred, gt, h, w);
+  CHECK(p.mse_returns + p.mse_missed + p.mse_false == Approx(m.rmse * m.rmse).epsilon(1e-12));
+  const RaydropMetrics r = raydrop_metrics(prob, label);
+  CHECK(1.0 - p.missed_frac - p.false_frac == Approx(r.acc).epsilon(1e-12));
+  CHECK_THROWS_AS(depth_error_parts(pred, gt, prob, std::vector<float>(n - 1, 1.f)), Error);
+  CHECK_THROWS_AS(depth_error_parts({}, {}, {}, {}), Error);
+}
