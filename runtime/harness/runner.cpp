@@ -1,9 +1,6 @@
 #include "harness/runner.hpp"
 
 #include <algorithm>
-#include <chrono>
-#include <cstdlib>
-#include <ctime>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -14,8 +11,6 @@
 #include "harness/context.hpp"
 #include "harness/markdown.hpp"
 #include "harness/results.hpp"
-#include "harness/schema.hpp"
-#include "harness/stats.hpp"
 
 namespace sgnlf::harness {
 namespace fs = std::filesystem;
