@@ -1,5 +1,6 @@
-// `sgnlf render --run <run dir> [--out <dir>] [--data <dataset>] [--device SPEC] [--poses FILE]
-// [--renderer fast|protocol] [--fast-config FILE]`: renders the test frames of a trained run
+// `sgnlf render --run <run dir> [--out <dir>] [--data <dataset>] [--device SPEC] [--poses FILE |
+// --frames IDS] [--renderer fast|protocol] [--fast-config FILE]`: renders the test frames (or the
+// recorded frames IDS, training frames too) of a trained run
 // (npy arrays and PNGs of the rendering above the ground truth), or novel views at the poses of
 // a KITTI-format trajectory file (npy, PNG and PCD per pose), and prints rays/s and frames/s.
 #include <chrono>
@@ -16,6 +17,7 @@ namespace {
 
 struct RenderArgs {
   std::string run, out, data, device, poses, sensor;
+  std::vector<int> frames;
   FastRenderOptions fast;
   pipeline::RenderSampling sampling;
 };
@@ -26,9 +28,14 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
   sub.add_option("--out", a->out, "Output folder (default <run>/renders)");
   sub.add_option("--data", a->data, "Dataset folder (default: the one the run trained on)");
   sub.add_option("--device", a->device, "OpenCL device index or name substring");
-  sub.add_option("--poses", a->poses,
+  auto* poses = sub.add_option("--poses", a->poses,
                  "Render these views instead of the test frames: KITTI trajectory file, one "
                  "T_world_lidar per line (12 numbers, the dataset's world frame, metres)");
+  sub.add_option("--frames", a->frames,
+                 "Render these recorded frames instead of the test frames (frame ids, comma "
+                 "separated; training frames too), each with its ground truth")
+      ->delimiter(',')
+      ->excludes(poses);
   sub.add_option("--sensor", a->sensor,
                  "Render for this sensor instead of the recording one: a preset (kitti360 = "
                  "HDL-64E, nuscenes = HDL-32E) or a sensor JSON file (keys of sensor.json); "
@@ -45,6 +52,8 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
       ->check(CLI::IsMember({"expected", "median"}));
   return std::function<int()>([a] {
     // Poses and settings first: bad input fails before the run is loaded.
+    if (!a->frames.empty() && !a->sensor.empty())
+      throw ConfigError("render: --frames renders with the recording sensor; drop --sensor");
     const std::vector<Pose> poses =
         a->poses.empty() ? std::vector<Pose>{} : io::read_kitti_poses(a->poses);
     const render::FastRenderConfig fcfg = a->fast.config();
@@ -64,7 +73,7 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
     if (views.empty() && sensor)
       for (int f : run.dataset->split.test) views.push_back(run.T_world_lidar[size_t(f)]);
     const Json files = views.empty()
-                           ? pipeline::render_run(run, out, fast.get())
+                           ? pipeline::render_run(run, out, fast.get(), a->frames)
                            : pipeline::render_poses(run, views, out, fast.get(), sensor.get());
     const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const long frames = long(files.size());

@@ -50,6 +50,23 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
   const RangeImage naive_img = io::read_range_npy(files[0].at("naive").get<std::string>());
   CHECK(naive_img.range == evaluate_naive(*run.dataset).images[0].range);
 
+  // Chosen frames: a training frame with its own ground truth and no naive view, the test frame
+  // as render_run renders it; an id the dataset lacks is refused by name.
+  const Frame& train_frame = run.dataset->frames[size_t(run.dataset->split.train[0])];
+  const Frame& test_frame = run.dataset->frames[13];
+  const Json chosen = render_run(run, run_dir + "/chosen", nullptr, {train_frame.id, test_frame.id});
+  REQUIRE(chosen.size() == 2);
+  CHECK(chosen[0].at("frame").get<int>() == train_frame.id);
+  CHECK_FALSE(chosen[0].at("test").get<bool>());
+  CHECK_FALSE(chosen[0].contains("naive"));
+  CHECK(io::read_range_npy(chosen[0].at("gt").get<std::string>()).range == train_frame.image.range);
+  CHECK(chosen[1].at("test").get<bool>());
+  CHECK(io::read_range_npy(chosen[1].at("pred").get<std::string>()).range ==
+        io::read_range_npy(files[0].at("pred").get<std::string>()).range);
+  CHECK(io::read_range_npy(chosen[1].at("naive").get<std::string>()).range == naive_img.range);
+  CHECK_THROWS_WITH(render_run(run, run_dir + "/chosen", nullptr, {-7}),
+                    Catch::Contains("frame -7 is not in dataset"));
+
   // Novel views: at a test frame's own pose the render equals render_run's; a pose far outside
   // the scene still renders; an empty pose list is refused.
   const Pose T_test = run.dataset->frames[13].T_world_lidar;

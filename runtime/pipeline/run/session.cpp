@@ -146,29 +146,51 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
   return j;
 }
 
-Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast) {
-  fs::create_directories(out_dir);
+Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast,
+                const std::vector<int>& frame_ids) {
   const Dataset& d = *run.dataset;
+  // (frame index, its place in the test split or -1) for every view asked for.
+  std::vector<std::pair<int, int>> views;
+  if (frame_ids.empty()) {
+    for (size_t k = 0; k < d.split.test.size(); ++k) views.emplace_back(d.split.test[k], int(k));
+  } else {
+    for (int id : frame_ids) {
+      const auto it = std::find_if(d.frames.begin(), d.frames.end(),
+                                   [id](const Frame& f) { return f.id == id; });
+      if (it == d.frames.end())
+        throw ConfigError("render: frame " + std::to_string(id) + " is not in dataset " +
+                          d.name + " (frame ids " + std::to_string(d.frames.front().id) + " to " +
+                          std::to_string(d.frames.back().id) + ")");
+      const int index = int(it - d.frames.begin());
+      const auto t = std::find(d.split.test.begin(), d.split.test.end(), index);
+      views.emplace_back(index, t == d.split.test.end() ? -1 : int(t - d.split.test.begin()));
+    }
+  }
+  fs::create_directories(out_dir);
   Json files = Json::array();
   const ViewSet naive = evaluate_naive(d);  // one image per test frame, in split order
-  for (size_t k = 0; k < d.split.test.size(); ++k) {
-    const Frame& fr = d.frames[size_t(d.split.test[k])];
-    const Pose& T = run.T_world_lidar[size_t(d.split.test[k])];
+  for (const auto& [index, test_k] : views) {
+    const Frame& fr = d.frames[size_t(index)];
+    const Pose& T = run.T_world_lidar[size_t(index)];
     RangeImage pred =
-        fast ? fast->render(T, d.split.test[k])
+        fast ? fast->render(T, index)
              : render_view(*run.model, *run.scene, T,
-                           run.manifest.config.schedule.render_chunk_rays, d.split.test[k]);
+                           run.manifest.config.schedule.render_chunk_rays, index);
     if (run.ray_drop) run.ray_drop->apply(pred);
     const std::string stem = (fs::path(out_dir) / std::to_string(fr.id)).string();
     io::write_range_npy(stem + "_pred.npy", pred);
     io::write_range_npy(stem + "_gt.npy", fr.image);
-    io::write_range_npy(stem + "_naive.npy", naive.images[k]);
     io::RangePictureOptions po;
     po.max_range_m = d.sensor.max_range_m;
     io::write_png(stem + ".png", stack(io::range_image_picture(masked_prediction(pred), po),
                                        io::range_image_picture(fr.image, po), 12));
-    files.push_back(Json{{"frame", fr.id}, {"png", stem + ".png"}, {"pred", stem + "_pred.npy"},
-                         {"gt", stem + "_gt.npy"}, {"naive", stem + "_naive.npy"}});
+    Json entry{{"frame", fr.id}, {"test", test_k >= 0}, {"png", stem + ".png"},
+               {"pred", stem + "_pred.npy"}, {"gt", stem + "_gt.npy"}};
+    if (test_k >= 0) {
+      io::write_range_npy(stem + "_naive.npy", naive.images[size_t(test_k)]);
+      entry["naive"] = stem + "_naive.npy";
+    }
+    files.push_back(entry);
   }
   return files;
 }

@@ -36,8 +36,11 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req);
 // Renders every test frame: <out>/<frame>_pred.npy, <frame>_gt.npy, <frame>_naive.npy (the naive
 // baseline's view; H×W×3, io/range_array.hpp) and <frame>.png (rendered above ground truth: depth, intensity, mask). Returns the files.
 // With `fast`, the views go through the fast renderer (pipeline::FastRenderer) instead of the
-// protocol's.
-Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast = nullptr);
+// protocol's. With `frame_ids` (the dataset's frame ids, training or test frames), those frames
+// instead, at the run's poses and times; a test frame among them gets its naive view too, a
+// training frame none (it is its own nearest scan). ConfigError names an id the dataset lacks.
+Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast = nullptr,
+                const std::vector<int>& frame_ids = {});
 
 // Renders novel views at the given poses (T_world_lidar in the dataset's world frame, metres):
 // <out>/pose_<k>.npy (H×W×3: range, return probability, intensity) and pose_<k>.png (the
