@@ -64,6 +64,11 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
   CHECK(io::read_range_npy(chosen[1].at("pred").get<std::string>()).range ==
         io::read_range_npy(files[0].at("pred").get<std::string>()).range);
   CHECK(io::read_range_npy(chosen[1].at("naive").get<std::string>()).range == naive_img.range);
+  const Json train_only = render_run(run, run_dir + "/train_only", nullptr, {train_frame.id});
+  REQUIRE(train_only.size() == 1);
+  CHECK_FALSE(train_only[0].contains("naive"));
+  CHECK(io::read_range_npy(train_only[0].at("pred").get<std::string>()).range ==
+        io::read_range_npy(chosen[0].at("pred").get<std::string>()).range);
   CHECK_THROWS_WITH(render_run(run, run_dir + "/chosen", nullptr, {-7}),
                     Catch::Contains("frame -7 is not in dataset"));
 

@@ -168,7 +168,10 @@ Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast,
   }
   fs::create_directories(out_dir);
   Json files = Json::array();
-  const ViewSet naive = evaluate_naive(d);  // one image per test frame, in split order
+  // One naive image per test frame, in split order; only when a test frame is among the views.
+  const bool any_test =
+      std::any_of(views.begin(), views.end(), [](const auto& v) { return v.second >= 0; });
+  const ViewSet naive = any_test ? evaluate_naive(d) : ViewSet{};
   for (const auto& [index, test_k] : views) {
     const Frame& fr = d.frames[size_t(index)];
     const Pose& T = run.T_world_lidar[size_t(index)];
