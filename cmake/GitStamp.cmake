@@ -15,6 +15,8 @@ endif()
 set(content "// Generated at build time by cmake/GitStamp.cmake. Do not edit.
 #include \"harness/context.hpp\"
 
+#include \"core/config.hpp\"
+
 namespace sgnlf::harness {
 
 Json build_git() {

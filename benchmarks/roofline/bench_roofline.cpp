@@ -2,6 +2,7 @@
 // float16 FMA chains and streaming bandwidth from copy and triad (kernels/roofline). The same
 // kernels, sizes, flop and byte counts as harness::measure_roofline, which the table harness
 // records in every result.
+#include "core/config.hpp"
 #include "harness/roofline.hpp"
 #include "support/bench_support.hpp"
 

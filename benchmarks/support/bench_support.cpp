@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "core/config.hpp"
 #include "harness/context.hpp"
 #include "harness/roofline.hpp"
 

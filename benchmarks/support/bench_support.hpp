@@ -6,7 +6,7 @@
 #include <benchmark/benchmark.h>
 
 #include "cl/runtime.hpp"
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 
 namespace sgnlf::bench {
 

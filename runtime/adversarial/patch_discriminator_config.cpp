@@ -1,6 +1,7 @@
 // PatchDiscriminatorConfig (patch_discriminator_config.hpp).
 #include "adversarial/patch_discriminator_config.hpp"
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf::adversarial {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "core/config_fields.hpp"
 
 namespace sgnlf::adversarial {

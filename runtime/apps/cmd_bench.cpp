@@ -11,6 +11,7 @@
 
 #include "apps/command.hpp"
 #include "cl/runtime.hpp"
+#include "core/config.hpp"
 #include "core/log.hpp"
 #include "harness/cells.hpp"
 #include "harness/context.hpp"

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "apps/command.hpp"
+#include "core/config.hpp"
 #include "harness/compare.hpp"
 
 namespace sgnlf::app {

@@ -8,6 +8,7 @@
 #include "apps/command.hpp"
 #include "apps/fast_render_options.hpp"
 #include "apps/sensor_rate_options.hpp"
+#include "core/config.hpp"
 #include "pipeline/run/session.hpp"
 
 namespace sgnlf::app {

@@ -9,6 +9,7 @@
 
 #include "apps/command.hpp"
 #include "apps/sensor_rate_options.hpp"
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "datasets/loader.hpp"
 #include "io/cloud_writers.hpp"

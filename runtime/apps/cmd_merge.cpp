@@ -13,6 +13,7 @@
 #include <memory>
 
 #include "apps/command.hpp"
+#include "core/config.hpp"
 #include "harness/cells.hpp"
 #include "harness/combine.hpp"
 #include "harness/runner.hpp"

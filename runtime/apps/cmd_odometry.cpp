@@ -12,6 +12,7 @@
 
 #include "apps/command.hpp"
 #include "apps/sensor_rate_options.hpp"
+#include "core/config.hpp"
 #include "core/progress.hpp"
 #include "datasets/loader.hpp"
 #include "datasets/protocol.hpp"

@@ -17,6 +17,7 @@
 
 #include "apps/command.hpp"
 #include "apps/sensor_rate_options.hpp"
+#include "core/config.hpp"
 #include "datasets/loader.hpp"
 #include "datasets/protocol.hpp"
 #include "metrics/pose_errors.hpp"

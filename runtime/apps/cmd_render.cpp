@@ -9,6 +9,7 @@
 
 #include "apps/command.hpp"
 #include "apps/fast_render_options.hpp"
+#include "core/config.hpp"
 #include "io/trajectory_io.hpp"
 #include "pipeline/run/session.hpp"
 

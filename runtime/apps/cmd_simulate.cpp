@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "apps/command.hpp"
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "datasets/simulate.hpp"
 

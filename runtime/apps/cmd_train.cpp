@@ -8,6 +8,7 @@
 
 #include "apps/command.hpp"
 #include "apps/sensor_rate_options.hpp"
+#include "core/config.hpp"
 #include "harness/context.hpp"
 #include "pipeline/methods/registry.hpp"
 #include "pipeline/config/presets.hpp"

@@ -1,5 +1,7 @@
 // Strict JSON configuration reading: every key a struct reads is marked as used, and finish()
-// rejects the keys nobody read, naming them and the config they came from.
+// rejects the keys nobody read, naming them and the config they came from. This header brings
+// the full nlohmann/json; a header that only names Json or ConfigReader includes
+// core/config_fwd.hpp instead.
 #pragma once
 #include <nlohmann/json.hpp>
 
@@ -10,11 +12,10 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/config_fwd.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf {
-
-using Json = nlohmann::json;
 
 namespace detail {
 template <typename T>
@@ -110,30 +111,5 @@ class ConfigReader {
   std::set<std::string> used_;
   mutable std::set<std::string> asked_;  // every key read or looked for: the valid keys here
 };
-
-// The valid key nearest to `key` (edit distance at most max(2, |key| / 3)), or "" when none is.
-std::string nearest_key(const std::string& key, const std::set<std::string>& valid);
-
-// Loads a JSON file; errors name the file and the parser's byte position.
-Json load_json_file(const std::string& path);
-// A config file the user names (--config): like load_json_file, but a missing file or a syntax
-// error is a ConfigError (exit 2 in apps/), naming the file and the line and column.
-Json load_config_file(const std::string& path);
-// Writes JSON atomically (temporary file + rename) with 2-space indentation.
-void write_json_file(const std::string& path, const Json& j);
-// Writes any text atomically (temporary file + rename).
-void write_text_file(const std::string& path, const std::string& text);
-
-// Range check helper for validate(): throws ConfigError naming the key and value.
-template <typename T>
-void check_range(const std::string& where, const std::string& key, T value, T lo, T hi) {
-  if (!(value >= lo && value <= hi))
-    throw ConfigError(where + ": '" + key + "' = " + std::to_string(value) + " outside [" +
-                      std::to_string(lo) + ", " + std::to_string(hi) + "]");
-}
-
-// 64-bit FNV-1a hash, used for config hashes and kernel source hashes.
-uint64_t fnv1a64(const std::string& data, uint64_t h = 1469598103934665603ull);
-std::string hex64(uint64_t v);
 
 }  // namespace sgnlf

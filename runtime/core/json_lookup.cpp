@@ -1,6 +1,8 @@
 // member_or_null (see json_lookup.hpp).
 #include "core/json_lookup.hpp"
 
+#include "core/config.hpp"
+
 namespace sgnlf {
 
 const Json& member_or_null(const Json& j, const std::string& k) {

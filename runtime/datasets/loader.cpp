@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "datasets/actor_truth.hpp"

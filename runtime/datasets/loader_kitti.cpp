@@ -7,6 +7,7 @@
 #include <fstream>
 #include <map>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "datasets/actor_truth.hpp"

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "datasets/loader_internal.hpp"

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 

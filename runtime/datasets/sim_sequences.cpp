@@ -1,6 +1,7 @@
 // The named synthetic sequences (see sim_sequences.hpp).
 #include "datasets/sim_sequences.hpp"
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf {

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "datasets/sim_actors.hpp"
 
 namespace sgnlf {

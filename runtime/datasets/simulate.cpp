@@ -4,6 +4,7 @@
 #include <cmath>
 #include <algorithm>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/progress.hpp"

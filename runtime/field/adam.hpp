@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "cl/runtime.hpp"
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 
 namespace sgnlf::field {
 

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "cl/runtime.hpp"
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "field/hash_grid_config.hpp"
 
 namespace sgnlf::field {

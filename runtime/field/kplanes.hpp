@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "cl/runtime.hpp"
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "core/config_fields.hpp"
 #include "field/kplanes_config.hpp"
 

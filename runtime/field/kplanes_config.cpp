@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "field/feature_count.hpp"
 

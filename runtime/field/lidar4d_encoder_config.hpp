@@ -3,7 +3,7 @@
 #pragma once
 #include <string>
 
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "field/hash_grid_config.hpp"
 #include "field/kplanes_config.hpp"
 #include "field/scene_flow_config.hpp"

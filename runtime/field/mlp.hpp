@@ -37,7 +37,7 @@
 #include <vector>
 
 #include "cl/runtime.hpp"
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "field/activation.hpp"
 
 namespace sgnlf::field {

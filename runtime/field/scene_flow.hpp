@@ -12,7 +12,7 @@
 #include <string>
 
 #include "cl/runtime.hpp"
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "core/config_fields.hpp"
 #include "field/hash_grid.hpp"
 #include "field/scene_flow_config.hpp"

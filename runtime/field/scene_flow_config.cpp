@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "field/feature_count.hpp"
 

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "cl/runtime.hpp"
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "core/config_fields.hpp"
 #include "field/hash_grid.hpp"
 #include "field/time_hash_grid_config.hpp"

@@ -1,5 +1,7 @@
 #include "geometry/sensor.hpp"
 
+#include "core/config.hpp"
+
 namespace sgnlf {
 
 void Sensor::validate() const {

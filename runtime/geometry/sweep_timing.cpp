@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "core/config.hpp"
+
 namespace sgnlf {
 
 void SweepTiming::validate(const std::string& w) const {

@@ -8,7 +8,7 @@
 #pragma once
 #include <string>
 
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "core/config_fields.hpp"
 #include "geometry/se3.hpp"
 

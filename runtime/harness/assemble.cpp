@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 
+#include "core/config.hpp"
 #include "harness/clock.hpp"
 #include "harness/results.hpp"
 #include "harness/schema.hpp"

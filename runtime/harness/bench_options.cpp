@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "core/config.hpp"
+
 namespace sgnlf::harness {
 namespace fs = std::filesystem;
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "harness/tables.hpp"
 
 namespace sgnlf::harness {

@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 
+#include "core/config.hpp"
 #include "core/log.hpp"
 #include "harness/clock.hpp"
 #include "harness/context.hpp"

@@ -4,6 +4,7 @@
 #include <map>
 #include <set>
 
+#include "core/config.hpp"
 #include "harness/cells.hpp"
 #include "harness/clock.hpp"
 #include "harness/results.hpp"

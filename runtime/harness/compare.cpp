@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/config.hpp"
 #include "core/json_lookup.hpp"
 #include "harness/schema.hpp"
 #include "harness/stats.hpp"

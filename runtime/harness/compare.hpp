@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 
 namespace sgnlf::harness {
 

@@ -12,6 +12,8 @@
 #include <sstream>
 #include <thread>
 
+#include "core/config.hpp"
+
 extern char** environ;
 
 namespace sgnlf::harness {

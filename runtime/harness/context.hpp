@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "cl/device.hpp"
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 
 namespace sgnlf::harness {
 

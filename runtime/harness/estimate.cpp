@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/config.hpp"
 #include "harness/stats.hpp"
 
 namespace sgnlf::harness {

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/config.hpp"
 #include "harness/tables.hpp"
 
 namespace sgnlf::harness {

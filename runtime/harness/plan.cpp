@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <iterator>
 
+#include "core/config.hpp"
 #include "harness/results.hpp"
 
 namespace sgnlf::harness {

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <filesystem>
 
+#include "core/config.hpp"
 #include "core/log.hpp"
 #include "datasets/loader.hpp"
 #include "datasets/simulate.hpp"

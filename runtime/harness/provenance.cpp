@@ -3,6 +3,7 @@
 // sequences came from which source and whether their config is today's.
 #include <sstream>
 
+#include "core/config.hpp"
 #include "harness/markdown.hpp"
 
 namespace sgnlf::harness {

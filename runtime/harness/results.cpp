@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 
+#include "core/config.hpp"
 #include "harness/stats.hpp"
 
 namespace sgnlf::harness {

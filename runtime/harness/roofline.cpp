@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/config.hpp"
 #include "harness/stats.hpp"
 
 namespace sgnlf::harness {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "cl/runtime.hpp"
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 
 namespace sgnlf::harness {
 

@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 
+#include "core/config.hpp"
 #include "core/log.hpp"
 #include "core/progress.hpp"
 #include "harness/clock.hpp"

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/config.hpp"
+
 namespace sgnlf::harness {
 
 double median(std::vector<double> v) {

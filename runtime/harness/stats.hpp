@@ -3,7 +3,7 @@
 #pragma once
 #include <vector>
 
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 
 namespace sgnlf::harness {
 

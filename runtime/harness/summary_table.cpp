@@ -5,6 +5,7 @@
 #include <vector>
 #include <filesystem>
 
+#include "core/config.hpp"
 #include "harness/tables.hpp"
 
 namespace sgnlf::harness {

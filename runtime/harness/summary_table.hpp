@@ -5,7 +5,7 @@
 #pragma once
 #include <string>
 
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 
 namespace sgnlf::harness {
 

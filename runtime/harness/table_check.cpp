@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/config.hpp"
 #include "harness/combine.hpp"
 #include "harness/markdown.hpp"
 #include "harness/schema.hpp"

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "core/config.hpp"
+
 namespace sgnlf::harness {
 namespace {
 

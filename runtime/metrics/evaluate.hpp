@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "geometry/range_image.hpp"
 #include "geometry/se3.hpp"
 #include "geometry/sensor.hpp"

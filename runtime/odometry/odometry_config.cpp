@@ -1,6 +1,8 @@
 // OdometryConfig: validation and strict JSON (see odometry_config.hpp).
 #include "odometry/odometry_config.hpp"
 
+#include "core/config.hpp"
+
 namespace sgnlf::odometry {
 
 void OdometryConfig::validate(const std::string& w) const {

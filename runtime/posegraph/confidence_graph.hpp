@@ -18,7 +18,7 @@
 #pragma once
 #include <vector>
 
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "geometry/se3.hpp"
 #include "posegraph/confidence_graph_config.hpp"
 #include "posegraph/edges.hpp"

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <set>
 
+#include "core/config.hpp"
+
 namespace sgnlf::posegraph {
 namespace {
 

@@ -1,6 +1,7 @@
 // confidence_graph_json (see confidence_graph.hpp): what a run folder keeps of each graph.
 #include <cmath>
 
+#include "core/config.hpp"
 #include "posegraph/confidence_graph.hpp"
 
 namespace sgnlf::posegraph {

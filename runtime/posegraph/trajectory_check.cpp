@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf::posegraph {

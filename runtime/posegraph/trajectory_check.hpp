@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "geometry/se3.hpp"
 #include "posegraph/edges.hpp"
 #include "posegraph/frame_cloud.hpp"

@@ -1,6 +1,7 @@
 // RayDropUNetConfig (ray_drop_unet_config.hpp).
 #include "refine/ray_drop_unet_config.hpp"
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf::refine {

@@ -13,7 +13,7 @@
 #include <string>
 #include <utility>
 
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "core/config_fields.hpp"
 
 namespace sgnlf::refine {

@@ -1,6 +1,8 @@
 // FastRenderConfig validation and JSON.
 #include "render/fast_render_config.hpp"
 
+#include "core/config.hpp"
+
 namespace sgnlf::render {
 
 void FastRenderConfig::validate(const std::string& where) const { config::check_fields(*this, where); }

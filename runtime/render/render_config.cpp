@@ -1,6 +1,8 @@
 // RenderConfig presets, validation and JSON.
 #include "render/render_config.hpp"
 
+#include "core/config.hpp"
+
 namespace sgnlf::render {
 
 RenderConfig RenderConfig::preset(const std::string& dataset) {

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "core/config_fields.hpp"
 
 namespace sgnlf::render {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "core/config.hpp"
 #include "core/json_lookup.hpp"
 #include "report/html.hpp"
 #include "report/page.hpp"

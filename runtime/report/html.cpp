@@ -1,5 +1,6 @@
 #include "report/html.hpp"
 
+#include "core/config.hpp"
 #include "io/scan_io.hpp"
 #include "report/base64.hpp"
 

@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <string>
 
+#include "core/config.hpp"
 #include "core/json_lookup.hpp"
 #include "report/html.hpp"
 #include "report/run_sections.hpp"

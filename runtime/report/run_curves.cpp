@@ -3,6 +3,7 @@
 // geometric stage's ATE after each of its steps (geometric_log.jsonl) beside it.
 #include <map>
 
+#include "core/config.hpp"
 #include "report/html.hpp"
 #include "report/run_sections.hpp"
 #include "report/svg_chart.hpp"

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "report/html.hpp"
 

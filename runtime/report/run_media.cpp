@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "core/config.hpp"
 #include "io/trajectory_io.hpp"
 #include "report/html.hpp"
 #include "report/run_sections.hpp"

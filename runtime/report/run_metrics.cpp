@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/config.hpp"
 #include "core/json_lookup.hpp"
 #include "harness/markdown.hpp"
 #include "harness/tables.hpp"

@@ -4,7 +4,7 @@
 // the field behaves exactly as without the spectral part (tests/spectral/test_fusion.cpp).
 #pragma once
 #include "cl/runtime.hpp"
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "spectral/fusion_ramp.hpp"
 
 namespace sgnlf::spectral {

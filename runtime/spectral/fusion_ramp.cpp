@@ -1,6 +1,7 @@
 // The fusion ramp λ(t) (fusion_ramp.hpp).
 #include "spectral/fusion_ramp.hpp"
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf::spectral {

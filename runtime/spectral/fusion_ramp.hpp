@@ -4,7 +4,7 @@
 #pragma once
 #include <string>
 
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "core/config_fields.hpp"
 
 namespace sgnlf::spectral {

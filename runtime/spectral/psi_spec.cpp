@@ -1,6 +1,7 @@
 // Ψ's spec (psi_spec.hpp).
 #include "spectral/psi_spec.hpp"
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf::spectral {

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cstdio>
 
+#include "core/config.hpp"
+
 namespace sgnlf::spectral {
 
 ShapeExperimentResult run_shape_experiment(SpectralTrainer& trainer, const ShapeSpec& spec, size_t eval_points,

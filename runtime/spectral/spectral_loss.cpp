@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf::spectral {

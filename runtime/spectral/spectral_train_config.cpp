@@ -1,6 +1,8 @@
 // SpectralTrainConfig (spectral_train_config.hpp).
 #include "spectral/spectral_train_config.hpp"
 
+#include "core/config.hpp"
+
 namespace sgnlf::spectral {
 
 void SpectralTrainConfig::validate() const {

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "core/config_fields.hpp"
 #include "spectral/psi_spec.hpp"
 #include "spectral/spectral_loss.hpp"

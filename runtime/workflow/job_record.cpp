@@ -3,6 +3,7 @@
 
 #include <filesystem>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf::workflow {

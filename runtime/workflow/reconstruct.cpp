@@ -6,6 +6,7 @@
 #include <memory>
 #include <filesystem>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/staged_progress.hpp"

@@ -23,7 +23,7 @@
 #include <string>
 
 #include "cl/runtime.hpp"
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "datasets/loader.hpp"
 
 namespace sgnlf::workflow {

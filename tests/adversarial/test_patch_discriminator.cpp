@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "adversarial/patch_discriminator.hpp"
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "reference.hpp"

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <set>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "datasets/actor_truth.hpp"
 #include "datasets/loader.hpp"

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "datasets/loader.hpp"

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "datasets/sim_actors.hpp"
 #include "datasets/sim_lidar.hpp"

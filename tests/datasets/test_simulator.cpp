@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "datasets/loader.hpp"
 #include "datasets/protocol.hpp"

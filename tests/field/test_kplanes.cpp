@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "core/config.hpp"
 #include "core/rng.hpp"
 #include "field/frame_time.hpp"
 #include "field/kplanes.hpp"

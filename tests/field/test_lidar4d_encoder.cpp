@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "field/lidar4d_encoder.hpp"

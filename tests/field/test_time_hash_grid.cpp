@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "core/config.hpp"
 #include "core/rng.hpp"
 #include "field/time_hash_grid.hpp"
 #include "reference.hpp"

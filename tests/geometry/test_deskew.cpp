@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "core/config.hpp"
 #include "geometry/deskew.hpp"
 #include "geometry/sensor.hpp"
 

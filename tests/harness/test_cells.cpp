@@ -3,6 +3,7 @@
 // Fake hooks, no training.
 #include <catch2/catch.hpp>
 
+#include "core/config.hpp"
 #include "fake_table.hpp"
 #include "harness/cells.hpp"
 #include "harness/markdown.hpp"

@@ -4,6 +4,7 @@
 // compared with the full run, and every refusal and flag is made to happen.
 #include <catch2/catch.hpp>
 
+#include "core/config.hpp"
 #include "fake_table.hpp"
 #include "harness/cells.hpp"
 #include "harness/combine.hpp"

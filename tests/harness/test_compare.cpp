@@ -3,6 +3,7 @@
 // repetitions is not flagged, a large median ratio over enough repetitions is.
 #include <catch2/catch.hpp>
 
+#include "core/config.hpp"
 #include "fake_table.hpp"
 #include "harness/compare.hpp"
 #include "harness/tables.hpp"

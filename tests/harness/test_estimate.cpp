@@ -2,6 +2,7 @@
 // sequence took in a previous run, else that row's median; other tables or scales are refused.
 #include <catch2/catch.hpp>
 
+#include "core/config.hpp"
 #include "fake_table.hpp"
 #include "harness/estimate.hpp"
 

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 
+#include "core/config.hpp"
 #include "datasets/loader.hpp"
 #include "harness/prepare.hpp"
 #include "harness/tables.hpp"

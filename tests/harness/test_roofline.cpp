@@ -2,6 +2,7 @@
 // context block's fields.
 #include <cmath>
 
+#include "core/config.hpp"
 #include "harness/context.hpp"
 #include "harness/roofline.hpp"
 #include "support/test_device.hpp"

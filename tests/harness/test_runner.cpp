@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "core/config.hpp"
 #include "fake_table.hpp"
 #include "harness/compare.hpp"
 #include "harness/markdown.hpp"

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "core/config.hpp"
 #include "fake_table.hpp"
 #include "harness/runner.hpp"
 #include "harness/compare.hpp"

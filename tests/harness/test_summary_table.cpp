@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "core/config.hpp"
 #include "fake_table.hpp"
 #include "harness/summary_table.hpp"
 

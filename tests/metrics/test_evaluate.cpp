@@ -5,6 +5,7 @@
 #include <limits>
 #include <set>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "metrics/chamfer.hpp"

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "core/config.hpp"
 #include "odometry/adaptive_threshold.hpp"
 #include "odometry/motion_model.hpp"
 #include "odometry/odometry_config.hpp"

@@ -2,6 +2,7 @@
 // preset resolves, overrides merge key by key, the learning-rate schedule decays to 0.1×.
 #include <catch2/catch.hpp>
 
+#include "core/config.hpp"
 #include "pipeline/config/presets.hpp"
 
 using namespace sgnlf;

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "core/config.hpp"
 #include "pipeline/run/method.hpp"
 #include "pipeline/config/presets.hpp"
 #include "pipeline/config/train_config.hpp"

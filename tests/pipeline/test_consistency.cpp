@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/config.hpp"
 #include "pipeline/train/consistency_schedule.hpp"
 #include "pipeline/config/presets.hpp"
 #include "pipeline/model/ray_batch.hpp"

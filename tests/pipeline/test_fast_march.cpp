@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "field/mlp.hpp"

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/config.hpp"
 #include "field/lidar4d_encoder.hpp"
 #include "pipeline/config/presets.hpp"
 #include "pipeline/model/ray_batch.hpp"

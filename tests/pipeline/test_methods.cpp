@@ -5,6 +5,7 @@
 
 #include <set>
 
+#include "core/config.hpp"
 #include "pipeline/methods/registry.hpp"
 #include "pipeline/config/presets.hpp"
 #include "pipeline/train/step_policy.hpp"

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/config.hpp"
 #include "datasets/simulate.hpp"
 #include "pipeline/methods/registry.hpp"
 #include "pipeline/train/pose_set.hpp"

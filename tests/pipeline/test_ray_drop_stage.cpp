@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 
+#include "core/config.hpp"
 #include "datasets/protocol.hpp"
 #include "io/range_array.hpp"
 #include "pipeline/model/render_view.hpp"

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/config.hpp"
 #include "datasets/simulate.hpp"
 #include "io/range_array.hpp"
 #include "pipeline/run/evaluate.hpp"

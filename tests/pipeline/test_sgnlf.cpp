@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/config.hpp"
 #include "pipeline/methods/registry.hpp"
 #include "pipeline/config/presets.hpp"
 #include "pipeline/model/ray_batch.hpp"

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/config.hpp"
 #include "field/mlp.hpp"
 #include "pipeline/train/checkpoint.hpp"
 #include "pipeline/model/ray_batch.hpp"

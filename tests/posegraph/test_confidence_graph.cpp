@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "io/pose_graph_svg.hpp"

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "core/config.hpp"
 #include "loop_fixture.hpp"
 #include "posegraph/confidence_graph.hpp"
 #include "posegraph/standin_features.hpp"

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "refine/box_dropout.hpp"
 #include "refine/one_cycle.hpp"

@@ -1,6 +1,7 @@
 // RenderConfig: presets, validation and strict JSON.
 #include <catch2/catch.hpp>
 
+#include "core/config.hpp"
 #include "render/render_config.hpp"
 
 using namespace sgnlf;

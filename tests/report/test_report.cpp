@@ -6,6 +6,7 @@
 
 #include <filesystem>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "report/base64.hpp"
 #include "report/report.hpp"

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "support/test_device.hpp"
 #include "workflow/job_record.hpp"

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "datasets/loader.hpp"
 #include "geometry/sensor.hpp"

@@ -1,6 +1,7 @@
 // ConsistencyConfig (consistency_config.hpp).
 #include "pipeline/config/consistency_config.hpp"
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf::pipeline {

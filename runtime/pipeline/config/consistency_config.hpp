@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "adversarial/patch_discriminator_config.hpp"
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "core/config_fields.hpp"
 #include "geometry/pixel_boundaries.hpp"
 #include "geometry/sensor.hpp"

@@ -1,6 +1,8 @@
 // Lidar4DConfig (lidar4d_config.hpp).
 #include "pipeline/config/lidar4d_config.hpp"
 
+#include "core/config.hpp"
+
 namespace sgnlf::pipeline {
 
 void Lidar4DConfig::validate(const std::string& where) const {

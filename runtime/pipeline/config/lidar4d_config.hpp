@@ -5,7 +5,7 @@
 // Present only in the configs of methods built on the 4D field (ConfigSections::lidar4d,
 // methods/), so other methods' config hashes do not change.
 #pragma once
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "core/config_fields.hpp"
 #include "field/lidar4d_encoder_config.hpp"
 #include "refine/ray_drop_unet_config.hpp"

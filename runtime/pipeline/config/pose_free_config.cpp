@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "core/config.hpp"
+
 namespace sgnlf::pipeline {
 
 int GeometricScheduleConfig::steps_at(long epoch, double progress) const {

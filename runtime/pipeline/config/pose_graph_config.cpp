@@ -1,6 +1,7 @@
 // PoseGraphConfig (pose_graph_config.hpp).
 #include "pipeline/config/pose_graph_config.hpp"
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf::pipeline {

@@ -5,7 +5,7 @@
 // reevaluate_every counts epochs here). Present only in the configs of methods with the
 // confidence graph (ConfigSections::pose_graph, methods/).
 #pragma once
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "core/config_fields.hpp"
 #include "posegraph/confidence_graph_config.hpp"
 

@@ -4,6 +4,7 @@
 #include <string_view>
 #include <utility>
 
+#include "core/config.hpp"
 #include "pipeline/methods/registry.hpp"
 
 namespace sgnlf::pipeline {

@@ -4,7 +4,7 @@
 // (spectral_schedule.hpp). Present only in the configs of methods built on the hybrid field
 // (ConfigSections::spectral, methods/), so other methods' config hashes do not change.
 #pragma once
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "core/config_fields.hpp"
 #include "spectral/fusion_ramp.hpp"
 #include "spectral/psi_spec.hpp"

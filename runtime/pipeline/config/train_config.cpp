@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/config.hpp"
 #include "pipeline/methods/registry.hpp"
 
 namespace sgnlf::pipeline {

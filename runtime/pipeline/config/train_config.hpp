@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "core/config_fields.hpp"
 #include "pipeline/config/consistency_config.hpp"
 #include "pipeline/config/lidar4d_config.hpp"

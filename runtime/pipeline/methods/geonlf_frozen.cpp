@@ -1,4 +1,5 @@
 // Control row (not in the paper): GeoNLF's field trained on the frozen initial poses.
+#include "core/config.hpp"
 #include "pipeline/methods/methods.hpp"
 
 namespace sgnlf::pipeline::methods {

@@ -1,6 +1,7 @@
 // Control row (not in the paper): SG-NLF's field (hybrid encoder, cross-frame consistency) trained
 // on the ground-truth poses, held fixed. Beside SG-NLF it measures the paper's claim that the
 // pose-free run is as good as one on the true poses (on the real scene too).
+#include "core/config.hpp"
 #include "pipeline/methods/methods.hpp"
 
 namespace sgnlf::pipeline::methods {

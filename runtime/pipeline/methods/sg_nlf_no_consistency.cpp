@@ -1,6 +1,7 @@
 // Ablation (method.md §5): SG-NLF without the adversarial cross-frame consistency. Its config
 // has no "consistency" section at all, so its config and hash are those of a method that never
 // had the term.
+#include "core/config.hpp"
 #include "pipeline/methods/methods.hpp"
 
 namespace sgnlf::pipeline::methods {

@@ -1,4 +1,5 @@
 // Ablation (method.md §5): SG-NLF without the global pose graph.
+#include "core/config.hpp"
 #include "pipeline/methods/methods.hpp"
 
 namespace sgnlf::pipeline::methods {

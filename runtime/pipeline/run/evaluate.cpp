@@ -1,6 +1,7 @@
 // evaluate_model / evaluate_naive (see evaluate.hpp).
 #include "pipeline/run/evaluate.hpp"
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "datasets/protocol.hpp"
 #include "metrics/evaluate.hpp"

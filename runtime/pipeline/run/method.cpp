@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "core/config.hpp"
 #include "pipeline/methods/registry.hpp"
 #include "pipeline/config/presets.hpp"
 #include "pipeline/run/session.hpp"

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <filesystem>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/progress.hpp"

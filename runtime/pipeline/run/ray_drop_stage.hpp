@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "cl/runtime.hpp"
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "datasets/dataset.hpp"
 #include "pipeline/config/train_config.hpp"
 #include "pipeline/model/model.hpp"

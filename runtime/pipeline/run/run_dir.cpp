@@ -1,5 +1,6 @@
 // Run folder manifest and loading (see run_dir.hpp).
 #include "pipeline/run/run_dir.hpp"
+#include "core/config.hpp"
 #include "pipeline/train/spectral_schedule.hpp"
 
 #include <filesystem>

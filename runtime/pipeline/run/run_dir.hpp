@@ -12,7 +12,7 @@
 #include <string>
 
 #include "cl/runtime.hpp"
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "datasets/loader.hpp"
 #include "pipeline/model/model.hpp"
 #include "pipeline/model/scene.hpp"

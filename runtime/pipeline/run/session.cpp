@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "core/config.hpp"
 #include "core/log.hpp"
 #include "core/progress.hpp"
 #include "io/cloud_writers.hpp"

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "field/hash_grid.hpp"

@@ -1,6 +1,7 @@
 // FlowSupervisionStep (flow_supervision.hpp).
 #include "pipeline/train/flow_supervision.hpp"
 
+#include "core/config.hpp"
 #include "pipeline/model/ray_batch.hpp"
 #include "render/scene_flow_loss.hpp"
 

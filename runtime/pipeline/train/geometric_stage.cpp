@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "io/pose_graph_svg.hpp"
 #include "pipeline/train/checkpoint.hpp"

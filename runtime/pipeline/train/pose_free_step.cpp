@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "field/hash_grid.hpp"
 #include "metrics/pose_errors.hpp"

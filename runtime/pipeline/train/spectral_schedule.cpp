@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "posegraph/frame_cloud.hpp"

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/config.hpp"
 #include "core/log.hpp"
 #include "core/progress.hpp"
 #include "pipeline/train/checkpoint.hpp"
