@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "core/config.hpp"
 #include "core/rng.hpp"
 #include "metrics/chamfer.hpp"
 #include "metrics/evaluate.hpp"

@@ -2,6 +2,7 @@
 #include "adversarial/patch_discriminator_config.hpp"
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf::adversarial {
@@ -30,5 +31,7 @@ PatchDiscriminatorConfig PatchDiscriminatorConfig::from_json(const Json& section
   c.validate(where);
   return c;
 }
+
+Json PatchDiscriminatorConfig::to_json() const { return config::write_fields(*this); }
 
 }  // namespace sgnlf::adversarial

@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 
 namespace sgnlf::adversarial {
 
@@ -56,7 +55,7 @@ struct PatchDiscriminatorConfig {
   // Reads a "discriminator" section object; `where` names it in errors.
   static PatchDiscriminatorConfig from_json(const Json& section,
                                             const std::string& where = "discriminator");
-  Json to_json() const { return config::write_fields(*this); }
+  Json to_json() const;
 };
 
 }  // namespace sgnlf::adversarial

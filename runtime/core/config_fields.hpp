@@ -18,7 +18,8 @@
 // checks stay with the parent's validate(), which calls the nested one's. omit_when(x) marks a
 // key added after results were committed: it is written only when not x, so their configs and
 // hashes stay as they were. A nested config that has its own field list is described in the
-// schema with its keys ("fields") as well.
+// schema with its keys ("fields") as well. The markers omit_when and choices are in the json-free
+// core/config_choices.hpp, which is all a config header needs to list its fields.
 #pragma once
 #include <cstddef>
 #include <string>
@@ -26,42 +27,9 @@
 #include <utility>
 
 #include "core/config.hpp"
+#include "core/config_choices.hpp"
 
 namespace sgnlf::config {
-
-template <typename T>
-struct OmitWhen {
-  T value;
-};
-template <typename T>
-OmitWhen<T> omit_when(T value) {
-  return {value};
-}
-
-// The names of an enum member's values: in the JSON the member is its value's name; any other
-// string is refused, naming the key and the names.
-template <typename E>
-struct Choices {
-  const std::pair<E, const char*>* list;
-  std::size_t n;
-  const std::pair<E, const char*>* begin() const { return list; }
-  const std::pair<E, const char*>* end() const { return list + n; }
-  std::string names() const {
-    std::string s;
-    for (const auto& c : *this) s += (s.empty() ? "" : ", ") + std::string(c.second);
-    return s;
-  }
-  const char* name_of(E value) const {
-    for (const auto& c : *this)
-      if (c.first == value) return c.second;
-    throw ConfigError("config: an enum value without a name (" +
-                      std::to_string(static_cast<long long>(value)) + "; names: " + names() + ")");
-  }
-};
-template <typename E, std::size_t N>
-Choices<E> choices(const std::pair<E, const char*> (&list)[N]) {
-  return {list, N};
-}
 
 namespace detail {
 template <typename T, typename V, typename = void>

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "geometry/sensor.hpp"
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "datasets/actor_truth.hpp"

@@ -1,5 +1,6 @@
 // Moving actors (see sim_actors.hpp). Every draw is a named value from Rng(seed, 6), in a fixed
 // order (core/rng.hpp: never two draws in one argument list).
+#include "core/config_fields.hpp"
 #include "datasets/sim_actors.hpp"
 
 #include <algorithm>
@@ -198,5 +199,7 @@ std::vector<ActorTrack> generate_actors(const ActorsConfig& cfg, const StreetWor
 void place_actors(Scene& scene, const std::vector<ActorTrack>& actors, double t_s) {
   for (const auto& a : actors) scene.dynamic.push_back(a.primitive(t_s, scene.ground_z));
 }
+
+Json ActorsConfig::to_json() const { return config::write_fields(*this); }
 
 }  // namespace sgnlf::sim

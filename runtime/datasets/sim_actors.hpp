@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 #include "datasets/dataset.hpp"
 #include "datasets/sim_street.hpp"
 
@@ -43,7 +42,7 @@ struct ActorsConfig {
   int count() const { return vehicles + pedestrians + crossing; }
   // Ranges and min <= max; ConfigError naming the key.
   void validate() const;
-  Json to_json() const { return config::write_fields(*this); }
+  Json to_json() const;
   // Unknown keys and wrong types refused (naming `where` and the key); validated.
   static ActorsConfig from_json(const Json& j, const std::string& where);
 };

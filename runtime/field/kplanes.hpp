@@ -19,7 +19,6 @@
 
 #include "cl/runtime.hpp"
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 #include "field/kplanes_config.hpp"
 
 namespace sgnlf::field {

@@ -1,4 +1,5 @@
 // KPlanesConfig (kplanes_config.hpp): checks and JSON reading.
+#include "core/config_fields.hpp"
 #include "field/kplanes_config.hpp"
 
 #include <string>
@@ -29,5 +30,7 @@ KPlanesConfig KPlanesConfig::from_json(const Json& j, const std::string& where) 
   c.validate(where);
   return c;
 }
+
+Json KPlanesConfig::to_json() const { return config::write_fields(*this); }
 
 }  // namespace sgnlf::field

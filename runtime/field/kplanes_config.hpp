@@ -3,7 +3,6 @@
 #include <string>
 
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 
 namespace sgnlf::field {
 
@@ -30,7 +29,7 @@ struct KPlanesConfig {
   }
   void validate(const std::string& where = "kplanes") const;  // throws ConfigError
   static KPlanesConfig from_json(const Json& j, const std::string& where);
-  Json to_json() const { return config::write_fields(*this); }
+  Json to_json() const;
 };
 
 }  // namespace sgnlf::field

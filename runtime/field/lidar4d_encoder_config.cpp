@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf::field {

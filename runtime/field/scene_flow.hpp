@@ -13,7 +13,6 @@
 
 #include "cl/runtime.hpp"
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 #include "field/hash_grid.hpp"
 #include "field/scene_flow_config.hpp"
 #include "field/mlp.hpp"

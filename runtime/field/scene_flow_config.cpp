@@ -1,4 +1,5 @@
 // SceneFlowConfig (scene_flow_config.hpp): checks, JSON reading and its hash grid.
+#include "core/config_fields.hpp"
 #include "field/scene_flow_config.hpp"
 
 #include <cmath>
@@ -43,5 +44,7 @@ HashGridConfig SceneFlowConfig::grid_config() const {
                  : 1.0f;
   return g;
 }
+
+Json SceneFlowConfig::to_json() const { return config::write_fields(*this); }
 
 }  // namespace sgnlf::field

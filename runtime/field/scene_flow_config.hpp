@@ -3,7 +3,6 @@
 #include <string>
 
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 #include "field/hash_grid_config.hpp"
 
 namespace sgnlf::field {
@@ -34,7 +33,7 @@ struct SceneFlowConfig {
   // Ranges, features divisible by time_nodes, max_resolution ≥ base_resolution.
   void validate(const std::string& where = "scene_flow") const;  // throws ConfigError
   static SceneFlowConfig from_json(const Json& j, const std::string& where);
-  Json to_json() const { return config::write_fields(*this); }
+  Json to_json() const;
   // The hash grid this configuration describes (its MLP: scene_flow_mlp_spec()).
   HashGridConfig grid_config() const;
 };

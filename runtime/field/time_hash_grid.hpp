@@ -20,7 +20,6 @@
 
 #include "cl/runtime.hpp"
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 #include "field/hash_grid.hpp"
 #include "field/time_hash_grid_config.hpp"
 

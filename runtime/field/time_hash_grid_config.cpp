@@ -1,4 +1,5 @@
 // TimeHashGridConfig (time_hash_grid_config.hpp): checks and JSON reading.
+#include "core/config_fields.hpp"
 #include "field/time_hash_grid_config.hpp"
 
 #include <cmath>
@@ -27,5 +28,7 @@ TimeHashGridConfig TimeHashGridConfig::from_json(const Json& j, const std::strin
   c.validate(where);
   return c;
 }
+
+Json TimeHashGridConfig::to_json() const { return config::write_fields(*this); }
 
 }  // namespace sgnlf::field

@@ -3,7 +3,6 @@
 #include <string>
 
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 
 namespace sgnlf::field {
 
@@ -34,7 +33,7 @@ struct TimeHashGridConfig {
   }
   void validate(const std::string& where = "time_hash_grid") const;  // throws ConfigError
   static TimeHashGridConfig from_json(const Json& j, const std::string& where);
-  Json to_json() const { return config::write_fields(*this); }
+  Json to_json() const;
 };
 
 }  // namespace sgnlf::field

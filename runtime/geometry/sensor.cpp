@@ -1,6 +1,7 @@
 #include "geometry/sensor.hpp"
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 
 namespace sgnlf {
 

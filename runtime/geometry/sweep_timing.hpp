@@ -9,7 +9,6 @@
 #include <string>
 
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 #include "geometry/se3.hpp"
 
 namespace sgnlf {

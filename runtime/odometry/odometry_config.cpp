@@ -1,4 +1,5 @@
 // OdometryConfig: validation and strict JSON (see odometry_config.hpp).
+#include "core/config_fields.hpp"
 #include "odometry/odometry_config.hpp"
 
 #include "core/config.hpp"
@@ -19,5 +20,7 @@ OdometryConfig OdometryConfig::from_json(ConfigReader& r) {
   c.validate(r.where());
   return c;
 }
+
+Json OdometryConfig::to_json() const { return config::write_fields(*this); }
 
 }  // namespace sgnlf::odometry

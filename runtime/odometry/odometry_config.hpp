@@ -5,7 +5,6 @@
 #include <string>
 
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 
 namespace sgnlf::odometry {
 
@@ -84,7 +83,7 @@ struct OdometryConfig {
   double resolved_voxel_size() const { return voxel_size > 0 ? voxel_size : max_range / 100.0; }
   void validate(const std::string& where) const;
   static OdometryConfig from_json(ConfigReader& r);  // reads its keys; errors name r.where()
-  Json to_json() const { return config::write_fields(*this); }
+  Json to_json() const;
 };
 
 }  // namespace sgnlf::odometry

@@ -1,4 +1,5 @@
 // ConfidenceGraphConfig validation and JSON (see confidence_graph_config.hpp).
+#include "core/config_fields.hpp"
 #include "posegraph/confidence_graph_config.hpp"
 
 #include <cmath>
@@ -57,5 +58,7 @@ ConfidenceGraphConfig ConfidenceGraphConfig::from_json(const Json& j, const std:
   r.finish();
   return c;
 }
+
+Json ConfidenceGraphConfig::to_json() const { return config::write_fields(*this); }
 
 }  // namespace sgnlf::posegraph

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/config_choices.hpp"
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 
 namespace sgnlf::posegraph {
 
@@ -87,7 +87,7 @@ struct ConfidenceGraphConfig {
   static ConfidenceGraphConfig from_json(ConfigReader& r);
   // The whole object `j` (unknown keys rejected; errors name `where`).
   static ConfidenceGraphConfig from_json(const Json& j, const std::string& where);
-  Json to_json() const { return config::write_fields(*this); }
+  Json to_json() const;
 };
 
 }  // namespace sgnlf::posegraph

@@ -1,4 +1,5 @@
 // RayDropUNetConfig (ray_drop_unet_config.hpp).
+#include "core/config_fields.hpp"
 #include "refine/ray_drop_unet_config.hpp"
 
 #include "core/config.hpp"
@@ -31,5 +32,7 @@ RayDropUNetConfig RayDropUNetConfig::from_json(const Json& section, const std::s
   c.validate(where);
   return c;
 }
+
+Json RayDropUNetConfig::to_json() const { return config::write_fields(*this); }
 
 }  // namespace sgnlf::refine

@@ -13,8 +13,8 @@
 #include <string>
 #include <utility>
 
+#include "core/config_choices.hpp"
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 
 namespace sgnlf::refine {
 
@@ -78,7 +78,7 @@ struct RayDropUNetConfig {
   void validate(const std::string& where = "ray_drop_unet") const;  // throws ConfigError
   static RayDropUNetConfig from_json(const Json& section,
                                      const std::string& where = "ray_drop_unet");
-  Json to_json() const { return config::write_fields(*this); }
+  Json to_json() const;
 };
 
 }  // namespace sgnlf::refine

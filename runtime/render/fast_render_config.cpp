@@ -1,4 +1,5 @@
 // FastRenderConfig validation and JSON.
+#include "core/config_fields.hpp"
 #include "render/fast_render_config.hpp"
 
 #include "core/config.hpp"
@@ -15,5 +16,7 @@ FastRenderConfig FastRenderConfig::from_json(const Json& j, const std::string& w
   c.validate(where);
   return c;
 }
+
+Json FastRenderConfig::to_json() const { return config::write_fields(*this); }
 
 }  // namespace sgnlf::render

@@ -5,7 +5,6 @@
 #include <string>
 
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 
 namespace sgnlf::render {
 
@@ -45,7 +44,7 @@ struct FastRenderConfig {
   void validate(const std::string& where = "fast_render") const;
   // All keys optional, unknown keys rejected, validated.
   static FastRenderConfig from_json(const Json& j, const std::string& where = "fast_render");
-  Json to_json() const { return config::write_fields(*this); }
+  Json to_json() const;
 };
 
 }  // namespace sgnlf::render

@@ -1,4 +1,5 @@
 // RenderConfig presets, validation and JSON.
+#include "core/config_fields.hpp"
 #include "render/render_config.hpp"
 
 #include "core/config.hpp"
@@ -49,5 +50,7 @@ RenderConfig RenderConfig::from_json(const Json& j, const std::string& where, Re
 RenderConfig RenderConfig::from_json(const Json& j, const std::string& where) {
   return from_json(j, where, RenderConfig());
 }
+
+Json RenderConfig::to_json() const { return config::write_fields(*this); }
 
 }  // namespace sgnlf::render

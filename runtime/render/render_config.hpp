@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string>
 
+#include "core/config_choices.hpp"
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 
 namespace sgnlf::render {
 
@@ -102,7 +102,7 @@ struct RenderConfig {
   // eval_samples / eval_importance / eval_depth / stop_transmittance / coarse_waves /
   // head_weight_threshold appear only when set, so configs without them keep their
   // JSON and hash (run folders and baselines written before they existed still load).
-  Json to_json() const { return config::write_fields(*this); }
+  Json to_json() const;
   // Uniform bin width in normalised units: also the last sample's δ (see kernels/render/volume.cl).
   float bin_width(float scene_scale) const {
     return (far_m - near_m) * scene_scale / float(n_samples);

@@ -1,4 +1,5 @@
 // The fusion ramp λ(t) (fusion_ramp.hpp).
+#include "core/config_fields.hpp"
 #include "spectral/fusion_ramp.hpp"
 
 #include "core/config.hpp"
@@ -25,5 +26,7 @@ FusionRamp FusionRamp::from_json(const Json& j, const std::string& where) {
   f.validate();
   return f;
 }
+
+Json FusionRamp::to_json() const { return config::write_fields(*this); }
 
 }  // namespace sgnlf::spectral

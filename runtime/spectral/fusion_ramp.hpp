@@ -5,7 +5,6 @@
 #include <string>
 
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 
 namespace sgnlf::spectral {
 
@@ -21,7 +20,7 @@ struct FusionRamp {
   }
   void validate() const;
   static FusionRamp from_json(const Json& j, const std::string& where);
-  Json to_json() const { return config::write_fields(*this); }
+  Json to_json() const;
 };
 
 }  // namespace sgnlf::spectral

@@ -1,4 +1,5 @@
 // Ψ's spec (psi_spec.hpp).
+#include "core/config_fields.hpp"
 #include "spectral/psi_spec.hpp"
 
 #include "core/config.hpp"
@@ -21,5 +22,7 @@ PsiSpec PsiSpec::from_json(const Json& j, const std::string& where) {
   s.validate();
   return s;
 }
+
+Json PsiSpec::to_json() const { return config::write_fields(*this); }
 
 }  // namespace sgnlf::spectral

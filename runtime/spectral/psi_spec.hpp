@@ -3,8 +3,8 @@
 #pragma once
 #include <string>
 
+#include "core/config_choices.hpp"
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 #include "field/activation.hpp"
 
 namespace sgnlf::spectral {
@@ -31,7 +31,7 @@ struct PsiSpec {
   }
   void validate() const;
   static PsiSpec from_json(const Json& j, const std::string& where);
-  Json to_json() const { return config::write_fields(*this); }
+  Json to_json() const;
 };
 
 }  // namespace sgnlf::spectral

@@ -1,4 +1,5 @@
 // Spectral loss, its exact output gradients and the moment accumulator (spectral_loss.hpp).
+#include "core/config_fields.hpp"
 #include "spectral/spectral_loss.hpp"
 
 #include <Eigen/Dense>
@@ -125,5 +126,7 @@ Eigen::MatrixXd SpectralMoments::S() const {
   return m2_ / total_ - mu * mu.transpose();
 }
 Eigen::MatrixXd SpectralMoments::P() const { return p_ / total_; }
+
+Json SpectralLossConfig::to_json() const { return config::write_fields(*this); }
 
 }  // namespace sgnlf::spectral

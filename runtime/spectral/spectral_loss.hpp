@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "core/config_choices.hpp"
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 
 namespace sgnlf::spectral {
 
@@ -41,7 +41,7 @@ struct SpectralLossConfig {
   }
   void validate() const;
   static SpectralLossConfig from_json(const Json& j, const std::string& where);
-  Json to_json() const { return config::write_fields(*this); }
+  Json to_json() const;
 };
 
 // The five evaluation blocks, each n rows of the batched Ψ input/output.

@@ -1,4 +1,5 @@
 // SpectralTrainConfig (spectral_train_config.hpp).
+#include "core/config_fields.hpp"
 #include "spectral/spectral_train_config.hpp"
 
 #include "core/config.hpp"
@@ -19,5 +20,7 @@ SpectralTrainConfig SpectralTrainConfig::from_json(const Json& j, const std::str
   c.validate();
   return c;
 }
+
+Json SpectralTrainConfig::to_json() const { return config::write_fields(*this); }
 
 }  // namespace sgnlf::spectral

@@ -6,7 +6,6 @@
 #include <string>
 
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 #include "spectral/psi_spec.hpp"
 #include "spectral/spectral_loss.hpp"
 
@@ -34,7 +33,7 @@ struct SpectralTrainConfig {
   }
   void validate() const;
   static SpectralTrainConfig from_json(const Json& j, const std::string& where);
-  Json to_json() const { return config::write_fields(*this); }
+  Json to_json() const;
 };
 
 }  // namespace sgnlf::spectral

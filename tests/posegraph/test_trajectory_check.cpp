@@ -4,6 +4,7 @@
 // values and pose counts are refused.
 #include <catch2/catch.hpp>
 
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "posegraph/trajectory_check.hpp"
 #include "smooth_scene.hpp"

@@ -19,7 +19,6 @@
 
 #include "adversarial/patch_discriminator_config.hpp"
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 #include "geometry/pixel_boundaries.hpp"
 #include "geometry/sensor.hpp"
 

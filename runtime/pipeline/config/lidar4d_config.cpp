@@ -2,6 +2,7 @@
 #include "pipeline/config/lidar4d_config.hpp"
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 
 namespace sgnlf::pipeline {
 

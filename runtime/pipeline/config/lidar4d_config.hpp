@@ -6,7 +6,6 @@
 // methods/), so other methods' config hashes do not change.
 #pragma once
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 #include "field/lidar4d_encoder_config.hpp"
 #include "refine/ray_drop_unet_config.hpp"
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "core/config_choices.hpp"
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 
 namespace sgnlf::pipeline {
 

@@ -2,6 +2,7 @@
 #include "pipeline/config/pose_graph_config.hpp"
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf::pipeline {

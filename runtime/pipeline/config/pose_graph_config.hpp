@@ -6,7 +6,6 @@
 // confidence graph (ConfigSections::pose_graph, methods/).
 #pragma once
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 #include "posegraph/confidence_graph_config.hpp"
 
 namespace sgnlf::pipeline {

@@ -119,4 +119,8 @@ TrainConfig resolve_config(const std::string& method, const std::string& preset,
   return train_config_from_json(merged, where + " + " + overrides_name);
 }
 
+TrainConfig resolve_config(const std::string& method, const std::string& preset) {
+  return resolve_config(method, preset, Json::object());
+}
+
 }  // namespace sgnlf::pipeline

@@ -37,7 +37,9 @@ Json odometry_start_json(const std::string& method, const std::string& preset);
 // (the user's keys still win). `overrides_name` names where the overrides came from in errors
 // (e.g. "--config my.json").
 TrainConfig resolve_config(const std::string& method, const std::string& preset,
-                           const Json& overrides = Json::object(),
+                           const Json& overrides,
                            const std::string& overrides_name = "overrides");
+// The preset alone (no overrides).
+TrainConfig resolve_config(const std::string& method, const std::string& preset);
 
 }  // namespace sgnlf::pipeline

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf::pipeline {

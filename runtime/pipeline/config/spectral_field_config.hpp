@@ -5,7 +5,6 @@
 // (ConfigSections::spectral, methods/), so other methods' config hashes do not change.
 #pragma once
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 #include "spectral/fusion_ramp.hpp"
 #include "spectral/psi_spec.hpp"
 #include "spectral/spectral_loss.hpp"

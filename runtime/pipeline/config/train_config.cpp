@@ -5,9 +5,14 @@
 #include <cmath>
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 #include "pipeline/methods/registry.hpp"
 
 namespace sgnlf::pipeline {
+
+void FieldSizes::validate(const std::string& where) const { config::check_fields(*this, where); }
+void OptimConfig::validate(const std::string& where) const { config::check_fields(*this, where); }
+void ScheduleConfig::validate(const std::string& where) const { config::check_fields(*this, where); }
 
 double OptimConfig::lr_at(long step, long iterations) const {
   const double t = iterations > 0 ? double(step) / double(iterations) : 0.0;

@@ -8,7 +8,6 @@
 #include <string>
 
 #include "core/config_fwd.hpp"
-#include "core/config_fields.hpp"
 #include "pipeline/config/consistency_config.hpp"
 #include "pipeline/config/lidar4d_config.hpp"
 #include "pipeline/config/pose_free_config.hpp"
@@ -44,7 +43,7 @@ struct FieldSizes {
     v("head_layers", s.head_layers, 1, 8);
     v("dir_frequencies", s.dir_frequencies, 0, 16);
   }
-  void validate(const std::string& where) const { config::check_fields(*this, where); }
+  void validate(const std::string& where) const;  // the ranges of fields()
 };
 
 // Adam with exponential learning-rate decay to lr·final_factor (method.md §0 "Optimiser").
@@ -62,7 +61,7 @@ struct OptimConfig {
     v("eps", s.eps, 1e-30, 1.0);
     v("final_factor", s.final_factor, 1e-6, 1.0);
   }
-  void validate(const std::string& where) const { config::check_fields(*this, where); }
+  void validate(const std::string& where) const;  // the ranges of fields()
   // lr at `step` of `iterations`: lr · final_factor^(step / iterations).
   double lr_at(long step, long iterations) const;
 };
@@ -87,7 +86,7 @@ struct ScheduleConfig {
     v("render_chunk_rays", s.render_chunk_rays, 64, 1 << 22);
     v("patches_on_even_epochs", s.patches_on_even_epochs);
   }
-  void validate(const std::string& where) const { config::check_fields(*this, where); }
+  void validate(const std::string& where) const;  // the ranges of fields()
 };
 
 struct TrainConfig {

@@ -1,5 +1,6 @@
 // LidarNerfModel: the fast renderer (render_rays_fast, see model.hpp) and the density probe its
 // occupancy grid is built from.
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "pipeline/model/model.hpp"
 #include "pipeline/model/model_detail.hpp"

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/config.hpp"
+#include "core/config_fwd.hpp"
 #include "pipeline/train/checkpoint.hpp"
 #include "pipeline/model/model.hpp"
 #include "pipeline/model/scene.hpp"
@@ -26,7 +26,7 @@ class StepPolicy {
   // One training step with the network learning rate `lr` (may only enqueue).
   virtual void step(LidarNerfModel& model, uint64_t seed, long step, float lr) = 0;
   // Extra fields for train_log.jsonl at logged steps, and a short progress text.
-  virtual Json log_fields() { return Json::object(); }
+  virtual Json log_fields();  // none by default
   virtual std::string progress_text() { return ""; }
   // Named arrays saved beside the model's in checkpoints, and their restoration. load_state
   // also puts back what the policy sets on the model at every step (the coarse-to-fine level
