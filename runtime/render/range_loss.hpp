@@ -10,10 +10,11 @@
 
 namespace sgnlf::render {
 
-// The loss buffer holds these four floats, in this order.
+// The loss buffer holds the first four floats, in this order; `carve` is the weight-carving
+// term's (render::WeightCarving, read beside it by the model; 0 when off).
 struct LossValues {
-  float depth = 0, ret = 0, intensity = 0, grad = 0;
-  float total() const { return depth + ret + intensity + grad; }
+  float depth = 0, ret = 0, intensity = 0, grad = 0, carve = 0;
+  float total() const { return depth + ret + intensity + grad + carve; }
 };
 inline constexpr size_t kLossFloats = 4;
 

@@ -4,6 +4,9 @@
 
 #include "core/config.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace sgnlf::render {
 
 RenderConfig RenderConfig::preset(const std::string& dataset) {
@@ -35,8 +38,19 @@ void RenderConfig::validate(const std::string& where) const {
   if (coarse_waves > 1 && !(stop_transmittance > 0.0f))
     throw ConfigError(where + ": 'coarse_waves' = " + std::to_string(coarse_waves) +
                       " needs early termination ('stop_transmittance' > 0)");
+  if (surface_band_end_m > surface_band_start_m)
+    throw ConfigError(where + ": 'surface_band_end_m' = " + std::to_string(surface_band_end_m) +
+                      " must not exceed 'surface_band_start_m' = " +
+                      std::to_string(surface_band_start_m) + " (the band narrows)");
   if (patch_rows * patch_cols < 2)
     throw ConfigError(where + ": a patch of 'patch_rows' x 'patch_cols' = 1 x 1 has no pairs");
+}
+
+float RenderConfig::surface_band_m(long step) const {
+  if (surface_anneal_steps <= 0 || step >= surface_anneal_steps) return surface_band_end_m;
+  const double f = double(std::max(0L, step)) / double(surface_anneal_steps);
+  return float(double(surface_band_start_m) *
+               std::pow(double(surface_band_end_m) / double(surface_band_start_m), f));
 }
 
 RenderConfig RenderConfig::from_json(const Json& j, const std::string& where, RenderConfig c) {

@@ -15,6 +15,10 @@ struct RangeLossWeights {
   float ret = 1.0f;         // α_r: MSE of return probability vs the GT label
   float intensity = 10.0f;  // α_i: MSE of intensity, masked
   float grad = 100.0f;      // range-image gradient loss on patches (LiDAR-NeRF)
+  // Weight carving (NeuRAD's L_w, render/weight_carving.hpp): mean over rays with a return of
+  // sum w_i^2 over the samples farther than the surface band's half-width from the return.
+  // 0: off.
+  float carve = 0.0f;
   // The keys and ranges (core/config_fields.hpp); errors name "<render>.weights".
   template <class Self, class V>
   static void fields(Self& s, V& v) {
@@ -22,6 +26,7 @@ struct RangeLossWeights {
     v("ret", s.ret, 0.0f, 1e9f);
     v("intensity", s.intensity, 0.0f, 1e9f);
     v("grad", s.grad, 0.0f, 1e9f);
+    v("carve", s.carve, 0.0f, 1e9f, config::omit_when(0.0f));
   }
 };
 
@@ -62,6 +67,21 @@ struct RenderConfig {
   // intensity is below this weight each; depth is untouched). 0: the head runs on every live
   // sample. Needs stop_transmittance (it works on the live samples).
   float head_weight_threshold = 0.0f;
+  // Training samples placed by the measured return (render/surface_sampler.hpp; the peers
+  // sample uniformly): per training ray with a return at range r, surface_free_samples
+  // stratified in [near, r - w], surface_band_samples in [r - w, r + w] and
+  // surface_behind_samples in [r + w, r + w + surface_behind_m]; rays without a return get the
+  // same count stratified over [near, far]. The band's half-width w goes log-linearly from
+  // surface_band_start_m to surface_band_end_m over the first surface_anneal_steps steps.
+  // Training only (test rays have no return: they are rendered with n_samples / eval_samples).
+  // 0 band samples: off.
+  int surface_band_samples = 0;
+  int surface_free_samples = 16;
+  int surface_behind_samples = 4;
+  float surface_band_start_m = 1.0f;
+  float surface_band_end_m = 0.2f;
+  int surface_anneal_steps = 2000;
+  float surface_behind_m = 2.0f;
   RangeLossWeights weights;
   // Gradient loss on patch batches (LiDAR-NeRF: 2 × 8 patches, L1, GT steps ≥ 1 cm ignored).
   int patch_rows = 2;
@@ -86,6 +106,13 @@ struct RenderConfig {
     v("stop_transmittance", s.stop_transmittance, 0.0f, 0.5f, config::omit_when(0.0f));
     v("coarse_waves", s.coarse_waves, config::omit_when(1));
     v("head_weight_threshold", s.head_weight_threshold, 0.0f, 0.1f, config::omit_when(0.0f));
+    v("surface_band_samples", s.surface_band_samples, 0, 1 << 12, config::omit_when(0));
+    v("surface_free_samples", s.surface_free_samples, 1, 1 << 12, config::omit_when(16));
+    v("surface_behind_samples", s.surface_behind_samples, 0, 1 << 12, config::omit_when(4));
+    v("surface_band_start_m", s.surface_band_start_m, 1e-3f, 100.0f, config::omit_when(1.0f));
+    v("surface_band_end_m", s.surface_band_end_m, 1e-3f, 100.0f, config::omit_when(0.2f));
+    v("surface_anneal_steps", s.surface_anneal_steps, 0, 1 << 28, config::omit_when(2000));
+    v("surface_behind_m", s.surface_behind_m, 0.0f, 100.0f, config::omit_when(2.0f));
     v.section("weights", s.weights);
     v("patch_rows", s.patch_rows, 1, 256);
     v("patch_cols", s.patch_cols, 1, 256);
@@ -104,6 +131,12 @@ struct RenderConfig {
   // JSON and hash (run folders and baselines written before they existed still load).
   Json to_json() const;
   // Uniform bin width in normalised units: also the last sample's δ (see kernels/render/volume.cl).
+  bool surface_sampling() const { return surface_band_samples > 0; }
+  int surface_samples() const {
+    return surface_free_samples + surface_band_samples + surface_behind_samples;
+  }
+  // The surface band's half-width (metres) at training step `step`.
+  float surface_band_m(long step) const;
   float bin_width(float scene_scale) const {
     return (far_m - near_m) * scene_scale / float(n_samples);
   }

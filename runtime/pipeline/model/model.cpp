@@ -103,7 +103,10 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
   clamp_ = rt.kernel("render/sample.cl", "render_clamp_points");
 
   const size_t R = size_t(max_rays), S = size_t(c.render.n_samples),
-               M = S + size_t(c.render.n_importance), N = R * M;
+               M = std::max(S + size_t(c.render.n_importance),
+                            c.render.surface_sampling() ? size_t(c.render.surface_samples()) : 0),
+               N = R * M;
+  samples_cap_ = int(M);
   const size_t lf = size_t(encoder_->width());
   const size_t enc_dim = size_t(dirs_.enc_dim());
   params_ = floats(rt, layout_.total());
@@ -135,6 +138,9 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
     if (rc.head_weight_threshold > 0.0f)
       band_ = std::make_unique<HeadBand>(rt, max_rays, int(M), rc.head_weight_threshold);
   }
+  if (rc.surface_sampling()) surface_ = std::make_unique<render::SurfaceSampler>(rt, rc, scene_scale);
+  if (rc.weights.carve > 0.0f)
+    carve_ = std::make_unique<render::WeightCarving>(rt, rc, scene_scale, max_rays);
   loss_buf_.fill_zero();
   scene_scale_ = scene_scale;
   set_reuse_coarse_encodings(reuse_coarse_);  // off for the 4D encoder (see model.hpp)
@@ -190,7 +196,10 @@ void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long ste
   o_.write_vec(b.origins);
   d_.write_vec(b.directions);
   target_.write_vec(target);
-  const int M = sample(R, cfg_.render.jitter, seed, uint32_t(step));
+  // Training samples by the returns when render.surface_* says so, else the protocol's.
+  const int M = surface_ ? sample_surface(R, cfg_.render.jitter, seed, uint32_t(step))
+                         : sample(R, cfg_.render.jitter, seed, uint32_t(step));
+  half_w_ = float(cfg_.render.surface_band_m(step)) * scene_scale_;
   field_forward(R, M);
   // Loss (method.md §0) and its gradient; patch gradient loss on patch batches (§1).
   loss_buf_.fill_zero();
@@ -200,14 +209,17 @@ void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long ste
     loss_.patch_gradient(out_, target_, R / per_patch, grad_out_, terms_, loss_buf_);
   }
   if (cfg_.lidar4d && cfg_.lidar4d->chamfer_weight > 0.0) add_chamfer_term(b);
-  backward_chain(R, M, grad_, ray_grads);
+  carved_ = carve_ != nullptr;
+  backward_chain(R, M, grad_, ray_grads, carved_);
 }
 
-void LidarNerfModel::backward_chain(int R, int M, cl::Buffer& grad, bool ray_grads) {
+void LidarNerfModel::backward_chain(int R, int M, cl::Buffer& grad, bool ray_grads, bool carve) {
   const int n = R * M;
   // Backward chain: renderer → head MLP (into columns 1..15 of g_dens_, and per ray into
   // g_dir_enc_) → density MLP → hash grid.
   renderer_.backward(t_, h0_, head_out_, weights_, grad_out_, R, M, g_h0_, g_head_);
+  // Weight carving on the full layout (dead samples have zero weight and get no gradient).
+  if (carve) carve_->add(t_, h0_, weights_, target_, R, M, half_w_, g_h0_);
   // With early termination the chain runs on the live rows: the dead samples' gradients are
   // dropped (they do not exist in the truncated field).
   int rows = n;
@@ -238,7 +250,7 @@ void LidarNerfModel::backward_chain(int R, int M, cl::Buffer& grad, bool ray_gra
     return;
   }
   if (!g_x_) {  // allocated on the first pose-free step only
-    const size_t N = size_t(max_rays_) * size_t(cfg_.render.n_samples + cfg_.render.n_importance);
+    const size_t N = size_t(max_rays_) * size_t(samples_cap_);
     g_x_ = floats(rt_, N * 3);
     g_o_ = floats(rt_, size_t(max_rays_) * 3), g_d_ = floats(rt_, size_t(max_rays_) * 3);
     g_dir_ = floats(rt_, size_t(max_rays_) * 3);
@@ -312,7 +324,11 @@ LidarNerfModel::RayGrads LidarNerfModel::read_ray_grads() const {
   return g;
 }
 
-render::LossValues LidarNerfModel::read_loss() const { return render::RangeLoss::read_losses(loss_buf_); }
+render::LossValues LidarNerfModel::read_loss() const {
+  render::LossValues l = render::RangeLoss::read_losses(loss_buf_);
+  if (carved_) l.carve = float(carve_->read());
+  return l;
+}
 
 std::vector<float> LidarNerfModel::render_rays(const std::vector<float>& origins,
                                                const std::vector<float>& directions, int n) {

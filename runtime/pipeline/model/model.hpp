@@ -31,6 +31,8 @@
 #include "render/range_loss.hpp"
 #include "render/ray_gradient.hpp"
 #include "render/ray_sampler.hpp"
+#include "render/surface_sampler.hpp"
+#include "render/weight_carving.hpp"
 #include "render/volume_renderer.hpp"
 
 namespace sgnlf::spectral {
@@ -188,6 +190,9 @@ class LidarNerfModel {
   void field_forward(int n_rays, int samples);
   // Samples (uniform + importance) for n_rays rays from o_/d_; returns samples per ray.
   int sample(int n_rays, bool jitter, uint64_t seed, uint32_t step);
+  // Training samples placed by the batch's returns (target_; render.surface_*): every sample
+  // evaluated, no coarse pass; returns samples per ray.
+  int sample_surface(int n_rays, bool jitter, uint64_t seed, uint32_t step);
   // Early termination: counts the live merged samples per ray (one blocking read of n_rays
   // ints), then gathers their positions and encodings (live_).
   void compact(int n_rays, int M);
@@ -201,7 +206,8 @@ class LidarNerfModel {
   void add_chamfer_term(const RayBatch& b);
   // The backward chain of the last forward (R rays, M samples per ray) from grad_out_ into
   // `grad` (every slice overwritten), and the ray gradients when `ray_grads`.
-  void backward_chain(int R, int M, cl::Buffer& grad, bool ray_grads);
+  // With `carve` the weight-carving term of the batch's targets joins the renderer's gradient.
+  void backward_chain(int R, int M, cl::Buffer& grad, bool ray_grads, bool carve = false);
 
   cl::Runtime& rt_;
   TrainConfig cfg_;
@@ -256,6 +262,13 @@ class LidarNerfModel {
   std::unique_ptr<SampleCompaction> live_;
   std::unique_ptr<CoarseWaves> waves_;
   std::unique_ptr<HeadBand> band_;
+  // Training samples by the return (render.surface_band_samples > 0) and weight carving
+  // (render.weights.carve > 0), null when off; the band's half-width of the last step.
+  std::unique_ptr<render::SurfaceSampler> surface_;
+  std::unique_ptr<render::WeightCarving> carve_;
+  float half_w_ = 0.0f;
+  bool carved_ = false;  // the last forward_backward added the carving term
+  int samples_cap_ = 0;  // sample rows per ray the buffers hold
   // The fast renderer's marching, made on its first use with its config.
   std::unique_ptr<FastMarch> fast_;
   render::FastRenderConfig fast_cfg_;

@@ -66,6 +66,20 @@ int LidarNerfModel::sample(int n_rays, bool jitter, uint64_t seed, uint32_t step
   return M;
 }
 
+int LidarNerfModel::sample_surface(int n_rays, bool jitter, uint64_t seed, uint32_t step) {
+  const int M = surface_->samples(), n = n_rays * M;
+  encoded_ = false;
+  compacted_ = false;
+  fwd_rays_ = 0;  // a new forward: forward_rays()'s activations are gone
+  n_live_ = long(n);
+  n_coarse_ = 0;
+  n_band_ = 0;
+  surface_->sample(o_, d_, target_, n_rays, jitter, seed, step, t_, x_);
+  clamp_.set_args(n * 3, kSceneBound, x_);
+  clamp_.launch({cl::round_up(size_t(n) * 3, 64)}, {64});
+  return M;
+}
+
 void LidarNerfModel::coarse_waves(int n_rays) {
   const int S = cfg_.render.n_samples;
   // Each wave's rows: encodings, then the density MLP into dens_ (its σ logits are scattered

@@ -30,8 +30,10 @@ namespace fs = std::filesystem;
 namespace {
 
 Json loss_json(const render::LossValues& l) {
-  return Json{{"total", l.total()}, {"depth", l.depth}, {"return", l.ret},
-              {"intensity", l.intensity}, {"grad", l.grad}};
+  Json j{{"total", l.total()}, {"depth", l.depth}, {"return", l.ret},
+         {"intensity", l.intensity}, {"grad", l.grad}};
+  if (l.carve != 0.0f) j["carve"] = l.carve;  // written only with weight carving on
+  return j;
 }
 
 // Two pictures stacked with a gap of black rows.

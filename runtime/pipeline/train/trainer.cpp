@@ -22,8 +22,10 @@ std::string checkpoint_path(const std::string& run_dir) {
 namespace {
 
 Json loss_json(const render::LossValues& l) {
-  return Json{{"total", l.total()}, {"depth", l.depth}, {"return", l.ret},
-              {"intensity", l.intensity}, {"grad", l.grad}};
+  Json j{{"total", l.total()}, {"depth", l.depth}, {"return", l.ret},
+         {"intensity", l.intensity}, {"grad", l.grad}};
+  if (l.carve != 0.0f) j["carve"] = l.carve;  // written only with weight carving on
+  return j;
 }
 
 void append_line(const std::string& path, const Json& j) {
