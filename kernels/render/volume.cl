@@ -231,3 +231,30 @@ __kernel void render_median_depth(const int n_rays, const int n_samples, const f
   }
   out[3 * r] = depth;
 }
+
+// The spread of a ray's weights (the evaluation's "mix" depth, GS-LiDAR's): per ray
+// stats[2 r] = A = sum_i w_i (the opacity) and stats[2 r + 1] = sum_i w_i (t_i - m)^2 / A with
+// m = sum_i w_i t_i / A (0 when A < 1e-12). Weights as written by render_volume_fwd.
+// Sequential sums in sample order: deterministic.
+__kernel void render_depth_spread(const int n_rays, const int n_samples, __global const float* t,
+                                  __global const float* weights, __global float* stats) {
+  const int r = get_global_id(0);
+  if (r >= n_rays) return;
+  const int base = r * n_samples;
+  float a = 0.0f, m = 0.0f;
+  for (int i = 0; i < n_samples; ++i) {
+    a += weights[base + i];
+    m += weights[base + i] * t[base + i];
+  }
+  float v = 0.0f;
+  if (a >= 1e-12f) {
+    m /= a;
+    for (int i = 0; i < n_samples; ++i) {
+      const float e = t[base + i] - m;
+      v += weights[base + i] * e * e;
+    }
+    v /= a;
+  }
+  stats[2 * r] = a;
+  stats[2 * r + 1] = v;
+}

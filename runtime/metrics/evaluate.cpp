@@ -161,6 +161,7 @@ Json definitions() {
       {"intensity", {{"scale", "reflectance in [0, 1]: KITTI remission as stored, nuScenes intensity / 255, the twins' simulated reflectance"},
                      {"clip", {1e-6, 1.0}}, {"psnr", "10 log10(1 / MSE)"}}},
       {"raydrop", "rmse of the return probability against the label; acc and f1 of probability > 0.5"},
+      {"depth_variants", "model views rendered by the protocol renderer also record median_<m> (the median depth on every ray) and mix_<m> (the median depth where a ray's weight-normalised depth variance exceeds 10x the frame's median variance, GS-LiDAR's; mix_median_fraction: the share of such rays) for m in cd, cd_gt_to_pred, cd_pred_to_gt, fscore, depth_rmse, depth_medae, and opacity_mean (mean sum of weights over the rays predicted to return); the tables report the expected depth"},
       {"point_cloud", {{"cd", "mean nearest squared distance both ways, summed, m^2, of the masked prediction and the masked ground truth unprojected"},
                        {"fscore_threshold_sq_m2", kFscoreThresholdSq}}},
       {"per_frame", "every mean is over the per-frame values recorded beside it; an undefined value (null) in any frame makes the mean null"}};

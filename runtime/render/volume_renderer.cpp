@@ -12,7 +12,8 @@ VolumeRenderer::VolumeRenderer(cl::Runtime& rt, const RenderConfig& cfg, float s
       fwd_k_(rt.kernel("render/volume.cl", "render_volume_fwd")),
       weights_k_(rt.kernel("render/volume.cl", "render_volume_weights")),
       bwd_k_(rt.kernel("render/volume.cl", "render_volume_bwd")),
-      median_k_(rt.kernel("render/volume.cl", "render_median_depth")) {
+      median_k_(rt.kernel("render/volume.cl", "render_median_depth")),
+      spread_k_(rt.kernel("render/volume.cl", "render_depth_spread")) {
   cfg.validate("VolumeRenderer");
   require(scene_scale > 0.0f, "VolumeRenderer: scene_scale must be positive");
 }
@@ -73,6 +74,18 @@ cl::Event VolumeRenderer::median_depth(const cl::Buffer& t, const cl::Buffer& we
   check_floats(out, 3 * size_t(n_rays), "VolumeRenderer::median_depth out");
   median_k_.set_args(n_rays, n_samples, last_delta_, t, weights, out);
   return launch_1d(median_k_, size_t(n_rays));
+}
+
+cl::Event VolumeRenderer::depth_spread(const cl::Buffer& t, const cl::Buffer& weights, int n_rays,
+                                       int n_samples, cl::Buffer& stats) {
+  require(n_rays >= 0 && n_samples > 0,
+          "VolumeRenderer::depth_spread: bad shape n_rays = " + std::to_string(n_rays) +
+              ", n_samples = " + std::to_string(n_samples));
+  check_floats(t, size_t(n_rays) * n_samples, "VolumeRenderer::depth_spread t");
+  check_floats(weights, size_t(n_rays) * n_samples, "VolumeRenderer::depth_spread weights");
+  check_floats(stats, 2 * size_t(n_rays), "VolumeRenderer::depth_spread stats");
+  spread_k_.set_args(n_rays, n_samples, t, weights, stats);
+  return launch_1d(spread_k_, size_t(n_rays));
 }
 
 }  // namespace sgnlf::render

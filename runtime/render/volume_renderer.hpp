@@ -32,12 +32,16 @@ class VolumeRenderer {
   // forward()'s for the same rays.
   cl::Event median_depth(const cl::Buffer& t, const cl::Buffer& weights, int n_rays,
                          int n_samples, cl::Buffer& out);
+  // The spread of each ray's weights (kernels/render/volume.cl, render_depth_spread): stats
+  // (n_rays × 2) = (opacity Σ w, weight-normalised depth variance), normalised units².
+  cl::Event depth_spread(const cl::Buffer& t, const cl::Buffer& weights, int n_rays,
+                         int n_samples, cl::Buffer& stats);
 
  private:
   void check(const char* what, const cl::Buffer& t, const cl::Buffer& h0, int n_rays,
              int n_samples) const;
   float last_delta_;
-  cl::Kernel fwd_k_, weights_k_, bwd_k_, median_k_;
+  cl::Kernel fwd_k_, weights_k_, bwd_k_, median_k_, spread_k_;
 };
 
 }  // namespace sgnlf::render

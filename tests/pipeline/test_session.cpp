@@ -42,6 +42,16 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
     CHECK(m.at("naive_baseline").at("metrics").contains(k));
   }
   CHECK(m.at("naive_baseline").at("metrics").at("fscore").get<double>() > 0.0);
+  // Beside the expected depth: the median and "mix" depths' metrics, the mix's share of median
+  // rays and the mean opacity; the naive baseline has no weights, so none of them.
+  const Json& mx = m.at("metrics");
+  for (const char* k : {"median_cd", "median_fscore", "mix_cd", "mix_depth_rmse"})
+    CHECK(mx.at(k).get<double>() >= 0.0);
+  CHECK(mx.at("mix_median_fraction").get<double>() >= 0.0);
+  CHECK(mx.at("mix_median_fraction").get<double>() <= 0.5);  // above 10x the median: < half
+  CHECK(mx.at("opacity_mean").get<double>() > 0.0);
+  CHECK(mx.at("opacity_mean").get<double>() <= 1.0 + 1e-5);
+  CHECK_FALSE(m.at("naive_baseline").at("metrics").contains("median_cd"));
 
   const Json files = render_run(run, run_dir + "/renders");
   REQUIRE(files.size() == 1);

@@ -145,6 +145,27 @@ inline RefMedian ref_median_depth(int n_rays, int S, double last_delta, const Ve
   return m;
 }
 
+// render_depth_spread in double: per ray (opacity A = Σ w, Σ w (t − m)² / A with m = Σ w t / A).
+inline std::vector<double> ref_depth_spread(int n_rays, int S, const Vec<float>& t,
+                                            const Vec<float>& w) {
+  std::vector<double> out(size_t(n_rays) * 2, 0.0);
+  for (int r = 0; r < n_rays; ++r) {
+    double a = 0, m = 0, v = 0;
+    for (int i = 0; i < S; ++i) a += w[size_t(r) * S + i], m += double(w[size_t(r) * S + i]) * t[size_t(r) * S + i];
+    if (a >= 1e-12) {
+      m /= a;
+      for (int i = 0; i < S; ++i) {
+        const double e = double(t[size_t(r) * S + i]) - m;
+        v += w[size_t(r) * S + i] * e * e;
+      }
+      v /= a;
+    }
+    out[2 * size_t(r)] = a;
+    out[2 * size_t(r) + 1] = v;
+  }
+  return out;
+}
+
 // render_volume_bwd, written independently of the kernel: dL/dτ_i by explicit suffix sums.
 template <typename T>
 void ref_volume_bwd(int n_rays, int S, T last_delta, const Vec<T>& t, const Vec<T>& h0,

@@ -162,6 +162,45 @@ TEST_CASE("Median depth equals the reference: where the transmittance falls to 1
   CHECK(checked > n_rays - never - 5);
 }
 
+TEST_CASE("Depth spread equals the reference: opacity and weight-normalised variance",
+          "[render][volume]") {
+  render::RenderConfig cfg;
+  cfg.n_samples = 45;
+  render::VolumeRenderer vr(test::runtime(), cfg, kScale);
+  const int n_rays = 130, S = 45;
+  const auto t = make_t(n_rays, S, cfg.near_m * kScale, cfg.far_m * kScale, 21);
+  auto h0 = test::make_uniform(t.size(), -6.f, 3.f, 22);
+  for (int i = 0; i < S; ++i) h0[i] = -40.0f;  // ray 0 empty: opacity 0, variance 0
+  const std::vector<float> head(2 * t.size(), 0.0f);
+  const Fwd f = run_fwd(vr, t, h0, head, n_rays, S);
+  auto& rt = test::runtime();
+  auto bt = cl::Buffer::from(rt, t), bw = cl::Buffer::from(rt, f.w);
+  cl::Buffer stats(rt, size_t(n_rays) * 8);
+  vr.depth_spread(bt, bw, n_rays, S, stats).wait();
+  const auto dev = stats.read_vec<float>(size_t(n_rays) * 2);
+  const auto ref = test::ref_depth_spread(n_rays, S, t, f.w);
+  CHECK(dev[0] < 1e-12f);
+  CHECK(dev[1] == 0.0f);
+  double max_v = 0;
+  for (int r = 0; r < n_rays; ++r) {
+    CHECK(dev[2 * r] == Approx(ref[2 * r]).margin(1e-6));
+    CHECK(dev[2 * r + 1] == Approx(ref[2 * r + 1]).epsilon(1e-3).margin(1e-8));
+    max_v = std::max(max_v, ref[2 * r + 1]);
+  }
+  CHECK(max_v > 1e-3);  // spread rays exist in the test field
+  // An opaque wall: all the weight in one sample, no spread.
+  std::vector<float> h_wall(t.size(), -40.0f);
+  for (int r = 0; r < n_rays; ++r) h_wall[size_t(r) * S + 20] = 12.0f;
+  const Fwd wall = run_fwd(vr, t, h_wall, head, n_rays, S);
+  bw = cl::Buffer::from(rt, wall.w);
+  vr.depth_spread(bt, bw, n_rays, S, stats).wait();
+  const auto dw = stats.read_vec<float>(size_t(n_rays) * 2);
+  for (int r = 0; r < n_rays; ++r) {
+    CHECK(dw[2 * r] == Approx(1.0).margin(1e-5));
+    CHECK(dw[2 * r + 1] < 1e-9f);
+  }
+}
+
 TEST_CASE("Median depth in a homogeneous medium is ln 2 / sigma behind its start",
           "[render][volume]") {
   render::RenderConfig cfg;

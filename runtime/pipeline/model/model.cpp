@@ -339,7 +339,28 @@ std::vector<float> LidarNerfModel::render_rays(const std::vector<float>& origins
   const int M = sample(n, false, 0, 0);
   field_forward(n, M);
   if (cfg_.render.eval_depth == "median") renderer_.median_depth(t_, weights_, n, M, out_);
+  stats_rays_ = n, stats_samples_ = M;
   return out_.read_vec<float>(size_t(n) * 3);
+}
+
+std::vector<float> LidarNerfModel::depth_stats() {
+  if (stats_rays_ == 0) throw Error("LidarNerfModel::depth_stats: no render_rays() to describe");
+  const int n = stats_rays_, M = stats_samples_;
+  if (!stats_median_) {
+    stats_median_ = floats(rt_, size_t(max_rays_) * 3);
+    stats_spread_ = floats(rt_, size_t(max_rays_) * 2);
+  }
+  renderer_.median_depth(t_, weights_, n, M, stats_median_);
+  renderer_.depth_spread(t_, weights_, n, M, stats_spread_);
+  const auto med = stats_median_.read_vec<float>(size_t(n) * 3);
+  const auto spread = stats_spread_.read_vec<float>(size_t(n) * 2);
+  std::vector<float> out(size_t(n) * 3);
+  for (size_t r = 0; r < size_t(n); ++r) {
+    out[3 * r] = med[3 * r];
+    out[3 * r + 1] = spread[2 * r];
+    out[3 * r + 2] = spread[2 * r + 1];
+  }
+  return out;
 }
 
 std::vector<float> LidarNerfModel::encode_points(const std::vector<float>& x, int n) {

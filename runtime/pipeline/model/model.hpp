@@ -144,6 +144,11 @@ class LidarNerfModel {
   std::vector<float> render_rays(const std::vector<float>& origins,
                                  const std::vector<float>& directions, int n);
 
+  // Per ray of the last render_rays() (n × 3): the median depth (normalised), the opacity
+  // Σ w and the weight-normalised depth variance (normalised units²): the evaluation's median
+  // and "mix" depths (evaluate.hpp). Blocking.
+  std::vector<float> depth_stats();
+
   // The fast renderer (model_fast_render.cpp, pipeline::FastMarch): the same samples as
   // render_rays(), but only those in occupied cells of `grid` are evaluated, front to back
   // until the transmittance falls below cfg.stop_transmittance, and the head only where a
@@ -267,6 +272,9 @@ class LidarNerfModel {
   std::unique_ptr<render::SurfaceSampler> surface_;
   std::unique_ptr<render::WeightCarving> carve_;
   float half_w_ = 0.0f;
+  // depth_stats(): the last render_rays()'s rays and samples, and its outputs.
+  int stats_rays_ = 0, stats_samples_ = 0;
+  cl::Buffer stats_median_, stats_spread_;
   bool carved_ = false;  // the last forward_backward added the carving term
   int samples_cap_ = 0;  // sample rows per ray the buffers hold
   // The fast renderer's marching, made on its first use with its config.

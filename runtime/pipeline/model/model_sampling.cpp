@@ -15,6 +15,7 @@ int LidarNerfModel::sample(int n_rays, bool jitter, uint64_t seed, uint32_t step
   encoded_ = false;
   compacted_ = false;
   fwd_rays_ = 0;  // a new forward: forward_rays()'s activations are gone
+  stats_rays_ = 0;
   n_live_ = long(n_rays) * (S + I);
   n_coarse_ = 0;
   n_band_ = 0;
@@ -71,6 +72,7 @@ int LidarNerfModel::sample_surface(int n_rays, bool jitter, uint64_t seed, uint3
   encoded_ = false;
   compacted_ = false;
   fwd_rays_ = 0;  // a new forward: forward_rays()'s activations are gone
+  stats_rays_ = 0;
   n_live_ = long(n);
   n_coarse_ = 0;
   n_band_ = 0;

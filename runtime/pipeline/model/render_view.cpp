@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "core/error.hpp"
 #include "pipeline/model/ray_batch.hpp"
 
 namespace sgnlf::pipeline {
@@ -19,7 +20,7 @@ int nearest_frame(const Scene& scene, const Pose& T_world_lidar) {
 }
 
 RangeImage render_view(LidarNerfModel& model, const Scene& scene, const Pose& T_world_lidar,
-                       int chunk_rays, int frame, FastView* fast) {
+                       int chunk_rays, int frame, FastView* fast, DepthStats* stats) {
   const int H = scene.sensor.height, W = scene.sensor.width;
   RangeImage img(H, W);
   const Pose T = normalize_pose(T_world_lidar, scene.norm);
@@ -27,6 +28,12 @@ RangeImage render_view(LidarNerfModel& model, const Scene& scene, const Pose& T_
     model.set_frame(frame >= 0 ? frame : nearest_frame(scene, T_world_lidar),
                     int(scene.T_world_lidar.size()));
   const size_t n = img.size();
+  require(!(fast && stats), "render_view: depth statistics come from the protocol renderer only");
+  if (stats) {
+    stats->median_m.assign(n, 0.0f);
+    stats->opacity.assign(n, 0.0f);
+    stats->variance_m2.assign(n, 0.0f);
+  }
   std::vector<float> o, d;
   for (size_t begin = 0; begin < n; begin += size_t(chunk_rays)) {
     const size_t end = std::min(n, begin + size_t(chunk_rays));
@@ -39,6 +46,16 @@ RangeImage render_view(LidarNerfModel& model, const Scene& scene, const Pose& T_
       img.range[p] = float(double(v[0]) / scene.norm.scale);
       img.intensity[p] = v[2];
       img.ray_drop[p] = v[1];
+    }
+    if (stats) {
+      const auto st = model.depth_stats();
+      const double s = scene.norm.scale;
+      for (size_t p = begin; p < end; ++p) {
+        const float* v = &st[3 * (p - begin)];
+        stats->median_m[p] = float(double(v[0]) / s);
+        stats->opacity[p] = v[1];
+        stats->variance_m2[p] = float(double(v[2]) / (s * s));
+      }
     }
   }
   return img;

@@ -19,8 +19,14 @@ struct FastView {
   const render::FastRenderConfig* cfg = nullptr;
   long evaluated = 0, head_rows = 0;  // density and head rows, added up over the chunks
 };
+// With `stats` (protocol renderer only), per pixel the median depth (metres), the opacity Σ w
+// and the weight-normalised depth variance (m²) of the same render (model.depth_stats()).
+struct DepthStats {
+  std::vector<float> median_m, opacity, variance_m2;
+};
 RangeImage render_view(LidarNerfModel& model, const Scene& scene, const Pose& T_world_lidar,
-                       int chunk_rays, int frame = -1, FastView* fast = nullptr);
+                       int chunk_rays, int frame = -1, FastView* fast = nullptr,
+                       DepthStats* stats = nullptr);
 
 // The dataset frame whose scene pose lies nearest to `T_world_lidar` (metres).
 int nearest_frame(const Scene& scene, const Pose& T_world_lidar);
