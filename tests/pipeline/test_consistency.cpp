@@ -280,8 +280,17 @@ TEST_CASE("consistency config: validated section, unknown keys rejected, ablatio
   auto build = [&](const Json& extra) {
     return ConsistencyTerm(test::runtime(), scene, *tiny_sgnlf(extra).consistency, 512);
   };
-  CHECK_THROWS_WITH(build(Json{{"consistency", {{"image_col_stride", 3}}}}),
-                    Catch::Contains("image_col_stride"));
+  // A stride that does not divide the sensor is fitted to the nearest divisor (any folder's
+  // sensor runs, e.g. 2004 columns); one beyond the sensor's size is refused by name.
+  CHECK(fitted_stride(128, 3) == 4);
+  CHECK(fitted_stride(2004, 10) == 12);
+  CHECK(fitted_stride(2004, 6) == 6);
+  CHECK(fitted_stride(67, 10) == 1);  // a prime: only 1 (and 67) divide it
+  const auto fitted = fit_consistency_to_sensor(
+      *tiny_sgnlf(Json{{"consistency", {{"image_col_stride", 3}}}}).consistency, scene.sensor);
+  CHECK(fitted.image_col_stride == 4);
+  CHECK(consistency_image_sensor(fitted, scene.sensor).width == 32);
+  CHECK_NOTHROW(build(Json{{"consistency", {{"image_col_stride", 3}}}}));
   CHECK_THROWS_WITH(build(Json{{"consistency", {{"image_row_stride", 32}}}}),
                     Catch::Contains("image_row_stride"));
   CHECK_THROWS_WITH(build(Json{{"consistency", {{"discriminator", {{"scales", 3}}}}}}),

@@ -4,6 +4,9 @@
 #include "core/config.hpp"
 #include "core/config_fields.hpp"
 #include "core/error.hpp"
+#include "core/log.hpp"
+
+#include <cstdlib>
 
 namespace sgnlf::pipeline {
 namespace {
@@ -46,13 +49,38 @@ Sensor consistency_render_sensor(const ConsistencyConfig& c, const Sensor& s) {
   return r;
 }
 
-Sensor consistency_image_sensor(const ConsistencyConfig& c, const Sensor& s) {
-  if (s.height % c.image_row_stride != 0)
+int fitted_stride(int size, int stride) {
+  if (stride <= 0 || size <= 0 || size % stride == 0) return stride;
+  int best = 1;
+  for (int d = 1; d <= size; ++d) {
+    if (size % d != 0) continue;
+    const int gap = std::abs(d - stride), best_gap = std::abs(best - stride);
+    if (gap < best_gap || (gap == best_gap && d > best)) best = d;
+  }
+  return best;
+}
+
+ConsistencyConfig fit_consistency_to_sensor(const ConsistencyConfig& c, const Sensor& s) {
+  if (c.image_row_stride > s.height)
     throw ConfigError(kWhere + ": 'image_row_stride' = " + std::to_string(c.image_row_stride) +
-                      " does not divide the sensor's " + std::to_string(s.height) + " rows");
-  if (s.width % c.image_col_stride != 0)
+                      " exceeds the sensor's " + std::to_string(s.height) + " rows");
+  if (c.image_col_stride > s.width)
     throw ConfigError(kWhere + ": 'image_col_stride' = " + std::to_string(c.image_col_stride) +
-                      " does not divide the sensor's " + std::to_string(s.width) + " columns");
+                      " exceeds the sensor's " + std::to_string(s.width) + " columns");
+  ConsistencyConfig f = c;
+  f.image_row_stride = fitted_stride(s.height, c.image_row_stride);
+  f.image_col_stride = fitted_stride(s.width, c.image_col_stride);
+  if (f.image_row_stride != c.image_row_stride || f.image_col_stride != c.image_col_stride)
+    log::info("consistency: image strides " + std::to_string(c.image_row_stride) + " × " +
+             std::to_string(c.image_col_stride) + " fitted to the " + std::to_string(s.height) +
+             " × " + std::to_string(s.width) + " sensor as " +
+             std::to_string(f.image_row_stride) + " × " + std::to_string(f.image_col_stride) +
+             " (the nearest divisors)");
+  return f;
+}
+
+Sensor consistency_image_sensor(const ConsistencyConfig& config, const Sensor& s) {
+  const ConsistencyConfig c = fit_consistency_to_sensor(config, s);
   Sensor r = s;
   r.height = s.height / c.image_row_stride;
   r.width = s.width / c.image_col_stride;

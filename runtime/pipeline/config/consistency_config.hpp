@@ -62,9 +62,15 @@ struct ConsistencyConfig {
   }
 };
 
-// Frame i's render sub-sensor and frame j's image sub-sensor for a dataset sensor. The image
-// sensor throws ConfigError naming the key when a stride does not divide the sensor's size;
-// both throw when the sub-sensor is narrower than the reprojection's minimum width.
+// The divisor of `size` nearest to `stride` (ties: the larger one); `stride` when it divides.
+int fitted_stride(int size, int stride);
+// `c` with its image strides fitted to the sensor (fitted_stride, logged when they change), so
+// that every preset runs on any sensor a folder of scans yields (e.g. 2004 columns: stride 10
+// becomes 12). Throws ConfigError naming the key when a stride exceeds the sensor's size.
+ConsistencyConfig fit_consistency_to_sensor(const ConsistencyConfig& c, const Sensor& s);
+// Frame i's render sub-sensor and frame j's image sub-sensor (with the fitted strides) for a
+// dataset sensor; both throw when the sub-sensor is narrower than the reprojection's minimum
+// width.
 Sensor consistency_render_sensor(const ConsistencyConfig& c, const Sensor& s);
 Sensor consistency_image_sensor(const ConsistencyConfig& c, const Sensor& s);
 

@@ -11,7 +11,7 @@ namespace sgnlf::pipeline {
 
 ConsistencyTerm::ConsistencyTerm(cl::Runtime& rt, const Scene& scene,
                                  const ConsistencyConfig& cfg, int max_rays)
-    : cfg_(cfg),
+    : cfg_(fit_consistency_to_sensor(cfg, scene.sensor)),
       sensor_i_(consistency_render_sensor(cfg, scene.sensor)),
       sensor_j_(consistency_image_sensor(cfg, scene.sensor)),
       scale_(scene.norm.scale),
@@ -33,7 +33,7 @@ ConsistencyTerm::ConsistencyTerm(cl::Runtime& rt, const Scene& scene,
     for (int r = 0; r < h; ++r)
       for (int c = 0; c < w; ++c)
         o[size_t(r) * w + c] =
-            float(img.range[img.idx(r * cfg.image_row_stride, c * cfg.image_col_stride)] / scale_);
+            float(img.range[img.idx(r * cfg_.image_row_stride, c * cfg_.image_col_stride)] / scale_);
   }
   reproj_ = std::make_unique<render::CrossFrameReprojection>(rt, sensor_i_, sensor_j_, scale_);
   out_ = reproj_->make_output();
