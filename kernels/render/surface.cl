@@ -25,9 +25,12 @@ inline float render_surface_xi(int jitter, uint seed_lo, uint seed_hi, uint step
   return philox_unit(bits);
 }
 
-// Per ray with a return at range rr: F samples stratified over [near, a], B over [a, b], K over
-// [b, c], with a = clamp(rr - half_w), b = clamp(rr + half_w), c = clamp(rr + half_w + behind)
-// (clamped to [near, far]); a ray without a return: M stratified over [near, far].
+// Per ray with a return at range rr: F samples stratified over [near, a], B over [a, b], K - 1
+// over [b, c] and the last one over [c, far] (over [b, far] when K = 1), with a = rr - half_w,
+// b = rr + half_w, c = rr + half_w + behind (clamped to [near, far]); a ray without a return:
+// M stratified over [near, far]. The samples always reach far, as the protocol's do: the
+// rendering integral covers the whole ray (cut short at the return, the untrained field's
+// opacity is so low that the sigmoid heads saturate making up for it, and never recover).
 __kernel void render_sample_surface(const int n_rays, const int F, const int B, const int K,
                                     const float near, const float far, const float half_w,
                                     const float behind, const int jitter, const uint seed_lo,
@@ -51,8 +54,10 @@ __kernel void render_sample_surface(const int n_rays, const int F, const int B, 
       t = near + ((float)i + xi) * ((a - near) / (float)F);
     } else if (i < F + B) {
       t = a + ((float)(i - F) + xi) * ((b - a) / (float)B);
-    } else {
-      t = b + ((float)(i - F - B) + xi) * ((c - b) / (float)K);
+    } else if (i < M - 1) {
+      t = b + ((float)(i - F - B) + xi) * ((c - b) / (float)(K - 1));
+    } else {  // the last sample: the rest of the ray, so that the samples reach far
+      t = (K > 1 ? c : b) + xi * (far - (K > 1 ? c : b));
     }
     const int s = r * M + i;
     t_out[s] = t;

@@ -70,8 +70,9 @@ struct RenderConfig {
   // Training samples placed by the measured return (render/surface_sampler.hpp; the peers
   // sample uniformly): per training ray with a return at range r, surface_free_samples
   // stratified in [near, r - w], surface_band_samples in [r - w, r + w] and
-  // surface_behind_samples in [r + w, r + w + surface_behind_m]; rays without a return get the
-  // same count stratified over [near, far]. The band's half-width w goes log-linearly from
+  // surface_behind_samples behind it: all but the last in [r + w, r + w + surface_behind_m],
+  // the last one over the rest of the ray up to far (the samples reach far, as the protocol's
+  // do); rays without a return get the same count stratified over [near, far]. The band's half-width w goes log-linearly from
   // surface_band_start_m to surface_band_end_m over the first surface_anneal_steps steps.
   // Training only (test rays have no return: they are rendered with n_samples / eval_samples).
   // 0 band samples: off.
@@ -108,7 +109,7 @@ struct RenderConfig {
     v("head_weight_threshold", s.head_weight_threshold, 0.0f, 0.1f, config::omit_when(0.0f));
     v("surface_band_samples", s.surface_band_samples, 0, 1 << 12, config::omit_when(0));
     v("surface_free_samples", s.surface_free_samples, 1, 1 << 12, config::omit_when(16));
-    v("surface_behind_samples", s.surface_behind_samples, 0, 1 << 12, config::omit_when(4));
+    v("surface_behind_samples", s.surface_behind_samples, 1, 1 << 12, config::omit_when(4));
     v("surface_band_start_m", s.surface_band_start_m, 1e-3f, 100.0f, config::omit_when(1.0f));
     v("surface_band_end_m", s.surface_band_end_m, 1e-3f, 100.0f, config::omit_when(0.2f));
     v("surface_anneal_steps", s.surface_anneal_steps, 0, 1 << 28, config::omit_when(2000));

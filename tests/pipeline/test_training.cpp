@@ -202,6 +202,47 @@ TEST_CASE("surface sampling with weight carving trains, logs its term and is det
   CHECK(again.state().params == model.state().params);
 }
 
+TEST_CASE("surface sampling: the head's parameter gradient matches finite differences",
+          "[pipeline][train][device]") {
+  const Scene scene = make_scene(test::tiny_dataset());
+  for (const bool surface : {false, true}) {
+    Json render{{"weights", {{"depth", 0.0}, {"ret", 1.0}, {"intensity", 1.0}, {"grad", 0.0}}}};
+    if (surface)
+      render.update(Json{{"surface_band_samples", 8}, {"surface_free_samples", 8},
+                         {"surface_behind_samples", 2}});
+    const TrainConfig c = test::tiny_config(Json{{"render", render}});
+    LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
+    model.init_params(5);
+    const RayBatch b = draw_ray_batch(scene, c, 5, 1);  // a pixel batch (odd epoch)
+    REQUIRE_FALSE(b.patches);
+    model.forward_backward(b, 9, 1);
+    const double l0 = model.read_loss().total();
+    const auto g = model.read_gradient();
+    ModelState st = model.state();
+    const field::ParamSlice head = model.layout().slice("head_mlp");
+    int checked = 0;
+    double worst = 0;
+    for (size_t k = head.offset; k < head.offset + head.count; k += head.count / 23) {
+      const double eps = 1e-2;
+      ModelState p = st;
+      p.params[k] += float(eps);
+      model.set_state(p);
+      model.forward_backward(b, 9, 1);
+      const double lp = model.read_loss().total();
+      p.params[k] -= float(2 * eps);
+      model.set_state(p);
+      model.forward_backward(b, 9, 1);
+      const double lm = model.read_loss().total();
+      const double fd = (lp - lm) / (2 * eps);
+      worst = std::max(worst, std::abs(fd - g[k]) / (1e-4 + std::abs(fd)));
+      ++checked;
+    }
+    INFO("surface " << surface << " loss " << l0 << " worst relative error " << worst);
+    CHECK(checked > 20);
+    CHECK(worst < 0.05);
+  }
+}
+
 TEST_CASE("early ray termination: exact while no ray terminates, within its threshold after",
           "[pipeline][train][device]") {
   const Dataset& d = test::tiny_dataset();

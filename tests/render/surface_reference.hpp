@@ -39,7 +39,8 @@ inline void ref_sample_surface(int n_rays, int F, int B, int K, float near, floa
       if (!ret) v = near + (float(i) + xi) * ((far - near) / float(M));
       else if (i < F) v = near + (float(i) + xi) * ((a - near) / float(F));
       else if (i < F + B) v = a + (float(i - F) + xi) * ((b - a) / float(B));
-      else v = b + (float(i - F - B) + xi) * ((c - b) / float(K));
+      else if (i < M - 1) v = b + (float(i - F - B) + xi) * ((c - b) / float(K - 1));
+      else v = (K > 1 ? c : b) + xi * (far - (K > 1 ? c : b));
       const size_t s = size_t(r) * M + i;
       t[s] = v;
       for (int k = 0; k < 3; ++k) x[3 * s + k] = o[3 * size_t(r) + k] + v * d[3 * size_t(r) + k];
