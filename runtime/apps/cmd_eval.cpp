@@ -95,8 +95,11 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
       std::printf("\nposes over %ld frames (SE(3)-aligned, protocol §4), initial: %s\n",
                   p.at("frames").get<long>(), j.at("pose_init").get<std::string>().c_str());
       std::printf("%-18s %12s %12s\n", "pose", "optimised", "initial");
-      for (const char* k : {"ate_m", "rpe_t_cm", "rpe_r_deg"})
+      for (const char* k : {"ate_m", "ate_h_m", "rpe_t_cm", "rpe_r_deg"})
         std::printf("%-18s %12s %12s\n", k, num(p.at(k)).c_str(), num(i.at(k)).c_str());
+      if (p.value("ate_reference", "") == "horizontal")
+        std::printf("the reference poses are planar (every z equal): judge by ate_h_m, the "
+                    "horizontal ATE\n");
     }
     if (j.contains("trajectory_check") && !j.at("trajectory_check").at("converged").get<bool>())
       std::printf("\nWARNING: the poses did not converge: %s\n",

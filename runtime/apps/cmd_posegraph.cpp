@@ -100,10 +100,13 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
     Json log = Json::array();
     auto report = [&](int call, double progress, const posegraph::GeometricResult* r) {
       const auto e = metrics::compute_pose_errors(T, gt);
-      std::printf("call %3d  progress %.3f  loss %10.5f  ATE %.3f m  RPE %.2f cm %.3f deg\n", call,
-                  progress, r ? r->loss_after : 0.0, e.ate_m, e.rpe_t_cm, e.rpe_r_deg);
+      std::printf("call %3d  progress %.3f  loss %10.5f  ATE %.3f m (horizontal %.3f)  RPE %.2f cm "
+                  "%.3f deg\n", call, progress, r ? r->loss_after : 0.0, e.ate_m, e.ate_h_m,
+                  e.rpe_t_cm, e.rpe_r_deg);
       std::fflush(stdout);
       log.push_back(Json{{"call", call}, {"progress", progress}, {"ate_m", e.ate_m},
+                         {"ate_h_m", e.ate_h_m},
+                         {"ate_reference", e.planar_reference ? "horizontal" : "3d"},
                          {"rpe_t_cm", e.rpe_t_cm}, {"rpe_r_deg", e.rpe_r_deg},
                          {"loss", r ? Json(r->loss_after) : Json(nullptr)}});
     };

@@ -5,6 +5,7 @@
 // (workflow/reconstruct.hpp), one progress line with an ETA over the whole job, resumable by
 // running the same command again. Prints a summary and the files; ATE/RPE only against
 // reference poses.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -45,11 +46,15 @@ void print_summary(const Json& j) {
               tr.value("device", std::string("?")).c_str());
   if (j.contains("pose_errors")) {
     const Json& p = j.at("pose_errors");
-    std::printf("poses against the reference (SE(3)-aligned):\n  %-10s %9s %9s %9s\n", "", "ATE m",
-                "RPE cm", "RPE deg");
-    for (const char* k : {"odometry", "optimised"})
-      std::printf("  %-10s %9.4f %9.2f %9.3f\n", k, p.at(k).at("ate_m").get<double>(),
-                  p.at(k).at("rpe_t_cm").get<double>(), p.at(k).at("rpe_r_deg").get<double>());
+    std::printf("poses against the reference (SE(3)-aligned):\n  %-10s %9s %9s %9s %9s\n", "",
+                "ATE m", "ATE h m", "RPE cm", "RPE deg");
+    for (const char* k : {"odometry", "optimised"})  // ate_h_m: nan in records made before it
+      std::printf("  %-10s %9.4f %9.4f %9.2f %9.3f\n", k, p.at(k).at("ate_m").get<double>(),
+                  p.at(k).value("ate_h_m", std::nan("")), p.at(k).at("rpe_t_cm").get<double>(),
+                  p.at(k).at("rpe_r_deg").get<double>());
+    if (p.at("optimised").value("ate_reference", "") == "horizontal")
+      std::printf("  the reference poses are planar (every z equal): judge by ATE h, the "
+                  "horizontal ATE\n");
   } else {
     std::printf("poses: no reference poses, so no ATE (give --reference-poses FILE to score them)\n");
   }

@@ -71,6 +71,18 @@ Json naive_for(const Json& r, const std::string& sequence) {
   return Json::object();
 }
 
+// Whether a run of `sequence` says its reference poses are planar (pose_metrics.ate_reference,
+// metrics/evaluate.hpp; results before it do not say, and render as before).
+bool planar_reference(const Json& r, const std::string& sequence) {
+  for (const auto& row : r.value("rows", Json::array()))
+    for (const auto& s : row.value("sequences", Json::array()))
+      if (s.value("sequence", "") == sequence)
+        for (const auto& run : s.contains("runs") ? s["runs"] : Json::array({s}))  // several seeds
+          if (get_or_null(get_or_null(run, "pose_metrics"), "ate_reference") == Json("horizontal"))
+            return true;
+  return false;
+}
+
 std::string join(const std::vector<std::string>& v) {
   std::string s;
   for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
@@ -270,6 +282,9 @@ std::string render_markdown(const Json& r) {
       for (const auto& c : all) o << " " << format_metric(c, get_or_null(naive, c)) << " |";
       o << "\n";
     }
+    if (planar_reference(r, name))
+      o << "\nThe reference poses of " << name << " are planar (every z equal, as nuScenes' ego "
+           "poses): judge the poses by the horizontal ATE, not the 3D one.\n";
   }
 
   // Timings (seconds, median over repetitions).

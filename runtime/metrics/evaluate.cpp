@@ -141,6 +141,8 @@ Json mean_metrics(const std::vector<Json>& views) {
 Json pose_metrics(const std::vector<Pose>& est, const std::vector<Pose>& gt) {
   const PoseErrors e = compute_pose_errors(est, gt);
   return Json{{"ate_m", number_or_null(e.ate_m)},
+              {"ate_h_m", number_or_null(e.ate_h_m)},
+              {"ate_reference", e.planar_reference ? "horizontal" : "3d"},
               {"rpe_t_cm", number_or_null(e.rpe_t_cm)},
               {"rpe_r_deg", number_or_null(e.rpe_r_deg)}};
 }
@@ -150,6 +152,8 @@ Json definitions() {
       {"version", 1},
       {"pose", {{"alignment", "Umeyama SE(3) on the positions, scale fixed to 1, applied to every estimated pose"},
                 {"ate_m", "sqrt(mean |p_gt - p_aligned|^2), metres, 3D"},
+                {"ate_h_m", "sqrt(mean |(p_gt - p_aligned)_xy|^2), metres: ate_m over x and y only, under the same 3D alignment"},
+                {"ate_reference", "which ATE the reference poses support: horizontal when every ground-truth z is equal within 1e-6 m (planar poses, as nuScenes' ego poses), else 3d"},
                 {"rpe", "consecutive pairs of aligned poses; rpe_t_cm mean translation error in cm, rpe_r_deg mean rotation angle in degrees"}}},
       {"raydrop_mask", "predicted: return probability > 0.5 multiplies the predicted range and intensity; the ground-truth return label multiplies the ground truth (LiDAR4D's eval_step)"},
       {"depth", {{"units", "metres"}, {"clip_m", {1e-6, 80.0}},

@@ -32,7 +32,8 @@ Json evaluate_view(const Sensor& sensor, const RangeImage& pred, const RangeImag
 // that is null in any view is null in the mean (an undefined value is never averaged away).
 Json mean_metrics(const std::vector<Json>& views);
 
-// ATE / RPE after Umeyama SE(3) alignment: {ate_m, rpe_t_cm, rpe_r_deg}.
+// ATE / RPE after Umeyama SE(3) alignment: {ate_m, ate_h_m (x, y only, same alignment),
+// ate_reference ("horizontal" for planar ground truth, else "3d"), rpe_t_cm, rpe_r_deg}.
 Json pose_metrics(const std::vector<Pose>& est, const std::vector<Pose>& gt);
 
 // What the numbers above mean, as the results record it beside them ("metric_definitions" in

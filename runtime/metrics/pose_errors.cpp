@@ -2,6 +2,7 @@
 #include "metrics/pose_errors.hpp"
 
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -44,6 +45,16 @@ Pose umeyama_se3(const std::vector<Vec3>& p_est, const std::vector<Vec3>& p_gt) 
   return T;
 }
 
+bool is_planar(const std::vector<Pose>& poses) {
+  if (poses.empty()) return false;
+  double lo = poses.front().translation().z(), hi = lo;
+  for (const Pose& T : poses) {
+    lo = std::min(lo, T.translation().z());
+    hi = std::max(hi, T.translation().z());
+  }
+  return hi - lo <= kPlanarReferenceTolM;
+}
+
 PoseErrors compute_pose_errors(const std::vector<Pose>& est, const std::vector<Pose>& gt) {
   require(est.size() == gt.size(),
           "pose metrics: " + std::to_string(est.size()) + " estimated poses vs " +
@@ -62,10 +73,15 @@ PoseErrors compute_pose_errors(const std::vector<Pose>& est, const std::vector<P
   for (size_t i = 0; i < est.size(); ++i) aligned[i] = T_gt_est * est[i];
 
   PoseErrors e;
-  double se = 0.0;
-  for (size_t i = 0; i < est.size(); ++i)
-    se += (gt[i].translation() - aligned[i].translation()).squaredNorm();
+  double se = 0.0, se_h = 0.0;
+  for (size_t i = 0; i < est.size(); ++i) {
+    const Vec3 d = gt[i].translation() - aligned[i].translation();
+    se += d.squaredNorm();
+    se_h += d.head<2>().squaredNorm();
+  }
   e.ate_m = std::sqrt(se / double(est.size()));
+  e.ate_h_m = std::sqrt(se_h / double(est.size()));
+  e.planar_reference = is_planar(gt);
 
   double sum_t = 0.0, sum_r = 0.0;
   for (size_t i = 0; i + 1 < est.size(); ++i) {

@@ -52,6 +52,8 @@ std::string curves_section(const RunFolder& r) {
     if (e.contains("lr")) lr.add("field lr", step, number_or_nan(e["lr"]));
     if (e.contains("pose") && e["pose"].is_object() && e["pose"].contains("ate_m"))
       ate.add("ATE (training log)", step, number_or_nan(e["pose"]["ate_m"]));
+    if (e.contains("pose") && e["pose"].is_object() && e["pose"].contains("ate_h_m"))
+      ate.add("horizontal ATE (training log)", step, number_or_nan(e["pose"]["ate_h_m"]));
   }
   for (const auto& g : geo)
     if (g.is_object() && g.contains("step") && g.contains("after") && g["after"].is_object())

@@ -25,7 +25,7 @@ const std::vector<std::string> kOrder = {
 // The per-frame table's columns: the paper's, then ray drop.
 const std::vector<std::string> kPerFrame = {"cd", "fscore", "depth_rmse", "depth_psnr",
                                             "intensity_psnr", "raydrop_f1"};
-const std::vector<std::string> kPose = {"ate_m", "rpe_t_cm", "rpe_r_deg"};
+const std::vector<std::string> kPose = {"ate_m", "ate_h_m", "rpe_t_cm", "rpe_r_deg"};
 
 std::vector<std::string> metric_keys(const Json& m) {
   std::vector<std::string> keys;
@@ -85,13 +85,32 @@ std::string per_frame_table(const Json& frames, const Json& naive_frames) {
   return html_table(head, rows, "num");
 }
 
+// The ATE the reference poses support (pose_metrics.ate_reference: "horizontal" when every
+// ground-truth z is equal, as nuScenes' ego poses; "3d" otherwise); "" when not recorded.
+std::string supported_ate(const Json& pose) {
+  const Json& r = at(pose, "ate_reference");
+  if (r == Json("horizontal")) return "ate_h_m";
+  if (r == Json("3d")) return "ate_m";
+  return "";
+}
+
 std::string pose_table(const Json& initial, const Json& optimised,
                        const std::string& initial_name = "initial poses") {
+  const std::string supported = supported_ate(optimised);
   std::vector<std::vector<std::string>> rows;
   for (const auto& k : kPose)
-    rows.push_back({escape(metric_header(k)), escape(metric_value(k, at(initial, k))),
+    rows.push_back({escape(metric_header(k)) +
+                        (k == supported ? "<br><small>the one the reference supports</small>" : ""),
+                    escape(metric_value(k, at(initial, k))),
                     cell(k, at(optimised, k), at(initial, k))});
-  return html_table({"pose metric", initial_name, "optimised poses"}, rows, "num");
+  std::string o;
+  if (supported == "ate_h_m")
+    o = "<p>The reference poses are planar (every z equal, as nuScenes' ego poses): they support "
+        "the horizontal ATE (x, y under the same 3D alignment), not the 3D one.</p>\n";
+  else if (supported == "ate_m")
+    o = "<p>The reference poses vary in z: they support the 3D ATE; the horizontal one (x, y "
+        "under the same alignment) is beside it.</p>\n";
+  return o + html_table({"pose metric", initial_name, "optimised poses"}, rows, "num");
 }
 
 std::string scored(const Json& m, const Json& fast, const std::string& file) {

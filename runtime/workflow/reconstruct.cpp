@@ -15,7 +15,7 @@
 #include "io/cloud_writers.hpp"
 #include "io/trajectory_io.hpp"
 #include "io/trajectory_svg.hpp"
-#include "metrics/pose_errors.hpp"
+#include "metrics/evaluate.hpp"
 #include "odometry/trajectory.hpp"
 #include "pipeline/config/presets.hpp"
 #include "pipeline/methods/registry.hpp"
@@ -32,9 +32,9 @@ namespace {
 enum Stage : size_t { kOdometry, kTrain, kEvaluate, kRender, kCloud, kReport };
 
 Json pose_errors_json(const std::vector<Pose>& est, const std::vector<Pose>& ref) {
-  const metrics::PoseErrors e = metrics::compute_pose_errors(est, ref);
-  return Json{{"ate_m", e.ate_m}, {"rpe_t_cm", e.rpe_t_cm}, {"rpe_r_deg", e.rpe_r_deg},
-              {"frames", est.size()}};
+  Json j = metrics::pose_metrics(est, ref);
+  j["frames"] = est.size();
+  return j;
 }
 
 // The reference poses of the loaded frames: the layout's, else the file's line per frame id

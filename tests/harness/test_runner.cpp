@@ -4,6 +4,7 @@
 // apart from the twins).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 
@@ -139,6 +140,36 @@ TEST_CASE("markdown: ours beside the paper, not implemented rows, per-sequence t
         std::string::npos);
   CHECK(harness::format_metric("depth_psnr", Json(20.456)) == "20.46");
   CHECK(harness::format_metric("cd", Json()) == "—");
+}
+
+TEST_CASE("markdown: the horizontal ATE beside the 3D one, blank where a run lacks it",
+          "[harness][ate_h]") {
+  CHECK(harness::metric_info("ate_h_m") != nullptr);
+  CHECK(harness::metric_info("ate_h_m")->lower_better);
+  CHECK(harness::metric_tolerance("ate_h_m", "loose", 0.2) ==
+        harness::metric_tolerance("ate_m", "loose", 0.2));
+  for (const std::string t : {"kitti360-low", "nuscenes-low", "ablation-nuscenes"}) {
+    const auto ex = harness::table_def(t).extra_columns;
+    CHECK(std::find(ex.begin(), ex.end(), "ate_h_m") != ex.end());
+  }
+  // Runs made before ate_h_m (sg-nlf's fake runs report ate_m only, as the committed tables):
+  // the column renders "—", and no sequence is said to have planar reference poses.
+  Json r = test::fake_results();
+  r["columns"] = {"cd"};
+  r["extra_columns"] = {"ate_m", "ate_h_m"};
+  std::string md = harness::render_markdown(r);
+  CHECK(md.find("| ATE (m) ↓ | ATE horizontal (m) ↓ |") != std::string::npos);
+  CHECK(md.find("| SG-NLF | 0.0550 | 0.0867 | -0.0317 | 0.0700 | — |") != std::string::npos);
+  CHECK(md.find("| SG-NLF | 0.0500 | 0.0700 | — |") != std::string::npos);  // kitti360-1538
+  CHECK(md.find("are planar") == std::string::npos);
+  // A run that reports it, against planar reference poses: its number, and the sequence's note.
+  for (auto& s : test::row(r, "sg-nlf")["sequences"])
+    if (s["sequence"] == "kitti360-1538")
+      s["pose_metrics"] = {{"ate_m", 0.07}, {"ate_h_m", 0.05}, {"ate_reference", "horizontal"}};
+  md = harness::render_markdown(r);
+  CHECK(md.find("| SG-NLF | 0.0500 | 0.0700 | 0.0500 |") != std::string::npos);
+  CHECK(md.find("The reference poses of kitti360-1538 are planar") != std::string::npos);
+  CHECK(md.find("The reference poses of kitti360-1728") == std::string::npos);
 }
 
 // --- A real sequence inside a synthetic scale (tables.json `real_dir`, nuscenes-low quick) ---

@@ -220,4 +220,10 @@ TEST_CASE("the recorded metric definitions match the constants the metrics use",
   }
   CHECK(metrics::pose_metrics(moved, gt).at("ate_m").get<double>() < 1e-6);
   CHECK(metrics::pose_metrics(scaled, gt).at("ate_m").get<double>() > 0.5);
+  // The horizontal ATE under the same alignment, and which ATE the reference supports: this gt
+  // climbs 0.1 m a frame, so "3d".
+  CHECK_THAT(d.at("pose").at("ate_h_m").get<std::string>(), Catch::Contains("same 3D alignment"));
+  CHECK_THAT(d.at("pose").at("ate_reference").get<std::string>(), Catch::Contains("1e-6 m"));
+  CHECK(metrics::pose_metrics(moved, gt).at("ate_h_m").get<double>() < 1e-6);
+  CHECK(metrics::pose_metrics(moved, gt).at("ate_reference") == "3d");
 }

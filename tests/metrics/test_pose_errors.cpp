@@ -77,10 +77,64 @@ TEST_CASE("ATE and RPE_t of a scaled square (by hand)", "[metrics][pose]") {
   CHECK(e.ate_m == Approx(0.1 * std::sqrt(2.0)).epsilon(1e-12));
   CHECK(e.rpe_t_cm == Approx(20.0).epsilon(1e-12));
   CHECK(e.rpe_r_deg == Approx(0.0).margin(1e-6));
+  // The errors lie in the x, y plane: the horizontal ATE is the 3D one; the square's z = 0.
+  CHECK(e.ate_h_m == Approx(e.ate_m).epsilon(1e-12));
+  CHECK(e.planar_reference);
   const Json j = pose_metrics(est, gt);
-  CHECK(j.size() == 3);
+  CHECK(j.size() == 5);
   CHECK(j.at("ate_m").get<double>() == Approx(0.1 * std::sqrt(2.0)));
+  CHECK(j.at("ate_h_m").get<double>() == Approx(0.1 * std::sqrt(2.0)));
+  CHECK(j.at("ate_reference") == "horizontal");
   CHECK(j.at("rpe_t_cm").get<double>() == Approx(20.0));
+}
+
+TEST_CASE("horizontal ATE: z errors left after the 3D alignment count in ATE only (by hand)",
+          "[metrics][pose][ate_h]") {
+  // gt: the square's corners (±2, ±2, 0) in order; est: the same x, y, z = +0.1 at corners 0
+  // and 2, −0.1 at 1 and 3. Centroids 0 ⇒ t = 0; C = 1/4 Σ p_gt (p_est)ᵀ = diag(4, 4, 0), the
+  // z offsets cancel in C (Σ z_est·x_gt = Σ z_est·y_gt = 0) ⇒ R = I. The aligned estimate keeps
+  // its z errors of 0.1: ATE = 0.1 m, ATE_h = 0.
+  const std::vector<Vec3> corners = {Vec3(2, 2, 0), Vec3(-2, 2, 0), Vec3(-2, -2, 0),
+                                     Vec3(2, -2, 0)};
+  std::vector<Pose> gt, est;
+  for (size_t i = 0; i < corners.size(); ++i) {
+    gt.push_back(pose_at(corners[i]));
+    est.push_back(pose_at(corners[i] + Vec3(0, 0, i % 2 ? -0.1 : 0.1)));
+  }
+  const PoseErrors e = compute_pose_errors(est, gt);
+  CHECK(e.ate_m == Approx(0.1).epsilon(1e-12));
+  CHECK(e.ate_h_m == Approx(0.0).margin(1e-12));
+  CHECK(e.planar_reference);  // every gt z is 0
+  const Json j = pose_metrics(est, gt);
+  CHECK(j.at("ate_h_m").get<double>() == Approx(0.0).margin(1e-12));
+  CHECK(j.at("ate_reference") == "horizontal");
+  // The same alignment as the 3D ATE, not a 2D one: a rigid move of the estimate (here a tilt
+  // about x, which a 2D fit could not undo) changes neither value.
+  Vec6 xi;
+  xi << 0.3, -0.2, 0.5, 4.0, 1.0, -3.0;
+  std::vector<Pose> moved;
+  for (const auto& T : est) moved.push_back(exp_se3(xi) * T);
+  const PoseErrors m = compute_pose_errors(moved, gt);
+  CHECK(m.ate_m == Approx(0.1).epsilon(1e-9));
+  CHECK(m.ate_h_m == Approx(0.0).margin(1e-9));
+  // Swapped: a z-planar estimate against the zig-zag reference. The reference is not planar
+  // (its z spread is 0.2 m) ⇒ "3d"; the errors are the same.
+  const PoseErrors s = compute_pose_errors(gt, est);
+  CHECK_FALSE(s.planar_reference);
+  CHECK(s.ate_m == Approx(0.1).epsilon(1e-12));
+  CHECK(s.ate_h_m == Approx(0.0).margin(1e-12));
+  CHECK(pose_metrics(gt, est).at("ate_reference") == "3d");
+}
+
+TEST_CASE("a reference is planar when every z is equal within 1e-6 m", "[metrics][pose][ate_h]") {
+  std::vector<Pose> poses;
+  for (int i = 0; i < 5; ++i) poses.push_back(pose_at(Vec3(3.0 * i, 0.2 * i * i, 1.5)));
+  CHECK(is_planar(poses));  // z = 1.5 everywhere: planar at any height
+  poses[3].translation().z() += 0.9e-6;
+  CHECK(is_planar(poses));
+  poses[1].translation().z() -= 0.2e-6;  // spread 1.1e-6 m
+  CHECK_FALSE(is_planar(poses));
+  CHECK_FALSE(is_planar({}));
 }
 
 TEST_CASE("RPE of one rotated frame (by hand)", "[metrics][pose]") {

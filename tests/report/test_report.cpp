@@ -99,6 +99,36 @@ TEST_CASE("report of a reconstruct folder: its poses scored by reference poses, 
   CHECK(contains(html, "<span class=\"better\">0.2239</span>"));
 }
 
+TEST_CASE("report: the horizontal ATE beside the 3D one, and the one the reference supports",
+          "[report][ate_h]") {
+  const std::string dir = test::temp_dir("report_ate_h");
+  test::write_run_fixture(dir);
+  // A metrics.json from before ate_h_m: its row is there, blank; nothing is said to be supported.
+  std::string html = report::build_report(dir);
+  CHECK(contains(html, "<td>ATE horizontal (m) ↓</td><td>—</td><td><span>—</span></td>"));
+  CHECK_FALSE(contains(html, "the one the reference supports"));
+  // Planar reference poses (nuScenes' ego poses): the horizontal ATE is the one.
+  Json m = load_json_file(dir + "/metrics.json");
+  m["pose_metrics"]["ate_h_m"] = 0.0421;
+  m["pose_metrics"]["ate_reference"] = "horizontal";
+  m["initial_pose_metrics"]["ate_h_m"] = 2.8;
+  m["initial_pose_metrics"]["ate_reference"] = "horizontal";
+  write_json_file(dir + "/metrics.json", m);
+  html = report::build_report(dir);
+  CHECK(contains(html, "<td>ATE horizontal (m) ↓<br><small>the one the reference supports</small></td>"
+                       "<td>2.8000</td><td><span class=\"better\">0.0421</span></td>"));
+  CHECK(contains(html, "<td>ATE (m) ↓</td>"));
+  CHECK(contains(html, "The reference poses are planar"));
+  // A reference that varies in z supports the 3D ATE.
+  m["pose_metrics"]["ate_reference"] = "3d";
+  write_json_file(dir + "/metrics.json", m);
+  html = report::build_report(dir);
+  CHECK(contains(html, "<td>ATE (m) ↓<br><small>the one the reference supports</small></td>"));
+  CHECK(contains(html, "<td>ATE horizontal (m) ↓</td>"));
+  CHECK(contains(html, "they support the 3D ATE"));
+  CHECK_FALSE(contains(html, "The reference poses are planar"));
+}
+
 TEST_CASE("report: inserted text is escaped and nothing refers to the network", "[report]") {
   const std::string dir = test::temp_dir("report_escape");
   test::write_run_fixture(dir);

@@ -55,9 +55,9 @@ io::RgbImage stack(const io::RgbImage& a, const io::RgbImage& b, int gap) {
 }  // namespace
 
 Json pose_metrics_json(const std::vector<Pose>& est, const std::vector<Pose>& gt) {
-  const metrics::PoseErrors e = metrics::compute_pose_errors(est, gt);
-  return Json{{"ate_m", e.ate_m}, {"rpe_t_cm", e.rpe_t_cm}, {"rpe_r_deg", e.rpe_r_deg},
-              {"frames", est.size()}};
+  Json j = metrics::pose_metrics(est, gt);
+  j["frames"] = est.size();
+  return j;
 }
 
 Json train_run(cl::Runtime& rt, const TrainRequest& req) {

@@ -54,7 +54,8 @@ Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
                   const std::string& out_dir, FastRenderer* fast = nullptr,
                   const Sensor* sensor = nullptr);
 
-// ATE, RPE_t, RPE_r (protocol §4, SE(3) Umeyama alignment) of `est` against `gt`, as JSON.
+// ATE (3D and horizontal, ate_reference), RPE_t, RPE_r (protocol §4, SE(3) Umeyama alignment;
+// metrics::pose_metrics) of `est` against `gt`, as JSON, with "frames".
 Json pose_metrics_json(const std::vector<Pose>& est, const std::vector<Pose>& gt);
 
 // Per-frame and mean metrics of the model and of the naive baseline (pose-free runs: with the

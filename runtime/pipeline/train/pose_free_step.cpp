@@ -10,7 +10,7 @@
 #include "core/config.hpp"
 #include "core/error.hpp"
 #include "field/hash_grid.hpp"
-#include "metrics/pose_errors.hpp"
+#include "metrics/evaluate.hpp"
 #include "pipeline/model/ray_batch.hpp"
 #include "render/pose_gradient.hpp"
 
@@ -40,8 +40,7 @@ std::vector<Pose> PoseFreeStep::poses_world() const {
 
 Json PoseFreeStep::pose_errors() const {
   if (gt_.size() < 2) return Json::object();
-  const auto e = metrics::compute_pose_errors(poses_world(), gt_);
-  return Json{{"ate_m", e.ate_m}, {"rpe_t_cm", e.rpe_t_cm}, {"rpe_r_deg", e.rpe_r_deg}};
+  return metrics::pose_metrics(poses_world(), gt_);
 }
 
 void PoseFreeStep::on_epoch(long epoch, long step) {
@@ -122,7 +121,8 @@ std::string PoseFreeStep::progress_text() {
   const Json e = pose_errors();
   if (e.empty()) return "";
   char buf[64];
-  std::snprintf(buf, sizeof buf, "  ATE %.3f m", e.at("ate_m").get<double>());
+  std::snprintf(buf, sizeof buf, "  ATE %.3f m (horizontal %.3f)", e.at("ate_m").get<double>(),
+                e.at("ate_h_m").get<double>());
   return buf;
 }
 
