@@ -220,10 +220,12 @@ TEST_CASE("surface sampling: the head's parameter gradient matches finite differ
     const auto g = model.read_gradient();
     ModelState st = model.state();
     const field::ParamSlice head = model.layout().slice("head_mlp");
-    int checked = 0;
-    double worst = 0;
-    for (size_t k = head.offset; k < head.offset + head.count; k += head.count / 23) {
-      const double eps = 1e-2;
+    // Central differences in float: a step that crosses a ReLU kink of the head spoils its
+    // element, so most elements must agree closely and none may be far off (a wrong or missing
+    // term spoils them all).
+    std::vector<double> rel;
+    for (size_t k = head.offset; k < head.offset + head.count; k += head.count / 41) {
+      const double eps = 3e-3;
       ModelState p = st;
       p.params[k] += float(eps);
       model.set_state(p);
@@ -234,12 +236,15 @@ TEST_CASE("surface sampling: the head's parameter gradient matches finite differ
       model.forward_backward(b, 9, 1);
       const double lm = model.read_loss().total();
       const double fd = (lp - lm) / (2 * eps);
-      worst = std::max(worst, std::abs(fd - g[k]) / (1e-4 + std::abs(fd)));
-      ++checked;
+      rel.push_back(std::abs(fd - g[k]) / (1e-3 + std::abs(fd)));
     }
-    INFO("surface " << surface << " loss " << l0 << " worst relative error " << worst);
-    CHECK(checked > 20);
-    CHECK(worst < 0.05);
+    std::sort(rel.begin(), rel.end());
+    INFO("surface " << surface << " loss " << l0 << " relative errors: median "
+                    << rel[rel.size() / 2] << ", 90th percentile " << rel[rel.size() * 9 / 10]
+                    << ", worst " << rel.back());
+    REQUIRE(rel.size() > 35);
+    CHECK(rel[rel.size() * 9 / 10] < 0.02);
+    CHECK(rel.back() < 0.25);
   }
 }
 
