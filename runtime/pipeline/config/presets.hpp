@@ -1,4 +1,4 @@
-// Named training presets, stored as JSON files in runtime/pipeline/presets/ and embedded into
+// Named training presets, stored as JSON files in runtime/pipeline/config/presets/ and embedded into
 // the binary at configure time: `paper` (method.md §1 published values, for real GPUs),
 // `quick` (≤ ~10 min per 64-frame sequence on 2 CPU cores) and `smoke` (CI, seconds).
 // A preset says only what differs from another: `"extends": "geonlf-quick"` takes that preset

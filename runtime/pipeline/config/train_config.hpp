@@ -1,7 +1,7 @@
 // The LiDAR-NeRF training configuration (method.md §0–1): field sizes, ray sampling and loss
 // weights (render::RenderConfig), optimiser and schedule. Plain structs with defaults (the `paper` values) and
 // validate(); JSON through ConfigReader with unknown keys rejected. Presets are JSON files in
-// runtime/pipeline/presets/, embedded into the binary (presets.hpp).
+// runtime/pipeline/config/presets/, embedded into the binary (presets.hpp).
 #pragma once
 #include <cstdint>
 #include <optional>
