@@ -138,11 +138,14 @@ Json mean_metrics(const std::vector<Json>& views) {
   return out;
 }
 
-Json pose_metrics(const std::vector<Pose>& est, const std::vector<Pose>& gt) {
+Json pose_metrics(const std::vector<Pose>& est, const std::vector<Pose>& gt,
+                  PoseReference reference) {
   const PoseErrors e = compute_pose_errors(est, gt);
+  const bool horizontal = reference == PoseReference::detect ? e.planar_reference
+                                                             : reference == PoseReference::horizontal;
   return Json{{"ate_m", number_or_null(e.ate_m)},
               {"ate_h_m", number_or_null(e.ate_h_m)},
-              {"ate_reference", e.planar_reference ? "horizontal" : "3d"},
+              {"ate_reference", horizontal ? "horizontal" : "3d"},
               {"rpe_t_cm", number_or_null(e.rpe_t_cm)},
               {"rpe_r_deg", number_or_null(e.rpe_r_deg)}};
 }

@@ -32,9 +32,15 @@ Json evaluate_view(const Sensor& sensor, const RangeImage& pred, const RangeImag
 // that is null in any view is null in the mean (an undefined value is never averaged away).
 Json mean_metrics(const std::vector<Json>& views);
 
+// Which ATE a reference supports: known from the data's source (nuScenes' ego poses are planar
+// by construction, z = 0, so their z carries no motion even where the LiDAR's z varies with
+// roll and pitch; the twins' z is exact), or `detect`: horizontal when every ground-truth z is
+// equal within kPlanarReferenceTolM (is_planar), for references of unknown origin.
+enum class PoseReference { detect, full_3d, horizontal };
 // ATE / RPE after Umeyama SE(3) alignment: {ate_m, ate_h_m (x, y only, same alignment),
-// ate_reference ("horizontal" for planar ground truth, else "3d"), rpe_t_cm, rpe_r_deg}.
-Json pose_metrics(const std::vector<Pose>& est, const std::vector<Pose>& gt);
+// ate_reference ("horizontal" or "3d", per `reference`), rpe_t_cm, rpe_r_deg}.
+Json pose_metrics(const std::vector<Pose>& est, const std::vector<Pose>& gt,
+                  PoseReference reference = PoseReference::detect);
 
 // What the numbers above mean, as the results record it beside them ("metric_definitions" in
 // metrics.json and results.json): alignment, masks, clipping and scaling, units, thresholds.

@@ -54,8 +54,11 @@ io::RgbImage stack(const io::RgbImage& a, const io::RgbImage& b, int gap) {
 
 }  // namespace
 
-Json pose_metrics_json(const std::vector<Pose>& est, const std::vector<Pose>& gt) {
-  Json j = metrics::pose_metrics(est, gt);
+Json pose_metrics_json(const std::vector<Pose>& est, const std::vector<Pose>& gt,
+                       const Dataset& d) {
+  Json j = metrics::pose_metrics(est, gt,
+                                 d.source == "nuscenes" ? metrics::PoseReference::horizontal
+                                                        : metrics::PoseReference::full_3d);
   j["frames"] = est.size();
   return j;
 }
@@ -99,7 +102,7 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
   const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_load).count();
   opt.evaluate = [&](long) {
     Json m = evaluate_model(model, d, scene, c.schedule.render_chunk_rays, current_poses()).mean;
-    if (pose_step && d.has_reference_poses) m["pose"] = pose_metrics_json(current_poses(), gt_poses(d));
+    if (pose_step && d.has_reference_poses) m["pose"] = pose_metrics_json(current_poses(), gt_poses(d), d);
     return m;
   };
   log::info("training ", c.method, "-", c.preset, " on ", d.name, " (", d.split.train.size(),
@@ -125,8 +128,8 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
   if (!req.context.is_null()) j["context"] = req.context;
   if (pose_step) {
     if (d.has_reference_poses) {
-      j["pose_metrics"] = pose_metrics_json(current_poses(), gt_poses(d));
-      j["initial_pose_metrics"] = pose_metrics_json(rs.T_world_lidar_init, gt_poses(d));
+      j["pose_metrics"] = pose_metrics_json(current_poses(), gt_poses(d), d);
+      j["initial_pose_metrics"] = pose_metrics_json(rs.T_world_lidar_init, gt_poses(d), d);
     }
     j["geometric_seconds"] = pose_step->geometric_seconds();
     if (spectral_step) j["spectral_seconds"] = spectral_step->seconds();
@@ -265,8 +268,8 @@ Json eval_run(LoadedRun& run, const std::string& run_dir, FastRenderer* fast) {
   if (run.pose_free) {
     if (run.dataset->has_reference_poses) {
       const auto gt = gt_poses(*run.dataset);
-      j["pose_metrics"] = pose_metrics_json(run.T_world_lidar, gt);
-      j["initial_pose_metrics"] = pose_metrics_json(run.T_world_lidar_init, gt);
+      j["pose_metrics"] = pose_metrics_json(run.T_world_lidar, gt, *run.dataset);
+      j["initial_pose_metrics"] = pose_metrics_json(run.T_world_lidar_init, gt, *run.dataset);
     }
     j["pose_init"] = run.manifest.config.pose_free->poses.init;
     const fs::path summary = fs::path(run_dir) / "summary.json";  // the training's own check

@@ -56,7 +56,10 @@ Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
 
 // ATE (3D and horizontal, ate_reference), RPE_t, RPE_r (protocol §4, SE(3) Umeyama alignment;
 // metrics::pose_metrics) of `est` against `gt`, as JSON, with "frames".
-Json pose_metrics_json(const std::vector<Pose>& est, const std::vector<Pose>& gt);
+// Pose metrics of `est` against `d`'s reference poses `gt`, with the ATE the reference supports
+// by d's source (nuScenes: horizontal; every other source: 3D).
+Json pose_metrics_json(const std::vector<Pose>& est, const std::vector<Pose>& gt,
+                       const Dataset& d);
 
 // Per-frame and mean metrics of the model and of the naive baseline (pose-free runs: with the
 // pose metrics of the optimised and the initial poses over all frames); writes <run>/metrics.json.
