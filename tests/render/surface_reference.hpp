@@ -82,13 +82,11 @@ Vec<T> ref_carve_grad(int n_rays, int M, T last_delta, T near, T half_w, T scale
     const size_t b = size_t(r) * M;
     for (int k = 0; k < M; ++k) {
       const T dk = k + 1 < M ? t[b + k + 1] - t[b + k] : last_delta;
-      const T sigma = std::exp(std::min(h0[b + k], T(80)));
       T trans_after = 1;  // T_{k+1}
       for (int j = 0; j <= k; ++j) {
         const T dj = j + 1 < M ? t[b + j + 1] - t[b + j] : last_delta;
         trans_after *= std::exp(-std::exp(std::min(h0[b + j], T(80))) * dj);
       }
-      (void)sigma;
       T dl = 0;
       for (int i = k; i < M; ++i) {
         if (!(std::abs(t[b + i] - T(target[3 * size_t(r)])) > half_w)) continue;

@@ -209,8 +209,7 @@ void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long ste
     loss_.patch_gradient(out_, target_, R / per_patch, grad_out_, terms_, loss_buf_);
   }
   if (cfg_.lidar4d && cfg_.lidar4d->chamfer_weight > 0.0) add_chamfer_term(b);
-  carved_ = carve_ != nullptr;
-  backward_chain(R, M, grad_, ray_grads, carved_);
+  backward_chain(R, M, grad_, ray_grads, carve_ != nullptr);
 }
 
 void LidarNerfModel::backward_chain(int R, int M, cl::Buffer& grad, bool ray_grads, bool carve) {
@@ -326,7 +325,7 @@ LidarNerfModel::RayGrads LidarNerfModel::read_ray_grads() const {
 
 render::LossValues LidarNerfModel::read_loss() const {
   render::LossValues l = render::RangeLoss::read_losses(loss_buf_);
-  if (carved_) l.carve = float(carve_->read());
+  if (carve_) l.carve = float(carve_->read());  // 0 before the first step
   return l;
 }
 

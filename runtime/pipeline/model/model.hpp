@@ -275,7 +275,6 @@ class LidarNerfModel {
   // depth_stats(): the last render_rays()'s rays and samples, and its outputs.
   int stats_rays_ = 0, stats_samples_ = 0;
   cl::Buffer stats_median_, stats_spread_;
-  bool carved_ = false;  // the last forward_backward added the carving term
   int samples_cap_ = 0;  // sample rows per ray the buffers hold
   // The fast renderer's marching, made on its first use with its config.
   std::unique_ptr<FastMarch> fast_;
