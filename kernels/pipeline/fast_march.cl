@@ -50,6 +50,52 @@ __kernel void pipeline_occupied_list(const int n_rays, const int S, const float4
   count[r] = c;
 }
 
+// The merged pass of importance sampling (FastMarch::merged_pass): merged sample q (ray r,
+// M per ray) whose source src[q] is coarse sample s < S_c that the coarse pass evaluated (its
+// logit h0_c[r·S_c + s] is not `dead`) takes that pass's logit and density row (`stride`
+// floats from dens_c) and is known[q] = 1; the others (importance samples, coarse ones the
+// coarse pass skipped) are known[q] = 0 and left as they are.
+__kernel void pipeline_march_prefill(const int n, const int S_c, const int M, const int stride,
+                                     const float dead, __global const int* src,
+                                     __global const float* h0_c, __global const float* dens_c,
+                                     __global float* h0, __global float* dens_full,
+                                     __global int* known) {
+  const int q = get_global_id(0);
+  if (q >= n) return;
+  const int r = q / M, s = src[q];
+  int k = 0;
+  if (s < S_c) {
+    const size_t c = (size_t)r * S_c + s;
+    const float h = h0_c[c];
+    if (h != dead) {
+      h0[q] = h;
+      __global const float* a = dens_c + c * stride;
+      __global float* b = dens_full + (size_t)q * stride;
+      for (int j = 0; j < stride; ++j) b[j] = a[j];
+      k = 1;
+    }
+  }
+  known[q] = k;
+}
+
+// pipeline_occupied_list without the samples already known (known[r·S + s] = 1).
+__kernel void pipeline_occupied_unknown_list(const int n_rays, const int S, const float4 lo,
+                                             const float4 inv_cell, const int4 dims,
+                                             __global const uchar* grid,
+                                             __global const float* x,
+                                             __global const int* known, __global int* idx,
+                                             __global int* count) {
+  const int r = get_global_id(0);
+  if (r >= n_rays) return;
+  __global int* ir = idx + (size_t)r * S;
+  int c = 0;
+  for (int s = 0; s < S; ++s) {
+    const size_t q = (size_t)r * S + s;
+    if (!known[q] && fast_occupied(vload3(q, x), lo, inv_cell, dims, grid)) ir[c++] = s;
+  }
+  count[r] = c;
+}
+
 // One wave's rows: alive ray a (ray alive[a]) takes its occupied samples cursor[a] ..
 // cursor[a] + (offset[a + 1] − offset[a]) − 1; row offset[a] + k gets the position of its k-th
 // and row_q[row] = the sample's index in the full layout (r·S + s).

@@ -230,6 +230,55 @@ TEST_CASE("fast march kernels match the host reference", "[pipeline][fast-render
   }
   CHECK(n_done > 0);
   CHECK(n_done < A);
+
+  // The merged pass: merged samples (M per ray) whose coarse source (< S) was evaluated (its
+  // logit is not the dead one) take its logit and density row and are known; the others are
+  // listed when occupied.
+  const int M = S + 7, stride = 3;
+  std::vector<int32_t> src(size_t(R) * M);
+  std::vector<float> h0c(size_t(R) * S), densc(size_t(R) * S * stride);
+  for (auto& v : src) v = int32_t(rng.next_u64() % uint64_t(M));
+  for (auto& v : h0c) v = rng.uniform(0, 1) < 0.3f ? -100.0f : rng.uniform(-3, 3);
+  for (auto& v : densc) v = rng.uniform(-1, 1);
+  std::vector<float> xm(size_t(R) * M * 3);
+  for (auto& v : xm) v = rng.uniform(-1.2f, 1.2f);
+  auto bsrc = cl::Buffer::from(rt, src), bh0c = cl::Buffer::from(rt, h0c),
+       bdc = cl::Buffer::from(rt, densc), bxm = cl::Buffer::from(rt, xm);
+  auto bh0 = cl::Buffer::from(rt, std::vector<float>(size_t(R) * M, 7.0f)),
+       bdf = cl::Buffer::from(rt, std::vector<float>(size_t(R) * M * stride, 9.0f));
+  cl::Buffer known(rt, size_t(R) * M * 4), idxm(rt, size_t(R) * M * 4);
+  rt.kernel("pipeline/fast_march.cl", "pipeline_march_prefill")
+      .set_args(R * M, S, M, stride, -100.0f, bsrc, bh0c, bdc, bh0, bdf, known)
+      .launch({cl::round_up(size_t(R) * M, 64)}, {64})
+      .wait();
+  rt.kernel("pipeline/fast_march.cl", "pipeline_occupied_unknown_list")
+      .set_args(R, M, g.lo4(), g.inv_cell4(), g.dims4(), g.device(), bxm, known, idxm, count)
+      .launch({cl::round_up(size_t(R), 64)}, {64})
+      .wait();
+  const auto kn = known.read_vec<int32_t>(size_t(R) * M), im = idxm.read_vec<int32_t>(size_t(R) * M),
+             cm = count.read_vec<int32_t>(size_t(R));
+  const auto h0 = bh0.read_vec<float>(size_t(R) * M), df = bdf.read_vec<float>(size_t(R) * M * stride);
+  int n_known = 0, n_listed = 0;
+  for (int r = 0; r < R; ++r) {
+    std::vector<int32_t> e;
+    for (int m = 0; m < M; ++m) {
+      const size_t q = size_t(r) * M + size_t(m);
+      const int s = src[q];
+      const bool k = s < S && h0c[size_t(r) * S + size_t(s)] != -100.0f;
+      REQUIRE(kn[q] == int(k));
+      n_known += k;
+      for (int j = 0; j < stride; ++j)
+        CHECK(df[q * stride + size_t(j)] ==
+              (k ? densc[(size_t(r) * S + size_t(s)) * stride + size_t(j)] : 9.0f));
+      CHECK(h0[q] == (k ? h0c[size_t(r) * S + size_t(s)] : 7.0f));
+      if (!k && g.occupied_at(xm[3 * q], xm[3 * q + 1], xm[3 * q + 2])) e.push_back(m);
+    }
+    REQUIRE(cm[size_t(r)] == int(e.size()));
+    CHECK(std::equal(e.begin(), e.end(), im.begin() + long(r) * M));
+    n_listed += int(e.size());
+  }
+  CHECK(n_known > 50);
+  CHECK(n_listed > 50);
 }
 
 TEST_CASE("render_rays_fast: exact with a full grid and no thresholds, close and cheaper with them",
@@ -252,7 +301,8 @@ TEST_CASE("render_rays_fast: exact with a full grid and no thresholds, close and
     const render::FastRenderConfig none = no_thresholds();
     const auto exact = model.render_rays_fast(o, dir, 512, full, none);
     const int M = c.render.n_samples + c.render.n_importance;
-    CHECK(model.fast_evaluated() == 512L * (importance ? c.render.n_samples + M : M));
+    // The merged pass evaluates only the importance samples: as many rows as the protocol's.
+    CHECK(model.fast_evaluated() == 512L * M);
     for (int ch = 0; ch < 3; ++ch) CHECK(test::worst_channel_diff(ref, exact, ch) < 1e-5);
 
     // Termination and the head threshold (full grid): fewer rows; the depth moves by at most
@@ -262,7 +312,7 @@ TEST_CASE("render_rays_fast: exact with a full grid and no thresholds, close and
     cut.stop_transmittance = 1e-3f;
     cut.head_weight_threshold = 1e-3f;
     const auto approx = model.render_rays_fast(o, dir, 512, full, cut);
-    const long full_rows = 512L * (importance ? c.render.n_samples + M : M);
+    const long full_rows = 512L * M;
     INFO("density rows " << model.fast_evaluated() << " of " << full_rows << ", head rows "
                          << model.fast_head_rows() << " of " << 512L * M);
     CHECK(model.fast_evaluated() < full_rows);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/error.hpp"
@@ -26,7 +27,9 @@ FastMarch::FastMarch(cl::Runtime& rt, int max_rays, int max_samples,
       hcount_k_(rt.kernel(kFile, "pipeline_head_count")),
       hgather_k_(rt.kernel(kFile, "pipeline_head_gather")),
       hscatter_k_(rt.kernel(kFile, "pipeline_head_scatter")),
-      fill_k_(rt.kernel(kFile, "pipeline_march_fill")) {
+      fill_k_(rt.kernel(kFile, "pipeline_march_fill")),
+      prefill_k_(rt.kernel(kFile, "pipeline_march_prefill")),
+      list_unknown_k_(rt.kernel(kFile, "pipeline_occupied_unknown_list")) {
   cfg_.validate();
   const size_t R = size_t(max_rays), N = R * size_t(max_samples);
   idx_ = floats(rt, N), count_ = floats(rt, R), alive_ = floats(rt, R), cursor_ = floats(rt, R);
@@ -34,6 +37,7 @@ FastMarch::FastMarch(cl::Runtime& rt, int max_rays, int max_samples,
   x_w_ = floats(rt, N * 3), row_q_ = floats(rt, N), dens_full_ = floats(rt, N * kDensStride);
   h_offset_ = floats(rt, R + 1), dens_h_ = floats(rt, N * kDensStride), h_q_ = floats(rt, N);
   h_ray_ = floats(rt, N), hcount_ = floats(rt, R);
+  h0_prev_ = floats(rt, N), dens_prev_ = floats(rt, N * kDensStride), known_ = floats(rt, N);
 }
 
 long FastMarch::density_pass(int n_rays, int S, const cl::Buffer& x,
@@ -45,6 +49,32 @@ long FastMarch::density_pass(int n_rays, int S, const cl::Buffer& x,
   list_k_.set_args(n_rays, S, grid.lo4(), grid.inv_cell4(), grid.dims4(), grid.device(), x, idx_,
                    count_)
       .launch({g64(size_t(n_rays))}, {64});
+  return march(n_rays, S, x, h0, w, density, weights);
+}
+
+long FastMarch::merged_pass(int n_rays, int S_c, int M, const cl::Buffer& x,
+                            const cl::Buffer& sources, const render::OccupancyGrid& grid,
+                            cl::Buffer& h0, cl::Buffer& head, const cl::Buffer& w,
+                            const Density& density, const Weights& weights) {
+  require(S_c > 0 && S_c <= M, "FastMarch::merged_pass: " + std::to_string(S_c) +
+                                   " coarse samples of " + std::to_string(M));
+  // The coarse pass's logits and density rows move aside before the merged layout overwrites
+  // them.
+  h0_prev_.copy_from(h0, size_t(n_rays) * size_t(S_c) * sizeof(float));
+  std::swap(dens_full_, dens_prev_);
+  const int n = n_rays * M;
+  fill_k_.set_args(n, kDeadLogit, kOffLogit, h0, head).launch({g64(size_t(n))}, {64});
+  prefill_k_.set_args(n, S_c, M, kDensStride, kDeadLogit, sources, h0_prev_, dens_prev_, h0,
+                      dens_full_, known_)
+      .launch({g64(size_t(n))}, {64});
+  list_unknown_k_.set_args(n_rays, M, grid.lo4(), grid.inv_cell4(), grid.dims4(), grid.device(),
+                           x, known_, idx_, count_)
+      .launch({g64(size_t(n_rays))}, {64});
+  return march(n_rays, M, x, h0, w, density, weights);
+}
+
+long FastMarch::march(int n_rays, int S, const cl::Buffer& x, cl::Buffer& h0,
+                      const cl::Buffer& w, const Density& density, const Weights& weights) {
   const std::vector<int32_t> count = count_.read_vec<int32_t>(size_t(n_rays));
   std::vector<int32_t> cursor(size_t(n_rays), 0), alive;
   for (int r = 0; r < n_rays; ++r)

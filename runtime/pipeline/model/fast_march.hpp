@@ -35,18 +35,35 @@ class FastMarch {
   long density_pass(int n_rays, int S, const cl::Buffer& x, const render::OccupancyGrid& grid,
                     cl::Buffer& h0, cl::Buffer& head, const cl::Buffer& w,
                     const Density& density, const Weights& weights);
-  // The head on the samples of the last density_pass whose weight w exceeds the threshold,
+  // The merged pass of importance sampling, right after density_pass on the coarse samples
+  // (S_c per ray, whose logits h0 still holds): the M merged samples x, `sources` as
+  // render::RaySampler::importance writes them (k < S_c: coarse sample k). Merged samples whose
+  // coarse source the coarse pass evaluated take its logit and density row without being
+  // evaluated again; the others march as in density_pass. Fills h0 (n_rays × M) and head, leaves
+  // the weights in w; returns the samples evaluated.
+  long merged_pass(int n_rays, int S_c, int M, const cl::Buffer& x, const cl::Buffer& sources,
+                   const render::OccupancyGrid& grid, cl::Buffer& h0, cl::Buffer& head,
+                   const cl::Buffer& w, const Density& density, const Weights& weights);
+  // The head on the samples of the last density_pass or merged_pass whose weight w exceeds the threshold,
   // into head (full layout). Returns the rows it ran on.
   long head_pass(int n_rays, int S, const cl::Buffer& w, cl::Buffer& head, const Head& run_head);
 
  private:
+  // The waves over the listed samples (idx_, count_) of a pass.
+  long march(int n_rays, int S, const cl::Buffer& x, cl::Buffer& h0, const cl::Buffer& w,
+             const Density& density, const Weights& weights);
+
   render::FastRenderConfig cfg_;
-  cl::Kernel list_k_, gather_k_, scatter_k_, done_k_, hcount_k_, hgather_k_, hscatter_k_, fill_k_;
+  cl::Kernel list_k_, gather_k_, scatter_k_, done_k_, hcount_k_, hgather_k_, hscatter_k_, fill_k_,
+      prefill_k_, list_unknown_k_;
   // Per ray: occupied sample indices and counts; per alive ray: ray, cursor, row offsets,
   // last evaluated sample, done flag; per wave row: position and full-layout index; the density
   // rows in the full layout; the head rows (density input, index, ray, output).
   cl::Buffer idx_, count_, alive_, cursor_, offset_, last_, done_, x_w_, row_q_, dens_full_,
       h_offset_, dens_h_, h_q_, h_ray_, hcount_;
+  // The merged pass: the coarse pass's logits and density rows, and which merged samples they
+  // give.
+  cl::Buffer h0_prev_, dens_prev_, known_;
 };
 
 }  // namespace sgnlf::pipeline

@@ -70,8 +70,13 @@ std::vector<float> LidarNerfModel::render_rays_fast(const std::vector<float>& or
     sampler_.importance(o_, d_, n, S, t_c_, w_c_, false, 0, 0, t_, x_, reuse_->sources());
     clamp(x_, n * M);
   }
-  fast_evaluated_ += fast_->density_pass(n, M, x_, grid, h0_, head_out_, weights_, density,
-                                         [&] { renderer_.weights(t_, h0_, n, M, weights_); });
+  const auto merged_weights = [&] { renderer_.weights(t_, h0_, n, M, weights_); };
+  if (I == 0)
+    fast_evaluated_ += fast_->density_pass(n, M, x_, grid, h0_, head_out_, weights_, density,
+                                           merged_weights);
+  else
+    fast_evaluated_ += fast_->merged_pass(n, S, M, x_, reuse_->sources(), grid, h0_, head_out_,
+                                          weights_, density, merged_weights);
   dirs_.forward(d_, n, dir_enc_);
   // The head's output rows go to g_head_ (a backward buffer, unused when rendering).
   const auto head = [&](const cl::Buffer& dens, int rows,
