@@ -27,6 +27,7 @@
 #include "io/pose_graph_svg.hpp"
 #include "posegraph/annealed_run.hpp"
 #include "posegraph/staged_graph_run.hpp"
+#include "posegraph/edge_reseeding.hpp"
 #include "posegraph/standin_features.hpp"
 
 namespace sgnlf::app {
@@ -38,6 +39,7 @@ struct PoseGraphArgs {
   int steps = 300, per_call = 10;
   posegraph::GeometricConfig cfg;
   double tau_scale = 1.5, lr_final = 0.05;
+  posegraph::ReseedConfig reseed;
   LoadOptions load;
   SensorRateOptions sensor_rate;
 };
@@ -61,6 +63,10 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
   sub.add_option("--offsets", a->cfg.edge_offsets, "Edges (i, i + k) for these k")->delimiter(',');
   sub.add_option("--residual", a->cfg.residual, "Direction term: point_to_point (GeoNLF's robust Chamfer) or point_to_plane")
       ->check(CLI::IsMember({"point_to_point", "point_to_plane"}));
+  sub.add_option("--reseed-rounds", a->reseed.max_rounds, "After the sequential alignment, re-seed edges stuck off their neighbours' motion (posegraph/edge_reseeding.hpp): passes over the edges, 0 = none");
+  sub.add_option("--reseed-steps", a->reseed.steps, "Refinement steps per re-seeding hypothesis");
+  sub.add_option("--reseed-min-difference", a->reseed.min_difference_m, "Re-seed an edge whose relative translation differs from a neighbour's by more than this (m)");
+  sub.add_option("--reseed-min-gain", a->reseed.min_gain, "Keep a re-seeding when the crossing edges' loss falls by more than this fraction");
   sub.add_option("--out", a->out, "Folder for trajectories/ and posegraph_log.json");
   sub.add_option("--graph", a->graph, "Pose graph: sequential (GeoNLF) or confidence (SG-NLF, stand-in features)")
       ->check(CLI::IsMember({"sequential", "confidence"}));
@@ -119,9 +125,19 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
       report(k, clock, &r);
     };
     Json graphs = Json::array();
-    Json graph_cfg_json = nullptr;
+    Json graph_cfg_json = nullptr, reseed_log = nullptr;
     if (a->graph == "sequential") {
       posegraph::run_annealed(loss, a->cfg, an, T, on_call);
+      if (a->reseed.max_rounds > 0) {
+        const auto rs = posegraph::reseed_edges(loss, a->cfg, a->lr_final, a->reseed, T);
+        for (const auto& t : rs.trials)
+          std::printf("reseed round %d edge %d-%d from %d-%d (%.3f m): crossing %.5f -> %.5f, "
+                      "total %.5f -> %.5f%s\n", t.round, t.edge, t.edge + 1, t.neighbour,
+                      t.neighbour + 1, t.difference_m, t.crossing_before, t.crossing_after,
+                      t.total_before, t.total_after, t.kept ? "  kept" : "");
+        reseed_log = posegraph::reseed_json(rs);
+        report(int(log.size()), 1.0, nullptr);
+      }
     } else {
       posegraph::ConfidenceGraphConfig gc;
       gc.sequential_offsets = a->cfg.edge_offsets;
@@ -173,7 +189,7 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
                            {"residual", a->cfg.residual},
                            {"lr_trans", a->cfg.lr_translation}, {"graph", a->graph},
                            {"graph_config", graph_cfg_json}, {"confidence_start", a->confidence_start},
-                           {"graphs", graphs}, {"calls", log}});
+                           {"graphs", graphs}, {"reseed", reseed_log}, {"calls", log}});
     }
     return 0;
   });

@@ -42,6 +42,10 @@ class GraphLoss {
 
   size_t frames() const { return clouds_->size(); }
   const std::vector<Edge>& edges() const { return edges_; }
+  const std::shared_ptr<const std::vector<FrameCloud>>& clouds() const { return clouds_; }
+  double min_distance() const { return min_distance_; }
+  double max_distance() const { return max_distance_; }
+  const DirectionFn& direction() const { return direction_; }
   // A PoseLoss sharing this object (the clouds are not copied).
   static PoseLoss as_pose_loss(std::shared_ptr<const GraphLoss> loss);
 

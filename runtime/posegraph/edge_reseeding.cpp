@@ -1,0 +1,122 @@
+// reseed_edges (see edge_reseeding.hpp).
+#include "posegraph/edge_reseeding.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/config.hpp"
+#include "core/error.hpp"
+
+namespace sgnlf::posegraph {
+
+void ReseedConfig::validate(const std::string& where) const {
+  check_range(where, "min_difference_m", min_difference_m, 0.0, 100.0);
+  check_range(where, "steps", steps, 1, 10000);
+  check_range(where, "lr_start", lr_start, 1e-6, 1.0);
+  check_range(where, "min_gain", min_gain, 0.0, 1.0);
+  check_range(where, "max_rounds", max_rounds, 0, 100);
+}
+
+std::vector<Edge> crossing_edges(const std::vector<Edge>& edges, int k) {
+  std::vector<Edge> out;
+  for (const Edge& e : edges)
+    if (std::min(e.i, e.j) <= k && std::max(e.i, e.j) > k) out.push_back(e);
+  return out;
+}
+
+namespace {
+
+// T_k⁻¹ · T_{k+1}.
+Pose relative(const std::vector<Pose>& T, int k) { return T[size_t(k)].inverse() * T[size_t(k) + 1]; }
+
+double loss_at(const GraphLoss& loss, const std::vector<Pose>& T, double tau) {
+  std::vector<PoseGrad> g;
+  return loss(T, tau, g);
+}
+
+}  // namespace
+
+ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const GeometricConfig& base,
+                          double lr_final, const ReseedConfig& cfg, std::vector<Pose>& T) {
+  require(loss != nullptr, "reseed_edges: null loss");
+  cfg.validate();
+  require(T.size() == loss->frames(), "reseed_edges: " + std::to_string(T.size()) +
+                                          " poses for " + std::to_string(loss->frames()) +
+                                          " frames");
+  ReseedResult out;
+  const int n = int(T.size());
+  if (cfg.max_rounds == 0 || n < 3) return out;
+  const double tau = base.tau_scale;  // the final τ (progress 1)
+  AnnealConfig refine;
+  refine.steps = cfg.steps;
+  refine.lr_start = cfg.lr_start;
+  refine.lr_final = std::min(lr_final, cfg.lr_start);
+  refine.hold_clock = true;
+  const auto polish = [&](std::vector<Pose>& P) { run_annealed(loss, base, refine, P); };
+
+  // The current poses get the same refinement as a hypothesis, so that the two are compared
+  // alike; made again only after a kept move.
+  std::vector<Pose> cur;
+  bool cur_valid = false;
+  for (int round = 0; round < cfg.max_rounds; ++round) {
+    int kept_this_round = 0;
+    for (int k = 0; k + 1 < n; ++k) {
+      const Pose rel = relative(T, k);
+      for (const int nb : {k - 1, k + 1}) {
+        if (nb < 0 || nb + 1 >= n) continue;
+        const Pose hyp = relative(T, nb);
+        const double diff = (hyp.translation() - rel.translation()).norm();
+        if (!(diff > cfg.min_difference_m)) continue;
+        const GraphLoss local(loss->clouds(), crossing_edges(loss->edges(), k),
+                              loss->min_distance(), 1, loss->direction(), loss->max_distance());
+        ReseedTrial t;
+        t.round = round, t.edge = k, t.neighbour = nb, t.difference_m = diff;
+        if (!cur_valid) {
+          cur = T;
+          polish(cur);
+          cur_valid = true;
+        }
+        t.crossing_before = loss_at(local, cur, tau);
+        t.total_before = loss_at(*loss, cur, tau);
+        // The hypothesis: frames k+1 … moved rigidly so that edge k takes the neighbour's
+        // relative motion.
+        std::vector<Pose> cand = T;
+        const Pose C = (T[size_t(k)] * hyp) * T[size_t(k) + 1].inverse();
+        for (int j = k + 1; j < n; ++j) cand[size_t(j)] = C * T[size_t(j)];
+        polish(cand);
+        t.crossing_after = loss_at(local, cand, tau);
+        t.total_after = loss_at(*loss, cand, tau);
+        t.kept = std::isfinite(t.crossing_after) &&
+                 t.crossing_after < (1.0 - cfg.min_gain) * t.crossing_before &&
+                 t.total_after <= t.total_before;
+        out.trials.push_back(t);
+        if (t.kept) {
+          T = cand;
+          cur_valid = false;
+          ++out.kept;
+          ++kept_this_round;
+          break;  // edge k is settled; its other neighbour is tried in the next round
+        }
+      }
+    }
+    if (kept_this_round == 0) break;
+  }
+  return out;
+}
+
+Json reseed_json(const ReseedResult& r) {
+  Json trials = Json::array();
+  for (const auto& t : r.trials)
+    trials.push_back({{"round", t.round},
+                      {"edge", Json::array({t.edge, t.edge + 1})},
+                      {"neighbour", Json::array({t.neighbour, t.neighbour + 1})},
+                      {"difference_m", t.difference_m},
+                      {"crossing_before", t.crossing_before},
+                      {"crossing_after", t.crossing_after},
+                      {"total_before", t.total_before},
+                      {"total_after", t.total_after},
+                      {"kept", t.kept}});
+  return Json{{"kept", r.kept}, {"trials", trials}};
+}
+
+}  // namespace sgnlf::posegraph

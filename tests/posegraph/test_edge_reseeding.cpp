@@ -1,0 +1,103 @@
+// Edge re-seeding (posegraph/edge_reseeding.hpp): an edge left off its neighbours' motion is
+// moved back when the scans agree better with the neighbour's motion, and a trajectory whose
+// steps genuinely change (braking) is left alone; the crossing edges; the config's refusals.
+#include <catch2/catch.hpp>
+
+#include <memory>
+#include <vector>
+
+#include "core/error.hpp"
+#include "posegraph/edge_reseeding.hpp"
+#include "posegraph/edges.hpp"
+#include "smooth_scene.hpp"
+
+using namespace sgnlf;
+using namespace sgnlf::posegraph;
+
+namespace {
+
+// Frames at x = xs[k] in one world of smooth surfaces, every frame seeing all of it.
+std::shared_ptr<const GraphLoss> loss_for(const std::vector<double>& xs) {
+  const auto world = test::smooth_world_points(3000, 7);
+  auto clouds = std::make_shared<std::vector<FrameCloud>>();
+  for (double x : xs) clouds->push_back(test::cloud_seen_from(world, Pose(Eigen::Translation3d(x, 0, 0))));
+  return std::make_shared<const GraphLoss>(clouds, sequential_edges(int(xs.size()), {1, 2}));
+}
+
+std::vector<Pose> poses_at(const std::vector<double>& xs) {
+  std::vector<Pose> T;
+  for (double x : xs) T.push_back(Pose(Eigen::Translation3d(x, 0, 0)));
+  return T;
+}
+
+GeometricConfig base() {
+  GeometricConfig g;
+  g.tau_scale = 1.5;
+  g.lr_rotation = 1e-2;
+  g.lr_translation = 1e-1;
+  return g;
+}
+
+}  // namespace
+
+TEST_CASE("crossing_edges: the edges spanning the cut after frame k", "[posegraph][reseed]") {
+  const auto e = crossing_edges(sequential_edges(6, {1, 2}), 2);
+  std::vector<std::pair<int, int>> got;
+  for (const auto& x : e) got.emplace_back(x.i, x.j);
+  CHECK(got == std::vector<std::pair<int, int>>{{2, 3}, {1, 3}, {2, 4}});
+}
+
+TEST_CASE("reseed_edges: an edge 1.5 m short takes its neighbour's motion back",
+          "[posegraph][reseed]") {
+  const std::vector<double> truth{0, 1, 2, 3, 4, 5};
+  const auto loss = loss_for(truth);
+  // Frames 3 … shifted back by 1.5 m: edge (2, 3) is 1.5 m short of its neighbours' 1 m steps
+  // ... i.e. it runs backwards; more than 30 small refinement steps can undo.
+  std::vector<Pose> T = poses_at({0, 1, 2, 1.5, 2.5, 3.5});
+  ReseedConfig cfg;
+  cfg.max_rounds = 2;
+  cfg.lr_start = 0.05;
+  const ReseedResult r = reseed_edges(loss, base(), 0.05, cfg, T);
+  REQUIRE(r.kept >= 1);
+  bool edge_2_kept = false;
+  for (const auto& t : r.trials)
+    if (t.kept && t.edge == 2) {
+      edge_2_kept = true;
+      CHECK(t.crossing_after < t.crossing_before);
+    }
+  CHECK(edge_2_kept);
+  for (size_t k = 0; k < T.size(); ++k) {
+    INFO("frame " << k << " at x = " << T[k].translation().x());
+    CHECK(std::abs(T[k].translation().x() - (T[0].translation().x() + truth[k])) < 0.15);
+  }
+}
+
+TEST_CASE("reseed_edges: genuine changes of speed are kept as they are", "[posegraph][reseed]") {
+  // Braking: steps 1.5, 1.5, 1.5, 0.5, 0.5 m. Every edge at the change is a candidate; the scans
+  // reject the constant-velocity hypotheses.
+  const std::vector<double> xs{0, 1.5, 3, 4.5, 5, 5.5};
+  const auto loss = loss_for(xs);
+  std::vector<Pose> T = poses_at(xs);
+  ReseedConfig cfg;
+  cfg.max_rounds = 2;
+  cfg.lr_start = 0.05;
+  const ReseedResult r = reseed_edges(loss, base(), 0.05, cfg, T);
+  CHECK(!r.trials.empty());
+  CHECK(r.kept == 0);
+  for (size_t k = 0; k < T.size(); ++k) CHECK(T[k].translation().x() == xs[k]);
+}
+
+TEST_CASE("reseed_edges: off by default, refusals name the key", "[posegraph][reseed]") {
+  const auto loss = loss_for({0, 1, 2});
+  std::vector<Pose> T = poses_at({0, 1, 3});
+  const auto r = reseed_edges(loss, base(), 0.05, ReseedConfig{}, T);
+  CHECK(r.trials.empty());
+  CHECK(T[2].translation().x() == 3.0);
+  ReseedConfig bad;
+  bad.min_gain = 1.5;
+  CHECK_THROWS_WITH(bad.validate(), Catch::Contains("min_gain"));
+  std::vector<Pose> wrong(2, Pose::Identity());
+  ReseedConfig on;
+  on.max_rounds = 1;
+  CHECK_THROWS_AS(reseed_edges(loss, base(), 0.05, on, wrong), Error);
+}
