@@ -2,7 +2,7 @@
 // odometry) against the hashes committed in config_hashes.json. A refactor of the configs, the
 // presets or the method registry must keep every run's config, and so every committed result's
 // config hash, as it was; a change that means to move a preset regenerates the file on purpose:
-//   SGNLF_WRITE_CONFIG_HASHES=1 build/tests/pipeline/test_pipeline "[config-hashes]"
+//   SGNLF_WRITE_CONFIG_HASHES=1 build/tests/pipeline/test_pipeline_config "[config-hashes]"
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
