@@ -177,10 +177,14 @@ TEST_CASE("a section's presence is its only switch", "[pipeline][config]") {
           resolve_config("geonlf", "smoke", Json{{"pose_optim", {{"optimize", false}}}});
         }).find("config.geometric: the geometric stage moves the poses") != std::string::npos);
   CHECK_FALSE(resolve_config("geonlf-frozen", "smoke").geometric_stage());
-  // merge_config_json: null removes at any depth, and never lands in the merged config.
+  // merge_config_json records a removal at any depth, so that layers of overrides compose;
+  // drop_removed_keys applies them.
+  const Json layer = merge_config_json(Json{{"spectral", {{"every", 2}}}}, Json{{"spectral", nullptr}});
+  CHECK(layer == Json{{"spectral", nullptr}});
+  CHECK_FALSE(resolve_config("sg-nlf", "smoke", layer).hybrid_encoder());
   const Json m = merge_config_json(Json{{"a", {{"b", 1}, {"c", 2}}}},
                                    Json{{"a", {{"b", nullptr}}}, {"d", {{"e", nullptr}, {"f", 3}}}});
-  CHECK(m == Json{{"a", {{"c", 2}}}, {"d", {{"f", 3}}}});
+  CHECK(drop_removed_keys(m) == Json{{"a", {{"c", 2}}}, {"d", {{"f", 3}}}});
 }
 
 TEST_CASE("bad values are named", "[pipeline][config]") {

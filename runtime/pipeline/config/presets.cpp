@@ -132,7 +132,7 @@ TrainConfig resolve_config(const std::string& method, const std::string& preset,
       where += " + " + std::string(kOdometrySection);
     }
   }
-  return train_config_from_json(merged, where + " + " + overrides_name);
+  return train_config_from_json(drop_removed_keys(std::move(merged)), where + " + " + overrides_name);
 }
 
 TrainConfig resolve_config(const std::string& method, const std::string& preset) {

@@ -132,12 +132,25 @@ Json train_config_schema() {
   return j;
 }
 
+Json drop_removed_keys(Json j) {
+  if (!j.is_object()) return j;
+  for (auto it = j.begin(); it != j.end();) {
+    if (it.value().is_null()) {
+      it = j.erase(it);
+    } else {
+      it.value() = drop_removed_keys(it.value());
+      ++it;
+    }
+  }
+  return j;
+}
+
 Json merge_config_json(Json base, const Json& overrides) {
   if (!overrides.is_object()) throw ConfigError("config overrides: expected a JSON object");
   for (auto it = overrides.begin(); it != overrides.end(); ++it) {
     if (it.value().is_null())
-      base.erase(it.key());
-    else if (it.value().is_object())  // onto the base's object, or a new one (nulls dropped)
+      base[it.key()] = nullptr;  // a removal, kept so that merged overrides still remove
+    else if (it.value().is_object())  // onto the base's object, or a new one
       base[it.key()] = merge_config_json(
           base.contains(it.key()) && base[it.key()].is_object() ? base[it.key()] : Json::object(),
           it.value());

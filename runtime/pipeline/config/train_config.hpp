@@ -133,9 +133,11 @@ uint64_t config_json_hash(Json resolved);
 // config (spectral's psi, loss, fusion; consistency's discriminator) with its keys under
 // "fields"; a top-level key (coarse_to_fine) is described in place.
 Json train_config_schema();
-// Applies `overrides` to `base`: nested objects merged key by key, other values replaced, and a
-// null value removes the key (JSON merge patch, RFC 7386: `"pose_graph": null` takes an
-// optional section out).
+// Merges `overrides` onto `base`: nested objects key by key, other values replaced, and a null
+// value (`"pose_graph": null`: an optional section taken out) recorded as null, so that merged
+// layers of overrides still remove it. drop_removed_keys() then applies the removals (JSON merge
+// patch, RFC 7386); resolve_config does both before it reads.
 Json merge_config_json(Json base, const Json& overrides);
+Json drop_removed_keys(Json merged);
 
 }  // namespace sgnlf::pipeline
