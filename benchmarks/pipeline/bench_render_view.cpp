@@ -61,7 +61,7 @@ void BM_RenderView(benchmark::State& state, bool fast) {
   state.counters["grid_occupied"] = grid.occupied_fraction();
   // MLP FLOPs per iteration: density MLP on every density row, head on every head row.
   const auto& f = c.field;
-  const field::MlpSpec dens = field::make_mlp_spec(f.levels * f.features_per_level, f.density_hidden,
+  const field::MlpSpec dens = field::make_mlp_spec(f.grid.levels * f.grid.features, f.density_hidden,
                                                    1, 1 + f.geo_features, field::Activation::Relu);
   // The head's first layer also takes the direction encoding (once per ray: not counted).
   const field::MlpSpec head = field::make_mlp_spec(f.geo_features, f.head_hidden, f.head_layers,

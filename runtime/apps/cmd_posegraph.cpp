@@ -89,9 +89,7 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
     pipeline::PoseInitConfig pi;
     pi.init = a->init;
     const std::vector<Pose> init = pipeline::initial_poses(d, pi);
-    pipeline::GeometricScheduleConfig sc;
-    sc.tau_scale = a->tau_scale;
-    a->cfg.tau_scale = pipeline::geometric_tau_scale(sc, d.sensor);
+    a->cfg.tau_scale = pipeline::geometric_tau_scale(a->tau_scale, d.sensor);
     a->cfg.steps = a->per_call;
     a->cfg.validate();
     std::vector<std::vector<PointXYZI>> scans;

@@ -6,7 +6,8 @@
 //     v("start_step", s.start_step, 0L, 9L, omit_when(0L));  // written only when not 0
 //     v("form", s.form, choices(kForms));    // an enum, written as its name (kForms: its
 //                                            // {value, "name"} pairs)
-//     v.section("geometric", s.geometric);   // a nested struct with its own fields() list
+//     v.section("grid", s.grid);             // a nested struct with its own fields() list
+//     v.optional("geometric", s.geometric);  // a std::optional of one: on exactly when present
 //     v.object("psi", s.psi);                // a nested config with its own from_json/to_json
 //   }
 //
@@ -18,10 +19,15 @@
 // checks stay with the parent's validate(), which calls the nested one's. omit_when(x) marks a
 // key added after results were committed: it is written only when not x, so their configs and
 // hashes stay as they were. A nested config that has its own field list is described in the
-// schema with its keys ("fields") as well. The markers omit_when and choices are in the json-free
+// schema with its keys ("fields") as well. An optional section (v.optional) is on exactly when
+// its key is present in the JSON: absent, the member is reset (whatever the struct's default);
+// present, its keys are read over the struct's default; written only when engaged. Its
+// presence is its only switch: an "enabled" key inside it is refused (refuse_enabled_key).
+// The markers omit_when and choices are in the json-free
 // core/config_choices.hpp, which is all a config header needs to list its fields.
 #pragma once
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -38,6 +44,16 @@ template <typename T, typename V>
 struct HasFields<T, V, std::void_t<decltype(T::fields(std::declval<const T&>(), std::declval<V&>()))>>
     : std::true_type {};
 }  // namespace detail
+
+// The switch key of the old configs: a section's presence now says whether it is on, so an
+// "enabled" key inside `section` (the reader of the section named `key`) is refused with what
+// to do instead.
+inline void refuse_enabled_key(ConfigReader& section, const std::string& key) {
+  if (!section.has("enabled")) return;
+  throw ConfigError(section.where() + ": 'enabled' is not a key: a section is on exactly when it "
+                    "is present. To turn '" + key + "' off, remove the section (in overrides: \"" +
+                    key + "\": null); to keep it on, remove the 'enabled' key");
+}
 
 // Reads each listed key present in the reader's object into its member.
 class FieldReader {
@@ -78,6 +94,20 @@ class FieldReader {
     FieldReader v(c);
     S::fields(member, v);
     c.finish();
+  }
+  template <typename S>
+  void optional(const char* key, std::optional<S>& member) {
+    if (!r_.has(key)) {
+      member.reset();
+      return;
+    }
+    ConfigReader c = r_.child(key);
+    refuse_enabled_key(c, key);
+    S s = member.value_or(S{});
+    FieldReader v(c);
+    S::fields(s, v);
+    c.finish();
+    member = std::move(s);
   }
   template <typename T>
   void object(const char* key, T& member) {
@@ -122,6 +152,10 @@ class FieldWriter {
     S::fields(member, v);
     j_[key] = sub;
   }
+  template <typename S>
+  void optional(const char* key, const std::optional<S>& member) {
+    if (member) section(key, *member);
+  }
   template <typename T>
   void object(const char* key, const T& member) {
     j_[key] = member.to_json();
@@ -153,6 +187,10 @@ class FieldChecker {
   void section(const char* key, const S& member) {
     FieldChecker v(where_ + "." + key);
     S::fields(member, v);
+  }
+  template <typename S>
+  void optional(const char* key, const std::optional<S>& member) {
+    if (member) section(key, *member);
   }
   template <typename T>
   void object(const char*, const T&) {}
@@ -195,6 +233,17 @@ class FieldDescriber {
     FieldDescriber v(sub);
     S::fields(member, v);
     j_[key] = sub;
+  }
+  // An optional section: its keys (at the struct's defaults) under "fields".
+  template <typename S>
+  void optional(const char* key, const std::optional<S>& member) {
+    Json sub = Json::object();
+    FieldDescriber v(sub);
+    const S d = member.value_or(S{});
+    S::fields(d, v);
+    j_[key] = Json{{"type", "object"},
+                   {"optional", "on exactly when present; absent: off"},
+                   {"fields", sub}};
   }
   // A nested config: its default object, and its keys when it has a field list.
   template <typename T>

@@ -9,21 +9,6 @@
 
 namespace sgnlf::field {
 
-void AdamConfig::validate() const {
-  check_range("adam", "beta1", beta1, 0.0f, 0.999999f);
-  check_range("adam", "beta2", beta2, 0.0f, 0.999999f);
-  check_range("adam", "eps", eps, 0.0f, 1.0f);
-  check_range("adam", "weight_decay", weight_decay, 0.0f, 1.0f);
-}
-
-AdamConfig AdamConfig::from_json(ConfigReader& r) {
-  AdamConfig c;
-  r.get("beta1", c.beta1).get("beta2", c.beta2).get("eps", c.eps).get("weight_decay",
-                                                                        c.weight_decay);
-  c.validate();
-  return c;
-}
-
 Adam::Adam(cl::Runtime& rt, size_t n_params, const AdamConfig& cfg)
     : rt_(rt), cfg_(cfg), n_params_(n_params) {
   cfg_.validate();

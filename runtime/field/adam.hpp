@@ -5,18 +5,9 @@
 #include <cstdint>
 
 #include "cl/runtime.hpp"
-#include "core/config_fwd.hpp"
+#include "field/adam_config.hpp"
 
 namespace sgnlf::field {
-
-struct AdamConfig {
-  float beta1 = 0.9f;
-  float beta2 = 0.99f;
-  float eps = 1e-15f;
-  float weight_decay = 0.0f;  // L2 term added to the gradient
-  void validate() const;      // throws ConfigError
-  static AdamConfig from_json(ConfigReader& r);  // caller calls finish()
-};
 
 class Adam {
  public:

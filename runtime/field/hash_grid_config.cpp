@@ -5,13 +5,13 @@
 #include <string>
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 #include "core/error.hpp"
 #include "field/feature_count.hpp"
 
 namespace sgnlf::field {
 
-void HashGridConfig::validate() const {
-  const std::string w = "hash_grid";
+void HashGridConfig::validate(const std::string& w) const {
   check_range(w, "levels", levels, 1, 32);
   check_feature_count(w, features);
   check_range(w, "log2_table_size", log2_table_size, 4, 24);
@@ -24,16 +24,7 @@ void HashGridConfig::validate() const {
     throw ConfigError(w + ": finest resolution " + std::to_string(finest) + " exceeds 1e6");
 }
 
-void HashGridConfig::read_keys(ConfigReader& r) {
-  r.get("levels", levels)
-      .get("features", features)
-      .get("log2_table_size", log2_table_size)
-      .get("base_resolution", base_resolution)
-      .get("per_level_scale", per_level_scale)
-      .get("deterministic", deterministic)
-      .get("half_table", half_table)
-      .get("schedule", schedule);
-}
+void HashGridConfig::read_keys(ConfigReader& r) { config::read_fields_here(r, *this); }
 
 HashGridConfig HashGridConfig::from_json(ConfigReader& r) {
   HashGridConfig c;

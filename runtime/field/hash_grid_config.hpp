@@ -1,5 +1,6 @@
 // The hash grid's configuration (hash_grid.hpp), host-only: configs that carry one (LiDAR4D's
-// encoder, the training config) read and check it without the OpenCL launcher.
+// encoder's "static_hash", the training config's "field.grid") embed it whole and read, write
+// and check it through its field list (core/config_fields.hpp) without the OpenCL launcher.
 #pragma once
 #include <string>
 
@@ -26,7 +27,21 @@ struct HashGridConfig {
   // "auto" = chunked on CPU devices, per_point otherwise. Results are identical.
   std::string schedule = "auto";
 
-  void validate() const;  // throws ConfigError
+  // Every key (core/config_fields.hpp); the ranges are validate()'s, which also checks the
+  // feature count, the schedule's name and the finest resolution.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("levels", s.levels);
+    v("features", s.features);
+    v("log2_table_size", s.log2_table_size);
+    v("base_resolution", s.base_resolution);
+    v("per_level_scale", s.per_level_scale);
+    v("deterministic", s.deterministic);
+    v("half_table", s.half_table);
+    v("schedule", s.schedule);
+  }
+  // Throws ConfigError naming `where` and the key.
+  void validate(const std::string& where = "hash_grid") const;
   static HashGridConfig from_json(ConfigReader& r);  // reads known keys; caller calls finish()
   // The keys present in r onto this config (the others keep their values); no validation.
   void read_keys(ConfigReader& r);

@@ -11,7 +11,7 @@ namespace sgnlf::field {
 
 void Lidar4DEncoderConfig::validate(const std::string& where) const {
   planes.validate(where + ".planes");
-  static_hash.validate();
+  static_hash.validate(where + ".static_hash");
   time_hash.validate(where + ".time_hash");
   flow.validate(where + ".flow");
 }
@@ -46,17 +46,8 @@ Lidar4DEncoderConfig Lidar4DEncoderConfig::from_json(const Json& j, const std::s
 }
 
 Json Lidar4DEncoderConfig::to_json() const {
-  const HashGridConfig& g = static_hash;
   return Json{{"planes", planes.to_json()},
-              {"static_hash",
-               {{"levels", g.levels},
-                {"features", g.features},
-                {"log2_table_size", g.log2_table_size},
-                {"base_resolution", g.base_resolution},
-                {"per_level_scale", g.per_level_scale},
-                {"deterministic", g.deterministic},
-                {"half_table", g.half_table},
-                {"schedule", g.schedule}}},
+              {"static_hash", config::write_fields(static_hash)},
               {"time_hash", time_hash.to_json()},
               {"flow", flow.to_json()},
               {"blend", blend}};

@@ -17,6 +17,13 @@ struct NormalOptions {
   // Planarity: λ_min / λ_mid of the covariance at most this (a line or a blob has a larger
   // ratio, and its "normal" is arbitrary).
   double max_flatness = 0.3;
+  // The keys and ranges (core/config_fields.hpp); validate() checks the same bounds.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("radius_m", s.radius_m, 1e-6, 100.0);
+    v("min_neighbours", s.min_neighbours, 3, 1 << 20);
+    v("max_flatness", s.max_flatness, 1e-9, 1.0);
+  }
   void validate() const;
 };
 

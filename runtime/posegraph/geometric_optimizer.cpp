@@ -11,9 +11,9 @@
 namespace sgnlf::posegraph {
 namespace {
 
-void check_field(bool ok, const char* field, const std::string& value, const char* rule) {
-  if (!ok)
-    throw ConfigError(std::string("GeometricConfig.") + field + " = " + value + ": " + rule);
+void check_field(const std::string& where, bool ok, const char* field, const std::string& value,
+                 const char* rule) {
+  if (!ok) throw ConfigError(where + "." + field + " = " + value + ": " + rule);
 }
 
 std::string str(double v) { return std::to_string(v); }
@@ -28,21 +28,21 @@ void check_poses(const std::vector<Pose>& T, size_t frames) {
 
 }  // namespace
 
-void GeometricConfig::validate() const {
-  check_field(!edge_offsets.empty(), "edge_offsets", "[]", "needs at least one offset");
+void GeometricConfig::validate(const std::string& w) const {
+  check_field(w, !edge_offsets.empty(), "edge_offsets", "[]", "needs at least one offset");
   for (int o : edge_offsets)
-    check_field(o >= 1, "edge_offsets", std::to_string(o), "must be >= 1");
-  check_field(steps >= 0, "steps", std::to_string(steps), "must be >= 0");
-  check_field(std::isfinite(lr_rotation) && lr_rotation > 0, "lr_rotation", str(lr_rotation),
+    check_field(w, o >= 1, "edge_offsets", std::to_string(o), "must be >= 1");
+  check_field(w, steps >= 0, "steps", std::to_string(steps), "must be >= 0");
+  check_field(w, std::isfinite(lr_rotation) && lr_rotation > 0, "lr_rotation", str(lr_rotation),
               "must be > 0");
-  check_field(std::isfinite(lr_translation) && lr_translation > 0, "lr_translation",
+  check_field(w, std::isfinite(lr_translation) && lr_translation > 0, "lr_translation",
               str(lr_translation), "must be > 0");
-  check_field(std::isfinite(tau_scale) && tau_scale >= 0, "tau_scale", str(tau_scale),
+  check_field(w, std::isfinite(tau_scale) && tau_scale >= 0, "tau_scale", str(tau_scale),
               "must be >= 0");
-  check_field(std::isfinite(min_distance) && min_distance > 0, "min_distance",
+  check_field(w, std::isfinite(min_distance) && min_distance > 0, "min_distance",
               str(min_distance), "must be > 0");
-  check_field(threads >= 1, "threads", std::to_string(threads), "must be >= 1");
-  check_field(residual == "point_to_point" || residual == "point_to_plane", "residual",
+  check_field(w, threads >= 1, "threads", std::to_string(threads), "must be >= 1");
+  check_field(w, residual == "point_to_point" || residual == "point_to_plane", "residual",
               "\"" + residual + "\"", "must be \"point_to_point\" or \"point_to_plane\"");
   normals.validate();
 }

@@ -14,6 +14,9 @@
 
 namespace sgnlf::posegraph {
 
+// Embedded whole where it is configured (the training config's "geometric.optimizer"), through
+// its field list; `steps` is not a key there: whoever runs the optimiser sets it per call (the
+// training's geometric schedule, sgnlf posegraph's --per-call).
 struct GeometricConfig {
   std::vector<int> edge_offsets = {1, 2};  // GeoNLF: (i, i+1), (i, i+2)
   int steps = 10;                 // Adam steps per run() call
@@ -29,8 +32,23 @@ struct GeometricConfig {
   std::string residual = "point_to_point";
   NormalOptions normals;
 
-  // Throws sgnlf::ConfigError naming the field and its value.
-  void validate() const;
+  // The keys (core/config_fields.hpp): all but `steps`; the rules are validate()'s, the closed
+  // ranges listed here too.
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("edge_offsets", s.edge_offsets);
+    v("lr_rotation", s.lr_rotation);
+    v("lr_translation", s.lr_translation);
+    v("tau_scale", s.tau_scale);
+    v("min_distance", s.min_distance);
+    v("points_per_frame", s.points_per_frame, size_t(0), size_t(1) << 24);
+    v("seed", s.seed);
+    v("threads", s.threads, 1, 256);
+    v("residual", s.residual);
+    v.section("normals", s.normals);
+  }
+  // Throws sgnlf::ConfigError naming `where`, the field and its value.
+  void validate(const std::string& where = "GeometricConfig") const;
   // The direction term `residual` names, for a GraphLoss.
   DirectionFn direction() const;
   // make_frame_clouds(scans, points_per_frame, seed), with normals when the residual needs them.

@@ -36,7 +36,7 @@ inline pipeline::ModelState opaque_state(pipeline::LidarNerfModel& model, const 
   pipeline::ModelState st = model.state();
   const auto& f = c.field;
   const field::Mlp dens(runtime(),
-                        field::make_mlp_spec(f.levels * f.features_per_level, f.density_hidden, 1,
+                        field::make_mlp_spec(f.grid.levels * f.grid.features, f.density_hidden, 1,
                                              1 + f.geo_features, field::Activation::Relu));
   const size_t sigma_bias = model.layout().slice("density_mlp").offset + dens.layer_offset(1) +
                             size_t(f.density_hidden) * size_t(field::Mlp::pad16(1 + f.geo_features));

@@ -33,7 +33,8 @@ TEST_CASE("every embedded preset resolves and validates", "[pipeline][config]") 
   CHECK(paper.schedule.rays_per_batch == 4096);
   CHECK(paper.render.n_samples == 768);
   CHECK(paper.render.n_importance == 64);
-  CHECK(paper.field.log2_table_size == 19);
+  CHECK(paper.field.grid.log2_table_size == 19);
+  CHECK(paper.field.grid.deterministic);  // the paper's default: the bit-reproducible backward
   CHECK(paper.optim.lr == Approx(1e-2));
 }
 
@@ -49,6 +50,141 @@ TEST_CASE("unknown keys are rejected with their name", "[pipeline][config]") {
   Json render = preset_json("lidar-nerf", "smoke");
   render["render"]["n_sample"] = 3;
   CHECK(error_of([&] { train_config_from_json(render, "z"); }).find("n_sample") != std::string::npos);
+}
+
+TEST_CASE("the modules' configs are embedded whole, with their keys and checks",
+          "[pipeline][config]") {
+  // The hash grid's every key, the presets' values as before (deterministic by default).
+  for (const char* method : {"lidar-nerf", "geonlf", "sg-nlf"})
+    for (const char* p : {"smoke", "quick", "paper"}) {
+      CAPTURE(method, p);
+      const TrainConfig c = resolve_config(method, p);
+      CHECK(c.field.grid.deterministic);
+      CHECK_FALSE(c.field.grid.half_table);
+      CHECK(c.field.grid.schedule == "auto");
+      CHECK(c.optim.adam.beta1 == 0.9f);
+      CHECK(c.optim.adam.beta2 == 0.99f);
+      CHECK(c.optim.adam.eps == 1e-15f);
+      CHECK(c.optim.adam.weight_decay == 0.0f);
+      const Json j = train_config_to_json(c);
+      CHECK(j["field"]["grid"].size() == 8);  // every key of field::HashGridConfig written
+      CHECK(j["optim"]["adam"].size() == 4);
+    }
+  const TrainConfig geo = resolve_config("geonlf", "quick");
+  CHECK(geo.field.grid.levels == 14);
+  CHECK(geo.field.grid.per_level_scale == 1.511f);
+  CHECK(geo.pose_free->geometric->optimizer.lr_rotation == 0.01);
+  CHECK(geo.pose_free->geometric->optimizer.points_per_frame == 4000);
+  CHECK(geo.pose_free->geometric->optimizer.min_distance == 0.15);  // the module's, now a key
+  const Json geo_json = train_config_to_json(geo);
+  CHECK(geo_json["geometric"]["optimizer"]["normals"]["min_neighbours"] == 6);
+  CHECK_FALSE(geo_json["geometric"]["optimizer"].contains("steps"));  // per call, not a key
+
+  // An option the old copy fixed reaches the config and its hash.
+  const TrainConfig half =
+      resolve_config("lidar-nerf", "smoke", Json{{"field", {{"grid", {{"half_table", true}}}}}});
+  CHECK(half.field.grid.half_table);
+  CHECK(half.hash() != resolve_config("lidar-nerf", "smoke").hash());
+  const TrainConfig atomic = resolve_config(
+      "lidar-nerf", "smoke", Json{{"field", {{"grid", {{"deterministic", false}}}}}});
+  CHECK_FALSE(atomic.field.grid.deterministic);
+  CHECK(train_config_from_json(train_config_to_json(atomic), "rt").hash() == atomic.hash());
+
+  // Unknown keys inside an embedded section are refused, naming its path.
+  auto lidar_nerf_error = [](const Json& o) {
+    return error_of([&] { resolve_config("lidar-nerf", "smoke", o, "mine.json"); });
+  };
+  std::string e = lidar_nerf_error(Json{{"field", {{"grid", {{"half_tabel", true}}}}}});
+  CHECK(e.find("mine.json.field.grid: unknown key(s) 'half_tabel'") != std::string::npos);
+  CHECK(e.find("did you mean 'half_table'") != std::string::npos);
+  e = lidar_nerf_error(Json{{"optim", {{"adam", {{"beta3", 0.5}}}}}});
+  CHECK(e.find("mine.json.optim.adam: unknown key(s) 'beta3'") != std::string::npos);
+  // The copied keys are gone from the outer section.
+  CHECK(lidar_nerf_error(Json{{"field", {{"levels", 8}}}}).find("field: unknown key(s) 'levels'") !=
+        std::string::npos);
+  CHECK(lidar_nerf_error(Json{{"optim", {{"beta1", 0.9}}}}).find("optim: unknown key(s) 'beta1'") !=
+        std::string::npos);
+  e = error_of([] {
+    resolve_config("geonlf", "smoke", Json{{"geometric", {{"optimizer", {{"lr_rot", 0.1}}}}}}, "o");
+  });
+  CHECK(e.find("o.geometric.optimizer: unknown key(s) 'lr_rot'") != std::string::npos);
+  e = error_of([] {
+    resolve_config("geonlf", "smoke",
+                   Json{{"geometric", {{"optimizer", {{"normals", {{"radius", 1.0}}}}}}}}, "o");
+  });
+  CHECK(e.find("o.geometric.optimizer.normals: unknown key(s) 'radius'") != std::string::npos);
+  // The modules' own checks, naming the path and the key.
+  e = lidar_nerf_error(Json{{"field", {{"grid", {{"features", 3}}}}}});
+  CHECK(e.find("config.field.grid: 'features' = 3") != std::string::npos);
+  e = lidar_nerf_error(Json{{"field", {{"grid", {{"schedule", "fast"}}}}}});
+  CHECK(e.find("config.field.grid: 'schedule'") != std::string::npos);
+  e = lidar_nerf_error(Json{{"optim", {{"adam", {{"beta1", 1.5}}}}}});
+  CHECK(e.find("config.optim.adam: 'beta1'") != std::string::npos);
+  e = error_of([] {
+    resolve_config("geonlf", "smoke", Json{{"geometric", {{"optimizer", {{"min_distance", 0.0}}}}}});
+  });
+  CHECK(e.find("config.geometric.optimizer.min_distance") != std::string::npos);
+}
+
+TEST_CASE("a section's presence is its only switch", "[pipeline][config]") {
+  // Taken out with null (JSON merge patch), the feature is off and the section not written.
+  const TrainConfig sg = resolve_config("sg-nlf", "smoke");
+  CHECK(sg.hybrid_encoder());
+  CHECK(sg.confidence_graph());
+  CHECK(sg.consistency_term());
+  CHECK(sg.geometric_stage());
+  CHECK(sg.reweighting());
+  const TrainConfig bare = resolve_config(
+      "sg-nlf", "smoke",
+      Json{{"spectral", nullptr}, {"pose_graph", nullptr}, {"consistency", nullptr},
+           {"geometric", nullptr}, {"reweight", nullptr}});
+  CHECK_FALSE(bare.hybrid_encoder());
+  CHECK_FALSE(bare.confidence_graph());
+  CHECK_FALSE(bare.consistency_term());
+  CHECK_FALSE(bare.geometric_stage());
+  CHECK_FALSE(bare.reweighting());
+  const Json bare_json = train_config_to_json(bare);
+  for (const char* k : {"spectral", "pose_graph", "consistency", "geometric", "reweight"})
+    CHECK_FALSE(bare_json.contains(k));
+  CHECK(train_config_from_json(bare_json, "rt").hash() == bare.hash());
+  // The ablation rows are SG-NLF without the sections: the same configs but the name.
+  Json no_graph = train_config_to_json(resolve_config("sg-nlf-no-graph", "smoke"));
+  Json sg_no_graph = train_config_to_json(resolve_config("sg-nlf", "smoke", Json{{"pose_graph", nullptr}}));
+  no_graph.erase("method");
+  sg_no_graph.erase("method");
+  CHECK(no_graph == sg_no_graph);
+  // A method that cannot carry a section refuses it.
+  CHECK(error_of([] {
+          resolve_config("sg-nlf-no-hybrid", "smoke", Json{{"spectral", {{"every", 2}}}});
+        }).find("'spectral'") != std::string::npos);
+  // An old config's switch is refused with what to do, on and off alike, in every section.
+  const std::pair<const char*, Json> old_switches[] = {
+      {"spectral", Json{{"spectral", {{"enabled", false}}}}},
+      {"pose_graph", Json{{"pose_graph", {{"enabled", false}}}}},
+      {"consistency", Json{{"consistency", {{"enabled", true}}}}},
+      {"geometric", Json{{"geometric", {{"enabled", false}}}}},
+      {"reweight", Json{{"reweight", {{"enabled", false}}}}}};
+  for (const auto& [section, o] : old_switches) {
+    CAPTURE(section);
+    const std::string e = error_of([&] { resolve_config("sg-nlf", "smoke", o, "old.json"); });
+    CHECK(e.find("old.json." + std::string(section) + ": 'enabled' is not a key") !=
+          std::string::npos);
+    CHECK(e.find("remove the section (in overrides: \"" + std::string(section) + "\": null)") !=
+          std::string::npos);
+  }
+  // The geometric stage moves the poses: beside frozen poses it is refused, not ignored.
+  CHECK(error_of([] {
+          resolve_config("geonlf", "smoke", Json{{"pose_optim", {{"optimize", false}}}});
+        }).find("config.geometric: the geometric stage moves the poses") != std::string::npos);
+  CHECK_FALSE(resolve_config("geonlf-frozen", "smoke").geometric_stage());
+  // merge_config_json records a removal at any depth, so that layers of overrides compose;
+  // drop_removed_keys applies them.
+  const Json layer = merge_config_json(Json{{"spectral", {{"every", 2}}}}, Json{{"spectral", nullptr}});
+  CHECK(layer == Json{{"spectral", nullptr}});
+  CHECK_FALSE(resolve_config("sg-nlf", "smoke", layer).hybrid_encoder());
+  const Json m = merge_config_json(Json{{"a", {{"b", 1}, {"c", 2}}}},
+                                   Json{{"a", {{"b", nullptr}}}, {"d", {{"e", nullptr}, {"f", 3}}}});
+  CHECK(drop_removed_keys(m) == Json{{"a", {{"c", 2}}}, {"d", {{"f", 3}}}});
 }
 
 TEST_CASE("bad values are named", "[pipeline][config]") {
@@ -128,12 +264,12 @@ TEST_CASE("a start from the odometry applies the preset's from_odometry section"
       CHECK_FALSE(contains_leaves(noisy, start));  // only when starting from the odometry
       // The user's keys still win over the section.
       const Json mine{{"poses", {{"init", "odometry"}}}, {"geometric", {{"first_steps", 7}}}};
-      CHECK(resolve_config(method, p, mine).pose_free->geometric.first_steps == 7);
+      CHECK(resolve_config(method, p, mine).pose_free->geometric->first_steps == 7);
     }
   }
   // Ablations built on a family's preset inherit its section.
-  CHECK(resolve_config("sg-nlf-no-graph", "quick", odometry).pose_free->geometric.first_steps ==
-        resolve_config("sg-nlf", "quick", odometry).pose_free->geometric.first_steps);
+  CHECK(resolve_config("sg-nlf-no-graph", "quick", odometry).pose_free->geometric->first_steps ==
+        resolve_config("sg-nlf", "quick", odometry).pose_free->geometric->first_steps);
   CHECK(odometry_start_json("lidar-nerf", "quick").empty());
   // A malformed init is still named by the strict reader.
   CHECK(error_of([] { resolve_config("geonlf", "quick", Json{{"poses", {{"init", 5}}}}); })
@@ -144,20 +280,23 @@ TEST_CASE("thread counts are recorded but left out of the hash; the geometric se
           "[pipeline][config]") {
   const TrainConfig sg = resolve_config("sg-nlf", "smoke");
   const Json sg_json = train_config_to_json(sg);
-  // Keys added after results were committed are written only when not their old value.
-  CHECK_FALSE(sg_json["geometric"].contains("seed"));
-  CHECK_FALSE(sg_json["geometric"].contains("threads"));
-  const TrainConfig more = resolve_config(
-      "sg-nlf", "smoke", Json{{"pose_graph", {{"threads", 7}}}, {"geometric", {{"threads", 3}}}});
+  // The geometric optimiser's every key is written, its seed and threads too.
+  CHECK(sg_json["geometric"]["optimizer"]["seed"] == 1);
+  CHECK(sg_json["geometric"]["optimizer"]["threads"] == 2);
+  const Json threads{{"pose_graph", {{"threads", 7}}},
+                     {"geometric", {{"optimizer", {{"threads", 3}}}}}};
+  const TrainConfig more = resolve_config("sg-nlf", "smoke", threads);
   CHECK(train_config_to_json(more)["pose_graph"]["threads"] == 7);
-  CHECK(train_config_to_json(more)["geometric"]["threads"] == 3);
+  CHECK(train_config_to_json(more)["geometric"]["optimizer"]["threads"] == 3);
   CHECK(more.hash() == sg.hash());
-  const TrainConfig seeded = resolve_config("geonlf", "smoke", Json{{"geometric", {{"seed", 5}}}});
-  CHECK(seeded.pose_free->geometric.seed == 5);
+  const TrainConfig seeded =
+      resolve_config("geonlf", "smoke", Json{{"geometric", {{"optimizer", {{"seed", 5}}}}}});
+  CHECK(seeded.pose_free->geometric->optimizer.seed == 5);
   CHECK(seeded.hash() != resolve_config("geonlf", "smoke").hash());
   CHECK(train_config_from_json(train_config_to_json(seeded), "rt").hash() == seeded.hash());
-  CHECK(error_of([] { resolve_config("geonlf", "smoke", Json{{"geometric", {{"threads", 0}}}}); })
-            .find("threads") != std::string::npos);
+  CHECK(error_of([] {
+          resolve_config("geonlf", "smoke", Json{{"geometric", {{"optimizer", {{"threads", 0}}}}}});
+        }).find("threads") != std::string::npos);
 }
 
 TEST_CASE("the field lists describe, read, write and range-check each section",
@@ -175,9 +314,11 @@ TEST_CASE("the field lists describe, read, write and range-check each section",
   CHECK(schema["schedule"]["iterations"]["min"] == 1);
   CHECK(schema["schedule"]["patches_on_even_epochs"]["type"] == "boolean");
   CHECK(schema["spectral"]["psi"]["type"] == "object");
+  // An optional section is described with its keys under "fields".
+  auto keys_of = [](const Json& d) -> const Json& { return d.contains("fields") ? d["fields"] : d; };
   for (const auto& entry : schema.items()) {
     const std::string section = entry.key();
-    const Json& keys = entry.value();
+    const Json& keys = keys_of(entry.value());
     CAPTURE(section);
     if (keys.contains("type")) {  // a top-level key, not a section
       CHECK(written.contains(section));
@@ -203,12 +344,14 @@ TEST_CASE("the field lists describe, read, write and range-check each section",
   }
   // ... and every key written for these sections is described (pose_graph's own keys only: the
   // confidence graph's are posegraph's).
-  CHECK(schema["geometric"]["threads"]["max"] == 256);
+  CHECK(schema["geometric"]["fields"]["optimizer"]["threads"]["max"] == 256);
+  CHECK(schema["field"]["grid"]["half_table"]["default"] == false);
+  CHECK(schema["optim"]["adam"]["eps"]["max"] == 1.0);
   for (const char* section : {"field", "optim", "schedule", "spectral", "consistency", "poses",
                               "pose_optim", "reweight", "geometric"})
     for (const auto& field : written[section].items()) {
       CAPTURE(section, field.key());
-      CHECK(schema[section].contains(field.key()));
+      CHECK(keys_of(schema[section]).contains(field.key()));
     }
 }
 

@@ -219,7 +219,7 @@ TEST_CASE("sg-nlf run folder: consistency logged, exact resume of field, discrim
   // The term reached the field: without it the same run ends elsewhere.
   {
     const TrainRequest req =
-        test::tiny_request("sg-nlf", data, tiny_sgnlf(Json{{"consistency", {{"enabled", false}}}}),
+        test::tiny_request("sg-nlf", data, tiny_sgnlf(Json{{"consistency", nullptr}}),
                            test::temp_dir("consistency_off"), 3);
     const Json off = train_run(test::runtime(), req);
     CHECK_FALSE(off.contains("consistency_steps"));
@@ -257,7 +257,9 @@ TEST_CASE("sg-nlf run folder: consistency logged, exact resume of field, discrim
 TEST_CASE("consistency config: validated section, unknown keys rejected, ablation unchanged",
           "[pipeline][consistency]") {
   CHECK(tiny_sgnlf().consistency_term());
-  CHECK_FALSE(tiny_sgnlf(Json{{"consistency", {{"enabled", false}}}}).consistency_term());
+  CHECK_FALSE(tiny_sgnlf(Json{{"consistency", nullptr}}).consistency_term());
+  CHECK_THROWS_WITH(tiny_sgnlf(Json{{"consistency", {{"enabled", false}}}}),
+                    Catch::Contains("'enabled' is not a key"));
   CHECK_THROWS_WITH(tiny_sgnlf(Json{{"consistency", {{"bogus", 1}}}}), Catch::Contains("bogus"));
   CHECK_THROWS_WITH(tiny_sgnlf(Json{{"consistency", {{"every", 0}}}}), Catch::Contains("every"));
   CHECK_THROWS_WITH(tiny_sgnlf(Json{{"consistency", {{"weight", -1.0}}}}), Catch::Contains("weight"));

@@ -87,26 +87,36 @@ TEST_CASE("lidar4d config: presets resolve, the section round-trips, bad keys ar
   // The ray-drop refinement: the presets' U-Net sizes, a partial unet object keeping the
   // preset's other keys, bad keys in refine and in refine.unet refused by name.
   const TrainConfig smoke = resolve_config("lidar4d", "smoke");
-  CHECK(smoke.lidar4d->refine.enabled);
-  CHECK(smoke.lidar4d->refine.frames == 2);
-  CHECK(smoke.lidar4d->refine.unet.depth == 2);
-  CHECK(smoke.lidar4d->refine.unet.steps == 4);
-  CHECK(resolve_config("lidar4d", "quick").lidar4d->refine.frames == 8);
-  CHECK(resolve_config("lidar4d", "quick").lidar4d->refine.unet.steps == 250);
-  CHECK(p.lidar4d->refine.frames == 0);
-  CHECK(p.lidar4d->refine.unet.channels == 32);
-  CHECK(p.lidar4d->refine.unet.steps == 1000);
+  REQUIRE(smoke.ray_drop_refinement());
+  CHECK(smoke.flow_supervision());
+  CHECK(smoke.lidar4d->refine->frames == 2);
+  CHECK(smoke.lidar4d->refine->unet.depth == 2);
+  CHECK(smoke.lidar4d->refine->unet.steps == 4);
+  CHECK(resolve_config("lidar4d", "quick").lidar4d->refine->frames == 8);
+  CHECK(resolve_config("lidar4d", "quick").lidar4d->refine->unet.steps == 250);
+  CHECK(p.lidar4d->refine->frames == 0);
+  CHECK(p.lidar4d->refine->unet.channels == 32);
+  CHECK(p.lidar4d->refine->unet.steps == 1000);
   const TrainConfig r = resolve_config(
       "lidar4d", "smoke",
-      Json{{"lidar4d", {{"refine", {{"enabled", false}, {"frames", 5}, {"unet", {{"lr", 5e-4}}}}}}}});
-  CHECK_FALSE(r.lidar4d->refine.enabled);
-  CHECK(r.lidar4d->refine.frames == 5);
-  CHECK(r.lidar4d->refine.unet.lr == Approx(5e-4));
-  CHECK(r.lidar4d->refine.unet.channels == 16);
+      Json{{"lidar4d", {{"refine", {{"frames", 5}, {"unet", {{"lr", 5e-4}}}}}}}});
+  CHECK(r.ray_drop_refinement());
+  CHECK(r.lidar4d->refine->frames == 5);
+  CHECK(r.lidar4d->refine->unet.lr == Approx(5e-4));
+  CHECK(r.lidar4d->refine->unet.channels == 16);
   const TrainConfig r_back = train_config_from_json(train_config_to_json(r), "round trip");
   CHECK(train_config_to_json(r_back) == train_config_to_json(r));
   CHECK(r_back.hash() == r.hash());
   CHECK(r.hash() != smoke.hash());
+  // Each optional part is on exactly when its section is present.
+  const TrainConfig bare =
+      resolve_config("lidar4d", "smoke", Json{{"lidar4d", {{"refine", nullptr}, {"flow", nullptr}}}});
+  CHECK_FALSE(bare.ray_drop_refinement());
+  CHECK_FALSE(bare.flow_supervision());
+  CHECK_FALSE(train_config_to_json(bare)["lidar4d"].contains("refine"));
+  CHECK(train_config_from_json(train_config_to_json(bare), "rt").hash() == bare.hash());
+  CHECK(config_error(Json{{"lidar4d", {{"refine", {{"enabled", false}}}}}})
+            .find("lidar4d.refine: 'enabled' is not a key") != std::string::npos);
   const std::string bad_refine = config_error(Json{{"lidar4d", {{"refine", {{"frmaes", 2}}}}}});
   CHECK(bad_refine.find("frmaes") != std::string::npos);
   CHECK(bad_refine.find("refine") != std::string::npos);

@@ -96,7 +96,11 @@ TEST_CASE("every method is described once and composes its step from the parts",
     const TrainConfig c = resolve_config("sg-nlf-gt-poses", scale);
     CHECK(c.pose_free->poses.init == "gt");
     CHECK_FALSE(c.pose_free->pose_optim.optimize);
-    CHECK_FALSE(c.pose_free->geometric.enabled);
+    CHECK_FALSE(c.geometric_stage());
+    // Starting from the odometry does not bring the preset's geometric section back.
+    CHECK_FALSE(
+        resolve_config("sg-nlf-gt-poses", scale, Json{{"poses", {{"init", "odometry"}}}})
+            .geometric_stage());
     CHECK_FALSE(c.confidence_graph());
     CHECK(c.hybrid_encoder());
     CHECK(c.consistency_term());

@@ -32,7 +32,8 @@ TrainConfig tiny_pose_free(const std::string& method, const Json& extra = Json::
   Json o{{"schedule", {{"iterations", 28}, {"checkpoint_every", 7}, {"log_every", 7},
                        {"rays_per_batch", 128}, {"render_chunk_rays", 512}}},
          {"render", {{"n_samples", 24}}},
-         {"geometric", {{"points_per_frame", 400}, {"first_steps", 5}, {"steps_per_epoch", 2.0}}}};
+         {"geometric", {{"first_steps", 5}, {"steps_per_epoch", 2.0},
+                        {"optimizer", {{"points_per_frame", 400}}}}}};
   return resolve_config(method, "smoke", merge_config_json(o, extra));
 }
 
@@ -144,7 +145,7 @@ TEST_CASE("photometric pose updates begin at pose_optim.start_step",
   test::write_tiny_dataset(data);
   // The geometric stage off, so that only the photometric updates move the poses.
   auto ate_with = [&](long start_step, const std::string& name) {
-    const Json extra{{"geometric", {{"enabled", false}}},
+    const Json extra{{"geometric", nullptr},
                      {"pose_optim", {{"start_step", start_step}}}};
     const Json s = train_run(test::runtime(),
                              test::tiny_request("geonlf", data, tiny_pose_free("geonlf", extra),

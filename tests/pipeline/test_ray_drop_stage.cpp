@@ -155,7 +155,7 @@ TEST_CASE("ray-drop stage in a run folder: after a finished run, reused on resum
   const std::string run_dir = test::temp_dir("ray_drop_run");
   // Evaluation samples more finely than training: the stage renders as evaluation does.
   const TrainConfig c = test::tiny_lidar4d(Json{{"render", {{"eval_samples", 24}}}});
-  REQUIRE(c.lidar4d->refine.enabled);
+  REQUIRE(c.ray_drop_refinement());
   const std::string file = ray_drop_unet_path(run_dir);
   // Stopped early: no stage; eval goes on without the U-Net.
   const Json part = train_run(test::runtime(), test::tiny_request("lidar4d", data, c, run_dir, 4, 8));
@@ -173,7 +173,7 @@ TEST_CASE("ray-drop stage in a run folder: after a finished run, reused on resum
   REQUIRE(done.contains("ray_drop_refinement"));
   const Json& rd = done.at("ray_drop_refinement");
   CHECK(rd.at("frames").size() == 2);
-  CHECK(rd.at("steps").get<int>() == c.lidar4d->refine.unet.steps);
+  CHECK(rd.at("steps").get<int>() == c.lidar4d->refine->unet.steps);
   CHECK(rd.at("file").get<std::string>() == file);
   CHECK(fs::exists(file));
   CHECK(load_json_file(run_dir + "/summary.json").contains("ray_drop_refinement"));

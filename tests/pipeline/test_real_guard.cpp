@@ -60,9 +60,7 @@ TEST_CASE("real scene-0916: the coarse alignment reaches 0.25 m ATE from the noi
   cfg.threads = 2;
   cfg.lr_rotation = 1e-2;
   cfg.lr_translation = 1e-1;
-  pipeline::GeometricScheduleConfig sc;
-  sc.tau_scale = 1.5;
-  cfg.tau_scale = pipeline::geometric_tau_scale(sc, d.sensor);
+  cfg.tau_scale = 1.5;
   cfg.steps = 10;
   std::vector<std::vector<PointXYZI>> scans;
   for (const auto& f : d.frames) scans.push_back(f.points);

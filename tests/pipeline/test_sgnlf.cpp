@@ -138,7 +138,14 @@ TEST_CASE("hybrid field run folder: spectral schedule, exact resume, evaluation 
 TEST_CASE("hybrid field config: validated section, unknown keys rejected",
           "[pipeline][sgnlf]") {
   CHECK(tiny_hybrid().hybrid_encoder());
-  CHECK_FALSE(tiny_hybrid(Json{{"spectral", {{"enabled", false}}}}).hybrid_encoder());
+  // The section's presence is its switch: taken out, the plain hash grid; an "enabled" key is
+  // refused with what to do instead.
+  CHECK_FALSE(tiny_hybrid(Json{{"spectral", nullptr}}).hybrid_encoder());
+  CHECK_THROWS_WITH(tiny_hybrid(Json{{"spectral", {{"enabled", false}}}}),
+                    Catch::Contains(".spectral: 'enabled' is not a key") &&
+                        Catch::Contains("remove the section"));
+  CHECK_THROWS_WITH(tiny_hybrid(Json{{"pose_graph", {{"enabled", true}}}}),
+                    Catch::Contains(".pose_graph: 'enabled' is not a key"));
   CHECK_THROWS_WITH(tiny_hybrid(Json{{"spectral", {{"bogus", 1}}}}), Catch::Contains("bogus"));
   CHECK_THROWS_WITH(tiny_hybrid(Json{{"spectral", {{"every", 0}}}}), Catch::Contains("every"));
   CHECK_THROWS_WITH(tiny_hybrid(Json{{"spectral", {{"psi", {{"k", 0}}}}}}), Catch::Contains("k"));

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "core/config.hpp"
+#include "field/hash_grid_encoder.hpp"
 #include "field/mlp.hpp"
 #include "pipeline/train/checkpoint.hpp"
 #include "pipeline/model/ray_batch.hpp"
@@ -443,4 +444,37 @@ TEST_CASE("early termination of uniform-only sampling: exact at initialisation, 
     CHECK(worst_depth <= 4 * eps * far);
     CHECK(worst_prob <= 4 * eps);
   }
+}
+
+TEST_CASE("the embedded module configs reach the modules: field.grid, optim.adam",
+          "[pipeline][config]") {
+  const Scene scene = make_scene(test::tiny_dataset());
+  // The defaults the presets keep: the deterministic fp32 grid, Adam without weight decay.
+  {
+    const TrainConfig c = test::tiny_config();
+    LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
+    const field::HashGridConfig& g =
+        dynamic_cast<field::HashGridEncoder&>(model.encoder()).grid().config();
+    CHECK(g.deterministic);
+    CHECK_FALSE(g.half_table);
+    CHECK(g.schedule == "auto");
+    CHECK(g.levels == 8);  // the smoke preset's
+    CHECK(model.optimizer().config().weight_decay == 0.0f);
+  }
+  // Options no training config could set before (the model fixed them): now keys.
+  const TrainConfig c = test::tiny_config(
+      Json{{"field", {{"grid", {{"deterministic", false}, {"half_table", true},
+                                {"schedule", "per_point"}, {"levels", 6}}}}},
+           {"optim", {{"adam", {{"weight_decay", 1e-3}, {"beta2", 0.95}}}}}});
+  CHECK(c.hash() != test::tiny_config().hash());
+  LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
+  const field::HashGridConfig& g =
+      dynamic_cast<field::HashGridEncoder&>(model.encoder()).grid().config();
+  CHECK_FALSE(g.deterministic);
+  CHECK(g.half_table);
+  CHECK(g.schedule == "per_point");
+  CHECK(g.levels == 6);
+  CHECK(model.levels() == 6);
+  CHECK(model.optimizer().config().weight_decay == 1e-3f);
+  CHECK(model.optimizer().config().beta2 == 0.95f);
 }

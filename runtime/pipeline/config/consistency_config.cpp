@@ -33,7 +33,10 @@ void ConsistencyConfig::validate(const std::string& where) const {
 
 ConsistencyConfig ConsistencyConfig::from_json(ConfigReader& r) {
   ConsistencyConfig c;
-  if (r.has("consistency")) config::read_fields(r, "consistency", c);
+  ConfigReader s = r.child("consistency");
+  config::refuse_enabled_key(s, "consistency");
+  config::read_fields_here(s, c);
+  s.finish();
   return c;
 }
 

@@ -3,7 +3,7 @@
 // its weight λ_con, which adjacent frames pair up, the sub-sampled images it works on, and the
 // PatchGAN discriminator (adversarial::PatchDiscriminatorConfig, its "discriminator" object).
 // Present only in the configs of methods with the term (ConfigSections::consistency, methods/), so the
-// other methods' config hashes do not change.
+// other methods' config hashes do not change; on exactly when present.
 //
 // Image sizes (the cost of one consistency step: results/benchmarks/consistency.md):
 // frame i is rendered on a sub-sensor of render_rows × render_cols pixels with the dataset
@@ -25,7 +25,6 @@
 namespace sgnlf::pipeline {
 
 struct ConsistencyConfig {
-  bool enabled = true;       // false: the ablation "without cross-frame consistency"
   long every = 4;            // one consistency step every `every` training steps …
   long warmup_steps = 10000;  // … from this step on (method.md §4.3: after a warm-up)
   double weight = 0.05;      // λ_con (method.md §4.4); not published: chosen by the sweep
@@ -42,7 +41,6 @@ struct ConsistencyConfig {
   // The keys and ranges (core/config_fields.hpp); offsets' entries are checked by validate().
   template <class Self, class V>
   static void fields(Self& s, V& v) {
-    v("enabled", s.enabled);
     v("every", s.every, 1L, 100000000L);
     v("warmup_steps", s.warmup_steps, 0L, 100000000L);
     v("weight", s.weight, 0.0, 1e6);
@@ -58,7 +56,7 @@ struct ConsistencyConfig {
   static ConsistencyConfig from_json(ConfigReader& r);  // reads "consistency"
   void to_json(Json& j) const;                         // adds the "consistency" section
   bool active_at(long step) const {
-    return enabled && step >= warmup_steps && (step - warmup_steps) % every == 0;
+    return step >= warmup_steps && (step - warmup_steps) % every == 0;
   }
 };
 

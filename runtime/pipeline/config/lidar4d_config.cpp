@@ -9,12 +9,15 @@ namespace sgnlf::pipeline {
 void Lidar4DConfig::validate(const std::string& where) const {
   encoder.validate(where + ".lidar4d.encoder");
   config::check_fields(*this, where + ".lidar4d");
-  refine.unet.validate(where + ".lidar4d.refine.unet");
+  if (refine) refine->unet.validate(where + ".lidar4d.refine.unet");
 }
 
 Lidar4DConfig Lidar4DConfig::from_json(ConfigReader& r) {
   Lidar4DConfig c;
-  if (r.has("lidar4d")) config::read_fields(r, "lidar4d", c);
+  ConfigReader s = r.child("lidar4d");
+  config::refuse_enabled_key(s, "lidar4d");
+  config::read_fields_here(s, c);
+  s.finish();
   return c;
 }
 

@@ -5,6 +5,8 @@
 // Present only in the configs of methods built on the 4D field (ConfigSections::lidar4d,
 // methods/), so other methods' config hashes do not change.
 #pragma once
+#include <optional>
+
 #include "core/config_fwd.hpp"
 #include "field/lidar4d_encoder_config.hpp"
 #include "refine/ray_drop_unet_config.hpp"
@@ -15,7 +17,6 @@ namespace sgnlf::pipeline {
 // ground-removed points of the batch's frame, moved by the predicted flow, against those of
 // the frames `steps` away; the flow of the ground points pulled to zero.
 struct FlowSupervisionConfig {
-  bool enabled = true;
   double weight = 0.01;          // on the summed Chamfer terms (LiDAR4D: 0.01)
   double ground_weight = 0.001;  // on Σ|flow| of the ground points
   int steps = 1;                 // 1: frames k ± 1 (LiDAR4D's released code); 2: also k ± 2
@@ -29,7 +30,6 @@ struct FlowSupervisionConfig {
   double ground_range_m = 30.0;
   template <class Self, class V>
   static void fields(Self& s, V& v) {
-    v("enabled", s.enabled);
     v("weight", s.weight, 0.0, 1e6);
     v("ground_weight", s.ground_weight, 0.0, 1e6);
     v("steps", s.steps, 1, 2);
@@ -46,14 +46,12 @@ struct FlowSupervisionConfig {
 // training, the U-Net learns the training frames' return masks from their rendered (return
 // probability, intensity, depth) images; every later render's return probability is its output.
 struct RayDropRefinementConfig {
-  bool enabled = true;
   // Training frames rendered for it: 0 = every one (LiDAR4D), else that many evenly spaced over
   // the training split, the first and the last included.
   int frames = 0;
   refine::RayDropUNetConfig unet;  // LiDAR4D's U-Net and schedule by default
   template <class Self, class V>
   static void fields(Self& s, V& v) {
-    v("enabled", s.enabled);
     v("frames", s.frames, 0, 1000000);
     v.object("unet", s.unet);
   }
@@ -75,8 +73,9 @@ struct Lidar4DConfig {
   // Ray-drop label smoothing (LiDAR4D's smooth_factor 0.2): the return term's label is
   // clamped to [s, 1 − s]; the masks of the depth and intensity terms stay 0/1.
   double ray_drop_label_smoothing = 0.2;
-  FlowSupervisionConfig flow;
-  RayDropRefinementConfig refine;
+  // Optional sections, on exactly when present in the JSON (LiDAR4D's, so on in a default one).
+  std::optional<FlowSupervisionConfig> flow = FlowSupervisionConfig{};
+  std::optional<RayDropRefinementConfig> refine = RayDropRefinementConfig{};
   template <class Self, class V>
   static void fields(Self& s, V& v) {
     v.object("encoder", s.encoder);
@@ -84,8 +83,8 @@ struct Lidar4DConfig {
     v("chamfer_weight", s.chamfer_weight, 0.0, 1e6);
     v("separate_heads", s.separate_heads);
     v("ray_drop_label_smoothing", s.ray_drop_label_smoothing, 0.0, 0.49);
-    v.section("flow", s.flow);
-    v.section("refine", s.refine);
+    v.optional("flow", s.flow);
+    v.optional("refine", s.refine);
   }
 
   void validate(const std::string& where) const;

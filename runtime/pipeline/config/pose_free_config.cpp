@@ -9,7 +9,6 @@
 namespace sgnlf::pipeline {
 
 int GeometricScheduleConfig::steps_at(long epoch, double progress) const {
-  if (!enabled) return 0;
   if (epoch == 0) return first_steps;
   if (progress >= stop_progress) return 0;
   return int(std::lround(steps_per_epoch * (1.0 - progress / stop_progress)));
@@ -21,13 +20,21 @@ void PoseFreeConfig::validate(const std::string& w) const {
     throw ConfigError(w + ".poses: 'init' = \"" + poses.init +
                       "\" is not one of \"gt\", \"noisy\", \"identity\", \"odometry\"");
   config::check_fields(*this, w);
-  const std::string g = w + ".geometric";
-  if (geometric.tau_scale != -1.0) check_range(g, "tau_scale", geometric.tau_scale, 0.0, 100.0);
-  if (geometric.edge_offsets.empty()) throw ConfigError(g + ": 'edge_offsets' is empty");
-  if (geometric.residual != "point_to_point" && geometric.residual != "point_to_plane")
-    throw ConfigError(g + ": 'residual' = \"" + geometric.residual +
-                      "\" is not one of \"point_to_point\", \"point_to_plane\"");
-  for (int k : geometric.edge_offsets) check_range(g, "edge_offsets[]", k, 1, 1000);
+  if (geometric) {
+    if (!pose_optim.optimize)
+      throw ConfigError(w + ".geometric: the geometric stage moves the poses, and "
+                        "pose_optim.optimize is false; remove the section (\"geometric\": null)");
+    geometric->optimizer.validate(w + ".geometric.optimizer");
+  }
+}
+
+posegraph::GeometricConfig GeometricScheduleConfig::default_optimizer() {
+  posegraph::GeometricConfig g;
+  g.lr_rotation = 1e-2;
+  g.lr_translation = 1e-1;
+  g.points_per_frame = 12000;
+  g.threads = 2;
+  return g;
 }
 
 PoseFreeConfig PoseFreeConfig::from_json(ConfigReader& r) {

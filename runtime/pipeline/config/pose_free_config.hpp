@@ -3,11 +3,13 @@
 // geometric optimiser's schedule. Present in a TrainConfig only for pose-free methods, so the
 // ground-truth-pose methods' configs (and their hashes) are unchanged.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/config_choices.hpp"
 #include "core/config_fwd.hpp"
+#include "posegraph/geometric_optimizer.hpp"
 
 namespace sgnlf::pipeline {
 
@@ -52,13 +54,11 @@ struct PoseOptimConfig {
 
 // GeoNLF's selective reweighting (our reading of method.md §3): a per-frame moving average of
 // the range loss; the `fraction` of frames with the highest average train the network with
-// lr × `factor` (their poses are probably still wrong).
+// lr × `factor` (their poses are probably still wrong). On when the "reweight" section is present.
 struct ReweightConfig {
-  bool enabled = true;
   double fraction = 0.1, factor = 0.25, ema = 0.9;
   template <class Self, class V>
   static void fields(Self& s, V& v) {
-    v("enabled", s.enabled);
     v("fraction", s.fraction, 0.0, 1.0);
     v("factor", s.factor, 0.0, 1.0);
     v("ema", s.ema, 0.0, 0.999999);
@@ -67,66 +67,51 @@ struct ReweightConfig {
 
 // The geometric optimiser before each epoch (method.md §3), a shrinking schedule: before the
 // first epoch the coarse alignment, `first_steps` steps annealed as posegraph/annealed_run.hpp
-// (τ ramping to tau_scale, lr decaying to lr·lr_final, a fresh Adam every 10 steps); before each
-// later epoch round(steps_per_epoch · (1 − progress / stop_progress)) steps (none after
-// stop_progress) at the final τ and lr·lr_final, each call a fresh pose-only Adam. Metres and
-// radians. tau_scale < 0: GeoNLF's published 0.5 (nuScenes) / 0.3 (KITTI); the presets use 1.5,
-// measured (README, "GeoNLF").
+// (τ ramping to optimizer.tau_scale, lr decaying to lr·lr_final, a fresh Adam every 10 steps);
+// before each later epoch round(steps_per_epoch · (1 − progress / stop_progress)) steps (none
+// after stop_progress) at the final τ and lr·lr_final, each call a fresh pose-only Adam. The
+// optimiser's own config is embedded whole ("optimizer": posegraph::GeometricConfig, every key
+// but the per-call steps: edge offsets, learning rates in radians and metres per step, τ scale,
+// the robust weights' min_distance, each frame's point subsample and its seed, the direction
+// term, the normals of point_to_plane, the worker threads). The presets' τ scale is 1.5,
+// measured (README, "GeoNLF"); GeoNLF published 0.5 (nuScenes) / 0.3 (KITTI). On when the
+// "geometric" section is present (and then the poses must be optimised).
 struct GeometricScheduleConfig {
-  bool enabled = true;
-  int points_per_frame = 12000;
-  std::vector<int> edge_offsets = {1, 2};
   int first_steps = 100;
   double steps_per_epoch = 10.0;
   double stop_progress = 0.6;
-  double tau_scale = -1.0;
-  double lr_rot = 1e-2, lr_trans = 1e-1;  // radians / metres per step (Adam)
   double lr_final = 0.05;
-  // Direction term of the graph loss: "point_to_point" (GeoNLF's robust Chamfer) or
-  // "point_to_plane" (posegraph/point_to_plane.hpp).
-  std::string residual = "point_to_point";
-  // The stage's own draws (each frame's point subsample, posegraph::GeometricConfig::seed) and
-  // its worker threads (the graph loss's direction terms; results identical for any count).
-  // Written only when not these values, so configs from before the keys keep their hash; the
-  // thread count is left out of the hash (TrainConfig::hash).
-  uint64_t seed = 1;
-  int threads = 2;
+  posegraph::GeometricConfig optimizer = default_optimizer();
   int steps_at(long epoch, double progress) const;
-  // Keys and ranges; tau_scale, edge_offsets' entries and residual are checked by
-  // PoseFreeConfig::validate. Keys added after results were committed are written only when
-  // not their old value.
+  // The pipeline's defaults for the optimiser (the module's, with GeoNLF's learning rates
+  // 1e-2 rad / 1e-1 m, 12000 points a frame and two threads).
+  static posegraph::GeometricConfig default_optimizer();
+  // Keys and ranges; the optimiser's rules are its validate()'s (PoseFreeConfig::validate).
   template <class Self, class V>
   static void fields(Self& s, V& v) {
-    v("enabled", s.enabled);
-    v("points_per_frame", s.points_per_frame, 16, 1 << 22);
-    v("edge_offsets", s.edge_offsets);
     v("first_steps", s.first_steps, 0, 1 << 20);
     v("steps_per_epoch", s.steps_per_epoch, 0.0, 1e6);
     v("stop_progress", s.stop_progress, 0.0, 1.0);
-    v("tau_scale", s.tau_scale);
-    v("lr_rot", s.lr_rot, 0.0, 1.0);
-    v("lr_trans", s.lr_trans, 0.0, 100.0);
     v("lr_final", s.lr_final, 1e-6, 1.0);
-    v("residual", s.residual, config::omit_when<std::string>("point_to_point"));
-    v("seed", s.seed, config::omit_when<uint64_t>(1));
-    v("threads", s.threads, 1, 256, config::omit_when(2));
+    v.section("optimizer", s.optimizer);
   }
 };
 
 struct PoseFreeConfig {
   PoseInitConfig poses;
   PoseOptimConfig pose_optim;
-  ReweightConfig reweight;
+  // Optional sections, on exactly when present in the JSON (GeoNLF's, so on in a default one).
+  std::optional<ReweightConfig> reweight = ReweightConfig{};
   bool coarse_to_fine = true;  // BARF level mask over the hash-grid levels (method.md §3)
-  GeometricScheduleConfig geometric;
+  std::optional<GeometricScheduleConfig> geometric = GeometricScheduleConfig{};
   // Its keys sit at the top of the training config.
   template <class Self, class V>
   static void fields(Self& s, V& v) {
     v.section("poses", s.poses);
     v.section("pose_optim", s.pose_optim);
-    v.section("reweight", s.reweight);
+    v.optional("reweight", s.reweight);
     v("coarse_to_fine", s.coarse_to_fine);
-    v.section("geometric", s.geometric);
+    v.optional("geometric", s.geometric);
   }
 
   void validate(const std::string& where) const;

@@ -14,8 +14,8 @@ void PoseGraphConfig::validate(const std::string& where) const {
 
 PoseGraphConfig PoseGraphConfig::from_json(ConfigReader& r) {
   PoseGraphConfig c;
-  if (!r.has("pose_graph")) return c;
   auto s = r.child("pose_graph");
+  config::refuse_enabled_key(s, "pose_graph");
   config::read_fields_here(s, c);
   c.graph = posegraph::ConfidenceGraphConfig::from_json(s);
   s.finish();

@@ -3,7 +3,8 @@
 // sequential graph to the confidence graph (built from the field's f_hyb under the current
 // poses), and the graph's own parameters (posegraph::ConfidenceGraphConfig, whose
 // reevaluate_every counts epochs here). Present only in the configs of methods with the
-// confidence graph (ConfigSections::pose_graph, methods/).
+// confidence graph (ConfigSections::pose_graph, methods/); on exactly when present (absent: the
+// sequential graph throughout, the ablation "without global graph").
 #pragma once
 #include "core/config_fwd.hpp"
 #include "posegraph/confidence_graph_config.hpp"
@@ -11,7 +12,6 @@
 namespace sgnlf::pipeline {
 
 struct PoseGraphConfig {
-  bool enabled = true;  // false: the sequential graph throughout (ablation "without global graph")
   // First epoch whose geometric refinement uses the confidence graph: the field has to be
   // trained enough for f_hyb to describe the surface, and the sequential graph converged
   // (method.md §4.2 "Caution"). Epoch 0 is always the sequential coarse alignment.
@@ -29,7 +29,6 @@ struct PoseGraphConfig {
   // This struct's own keys and ranges (core/config_fields.hpp).
   template <class Self, class V>
   static void fields(Self& s, V& v) {
-    v("enabled", s.enabled);
     v("start_epoch", s.start_epoch, 1, 100000000);
     v("steps_on_build", s.steps_on_build, 0, 1000000);
     v("lr_on_build", s.lr_on_build, 1e-6, 1.0);

@@ -93,15 +93,26 @@ Json odometry_start_json(const std::string& method, const std::string& preset) {
   return s;
 }
 
+namespace {
+// The family's preset without the optional sections the method does not carry, so that its
+// config and hash are those of a method that never had them (ConfigSections).
+Json carried_sections(Json j, const ConfigSections& s) {
+  const std::pair<const char*, bool> sections[] = {{"spectral", s.spectral},
+                                                   {"pose_graph", s.pose_graph},
+                                                   {"consistency", s.consistency},
+                                                   {"lidar4d", s.lidar4d}};
+  for (const auto& [name, carried] : sections)
+    if (!carried) j.erase(name);
+  return j;
+}
+}  // namespace
+
 TrainConfig resolve_config(const std::string& method, const std::string& preset,
                            const Json& overrides, const std::string& overrides_name) {
   const Method& spec = find_method(method);
-  Json base = preset_json(spec.preset_family, preset);
-  // A method without the consistency section drops it from its family's presets, so that its
-  // config and hash stay those of a method that never had the term (ConfigSections).
-  if (!spec.sections.consistency) base.erase("consistency");
-  base = merge_config_json(std::move(base), spec.overrides);
-  Json merged = merge_config_json(base, overrides);
+  const Json family = preset_json(spec.preset_family, preset);
+  Json merged = merge_config_json(
+      merge_config_json(carried_sections(family, spec.sections), spec.overrides), overrides);
   std::string where = "preset " + method + "-" + preset;
   // A malformed poses.init is left to the strict reader below, which names it.
   const Json* init = merged.contains("poses") && merged["poses"].is_object() &&
@@ -112,11 +123,16 @@ TrainConfig resolve_config(const std::string& method, const std::string& preset,
   if (from_odometry) {
     const Json start = odometry_start_json(spec.preset_family, preset);
     if (!start.empty()) {
-      merged = merge_config_json(merge_config_json(std::move(base), start), overrides);
+      // The start replaces the family's keys; the method's overrides (a section it takes out,
+      // say) and then the user's still win.
+      merged = merge_config_json(
+          merge_config_json(carried_sections(merge_config_json(family, start), spec.sections),
+                            spec.overrides),
+          overrides);
       where += " + " + std::string(kOdometrySection);
     }
   }
-  return train_config_from_json(merged, where + " + " + overrides_name);
+  return train_config_from_json(drop_removed_keys(std::move(merged)), where + " + " + overrides_name);
 }
 
 TrainConfig resolve_config(const std::string& method, const std::string& preset) {

@@ -18,7 +18,10 @@ void SpectralFieldConfig::validate(const std::string& where) const {
 
 SpectralFieldConfig SpectralFieldConfig::from_json(ConfigReader& r) {
   SpectralFieldConfig c;
-  if (r.has("spectral")) config::read_fields(r, "spectral", c);
+  ConfigReader s = r.child("spectral");
+  config::refuse_enabled_key(s, "spectral");
+  config::read_fields_here(s, c);
+  s.finish();
   return c;
 }
 

@@ -2,7 +2,8 @@
 // Ψ's architecture and loss, the fusion ramp λ(t), and the schedule on which Ψ trains on
 // area-uniform samples of the current surface during pose-free training
 // (spectral_schedule.hpp). Present only in the configs of methods built on the hybrid field
-// (ConfigSections::spectral, methods/), so other methods' config hashes do not change.
+// (ConfigSections::spectral, methods/), so other methods' config hashes do not change; on exactly
+// when present (absent: the plain hash grid, the ablation "without hybrid").
 #pragma once
 #include "core/config_fwd.hpp"
 #include "spectral/fusion_ramp.hpp"
@@ -12,7 +13,6 @@
 namespace sgnlf::pipeline {
 
 struct SpectralFieldConfig {
-  bool enabled = true;               // false: the plain hash grid (ablation "without hybrid")
   spectral::PsiSpec psi;             // 3 → 64 → 64 → K, tanh
   spectral::SpectralLossConfig loss; // Ky Fan form, β, h
   spectral::FusionRamp fusion;       // λ: 0 → 1 between these training iterations
@@ -25,7 +25,6 @@ struct SpectralFieldConfig {
   // The keys and ranges (core/config_fields.hpp).
   template <class Self, class V>
   static void fields(Self& s, V& v) {
-    v("enabled", s.enabled);
     v.object("psi", s.psi);
     v.object("loss", s.loss);
     v.object("fusion", s.fusion);

@@ -10,8 +10,14 @@
 
 namespace sgnlf::pipeline {
 
-void FieldSizes::validate(const std::string& where) const { config::check_fields(*this, where); }
-void OptimConfig::validate(const std::string& where) const { config::check_fields(*this, where); }
+void FieldSizes::validate(const std::string& where) const {
+  config::check_fields(*this, where);
+  grid.validate(where + ".grid");
+}
+void OptimConfig::validate(const std::string& where) const {
+  config::check_fields(*this, where);
+  adam.validate(where + ".adam");
+}
 void ScheduleConfig::validate(const std::string& where) const { config::check_fields(*this, where); }
 
 double OptimConfig::lr_at(long step, long iterations) const {
@@ -38,7 +44,7 @@ void TrainConfig::validate() const {
     consistency->validate(w);
     const long rays = long(consistency->render_rows) * consistency->render_cols;
     const long capacity = std::max(schedule.rays_per_batch, schedule.render_chunk_rays);
-    if (consistency->enabled && rays > capacity)
+    if (rays > capacity)
       throw ConfigError(w + ".consistency: the render grid render_rows × render_cols = " +
                         std::to_string(rays) + " rays exceeds the model's ray capacity " +
                         std::to_string(capacity) +
@@ -58,13 +64,17 @@ void TrainConfig::validate() const {
 // direction terms give identical results for any count), so the hash counts them at 2, the
 // count every committed result was made with: its hash stays, a run resumes on a machine with
 // other cores, and a preset may set them for its machine (run.json still records them).
-uint64_t TrainConfig::hash() const {
+uint64_t config_json_hash(Json j) {
   constexpr int kHashedThreads = 2;
-  TrainConfig h = *this;
-  if (h.pose_free) h.pose_free->geometric.threads = kHashedThreads;
-  if (h.pose_graph) h.pose_graph->graph.threads = kHashedThreads;
-  return fnv1a64(train_config_to_json(h).dump());
+  if (j.contains("geometric") && j["geometric"].contains("optimizer") &&
+      j["geometric"]["optimizer"].contains("threads"))
+    j["geometric"]["optimizer"]["threads"] = kHashedThreads;
+  if (j.contains("pose_graph") && j["pose_graph"].contains("threads"))
+    j["pose_graph"]["threads"] = kHashedThreads;
+  return fnv1a64(j.dump());
 }
+
+uint64_t TrainConfig::hash() const { return config_json_hash(train_config_to_json(*this)); }
 
 TrainConfig train_config_from_json(const Json& j, const std::string& where) {
   TrainConfig c;
@@ -80,11 +90,13 @@ TrainConfig train_config_from_json(const Json& j, const std::string& where) {
   config::read_fields(r, "schedule", c.schedule);
   // The method's own sections (methods/method.hpp); ConfigError for an unknown method.
   const ConfigSections& sections = find_method(c.method).sections;
+  // pose_free's keys are the method's; the other sections are on exactly when present.
   if (sections.pose_free) c.pose_free = PoseFreeConfig::from_json(r);
-  if (sections.spectral) c.spectral = SpectralFieldConfig::from_json(r);
-  if (sections.pose_graph) c.pose_graph = PoseGraphConfig::from_json(r);
-  if (sections.consistency) c.consistency = ConsistencyConfig::from_json(r);
-  if (sections.lidar4d) c.lidar4d = Lidar4DConfig::from_json(r);
+  if (sections.spectral && r.has("spectral")) c.spectral = SpectralFieldConfig::from_json(r);
+  if (sections.pose_graph && r.has("pose_graph")) c.pose_graph = PoseGraphConfig::from_json(r);
+  if (sections.consistency && r.has("consistency"))
+    c.consistency = ConsistencyConfig::from_json(r);
+  if (sections.lidar4d && r.has("lidar4d")) c.lidar4d = Lidar4DConfig::from_json(r);
   r.finish();
   c.validate();
   return c;
@@ -120,11 +132,28 @@ Json train_config_schema() {
   return j;
 }
 
+Json drop_removed_keys(Json j) {
+  if (!j.is_object()) return j;
+  for (auto it = j.begin(); it != j.end();) {
+    if (it.value().is_null()) {
+      it = j.erase(it);
+    } else {
+      it.value() = drop_removed_keys(it.value());
+      ++it;
+    }
+  }
+  return j;
+}
+
 Json merge_config_json(Json base, const Json& overrides) {
   if (!overrides.is_object()) throw ConfigError("config overrides: expected a JSON object");
   for (auto it = overrides.begin(); it != overrides.end(); ++it) {
-    if (it.value().is_object() && base.contains(it.key()) && base[it.key()].is_object())
-      base[it.key()] = merge_config_json(base[it.key()], it.value());
+    if (it.value().is_null())
+      base[it.key()] = nullptr;  // a removal, kept so that merged overrides still remove
+    else if (it.value().is_object())  // onto the base's object, or a new one
+      base[it.key()] = merge_config_json(
+          base.contains(it.key()) && base[it.key()].is_object() ? base[it.key()] : Json::object(),
+          it.value());
     else
       base[it.key()] = it.value();
   }

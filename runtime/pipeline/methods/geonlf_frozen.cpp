@@ -11,7 +11,7 @@ Method geonlf_frozen() {
       "control (not in the paper): GeoNLF's field trained on the frozen initial poses";
   m.overrides = Json{{"method", m.name},
                      {"pose_optim", {{"optimize", false}}},
-                     {"geometric", {{"enabled", false}}}};
+                     {"geometric", nullptr}};  // no geometric stage
   return m;
 }
 

@@ -14,10 +14,11 @@ namespace sgnlf::pipeline {
 
 class StepPolicy;
 
-// The optional sections of a TrainConfig (train_config.hpp) that a method's config carries. The
-// reader reads exactly these and the writer writes exactly these, so a method without a section
-// keeps the config (and hash) it had before the section existed. Whether a feature is on is then
-// the config's business alone (TrainConfig::hybrid_encoder() and its siblings).
+// The optional sections of a TrainConfig (train_config.hpp) that a method's config may carry:
+// the reader reads only these (another is an unknown key) and resolve_config drops the others
+// from the family's presets, so a method without a section (an ablation row) keeps the config
+// (and hash) of one that never had it. A carried section is on exactly when present in the
+// config (TrainConfig::hybrid_encoder() and its siblings); pose_free is the method's alone.
 struct ConfigSections {
   bool pose_free = false;    // poses, pose_optim, reweight, coarse_to_fine, geometric
   bool spectral = false;     // SG-NLF's hybrid field

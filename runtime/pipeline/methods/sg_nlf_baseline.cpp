@@ -10,9 +10,9 @@ Method sg_nlf_baseline() {
   m.description =
       "SG-NLF's baseline (method.md §5 ablation): pairwise sequential edges only, no spectral "
       "embedding, no adversarial term";
-  m.overrides = Json{{"method", m.name},
-                     {"spectral", {{"enabled", false}}},
-                     {"pose_graph", {{"enabled", false}}}};
+  m.overrides = Json{{"method", m.name}};
+  m.sections.spectral = false;
+  m.sections.pose_graph = false;
   return m;
 }
 

@@ -14,8 +14,8 @@ Method sg_nlf_gt_poses() {
   m.overrides = Json{{"method", m.name},
                      {"poses", {{"init", "gt"}}},
                      {"pose_optim", {{"optimize", false}}},
-                     {"geometric", {{"enabled", false}}},
-                     {"pose_graph", {{"enabled", false}}}};
+                     {"geometric", nullptr}};  // no geometric stage
+  m.sections.pose_graph = false;
   return m;
 }
 

@@ -9,7 +9,8 @@ Method sg_nlf_no_graph() {
   m.name = "sg-nlf-no-graph";
   m.description =
       "SG-NLF without the global pose graph (method.md §5 ablation): sequential edges only";
-  m.overrides = Json{{"method", m.name}, {"pose_graph", {{"enabled", false}}}};
+  m.overrides = Json{{"method", m.name}};
+  m.sections.pose_graph = false;  // no "pose_graph" section: the sequential graph throughout
   return m;
 }
 

@@ -10,7 +10,8 @@ Method sg_nlf_no_hybrid() {
   m.description =
       "SG-NLF without the hybrid representation (method.md §5 ablation): the hash grid alone "
       "feeds the density MLP and the pose graph's matching";
-  m.overrides = Json{{"method", m.name}, {"spectral", {{"enabled", false}}}};
+  m.overrides = Json{{"method", m.name}};
+  m.sections.spectral = false;  // no "spectral" section: the plain hash grid
   return m;
 }
 

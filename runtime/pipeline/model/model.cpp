@@ -15,27 +15,6 @@ namespace sgnlf::pipeline {
 using namespace model_detail;
 namespace {
 
-field::HashGridConfig grid_config(const FieldSizes& f) {
-  field::HashGridConfig g;
-  g.levels = f.levels;
-  g.features = f.features_per_level;
-  g.log2_table_size = f.log2_table_size;
-  g.base_resolution = float(f.base_resolution);
-  g.per_level_scale = float(f.per_level_scale);
-  g.deterministic = true;
-  g.validate();
-  return g;
-}
-
-field::AdamConfig adam_config(const OptimConfig& o) {
-  field::AdamConfig a;
-  a.beta1 = float(o.beta1);
-  a.beta2 = float(o.beta2);
-  a.eps = float(o.eps);
-  a.validate();
-  return a;
-}
-
 // LiDAR head on [geo, dir_enc] (method.md §0) with the direction encoding as a grouped input:
 // the same function and parameter layout as an MLP on the 87-wide concatenation, but the
 // direction part of the first layer is computed once per ray; the 15 geometric features are
@@ -66,12 +45,12 @@ std::unique_ptr<field::Encoder> make_encoder(cl::Runtime& rt, const TrainConfig&
     return e;
   }
   if (c.hybrid_encoder()) {
-    auto e = std::make_unique<spectral::HybridEncoder>(rt, grid_config(c.field), c.spectral->psi,
+    auto e = std::make_unique<spectral::HybridEncoder>(rt, c.field.grid, c.spectral->psi,
                                                        c.spectral->loss);
     hybrid = e.get();
     return e;
   }
-  return std::make_unique<field::HashGridEncoder>(rt, grid_config(c.field));
+  return std::make_unique<field::HashGridEncoder>(rt, c.field.grid);
 }
 
 }  // namespace
@@ -97,7 +76,7 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
   off_grid_ = layout_.add("hash_grid", encoder_->n_params()).offset;
   off_density_ = layout_.add("density_mlp", density_.n_params()).offset;
   off_head_ = layout_.add("head_mlp", head_.n_params()).offset;
-  adam_ = std::make_unique<field::Adam>(rt, layout_.total(), adam_config(c.optim));
+  adam_ = std::make_unique<field::Adam>(rt, layout_.total(), c.optim.adam);
   col_get_ = rt.kernel("field/columns.cl", "field_column_get");
   col_set_ = rt.kernel("field/columns.cl", "field_column_set");
   clamp_ = rt.kernel("render/sample.cl", "render_clamp_points");

@@ -117,6 +117,8 @@ class LidarNerfModel {
   spectral::HybridEncoder* hybrid_encoder() { return hybrid_; }
   // LiDAR4D's 4D encoder when the config's four_d_encoder() is on, else null.
   field::Lidar4DEncoder* four_d_encoder() { return four_d_; }
+  // The field's optimiser (its settings: the config's optim.adam).
+  const field::Adam& optimizer() const { return *adam_; }
   // The time of the following passes for a 4D encoder: dataset frame `frame` of `frames`
   // (field::frame_time); a no-op for the other encoders, which have no time.
   void set_frame(int frame, int frames);

@@ -147,7 +147,7 @@ Json refine_finished_run(cl::Runtime& rt, const TrainConfig& c, LidarNerfModel& 
                          const std::vector<Pose>& T_world_lidar, const std::string& run_dir) {
   require(c.lidar4d.has_value(), "ray-drop refinement: the config has no lidar4d section");
   const std::string file = ray_drop_unet_path(run_dir);
-  RayDropStage stage(rt, c.lidar4d->refine);
+  RayDropStage stage(rt, c.lidar4d->refine.value());
   if (fs::exists(file)) {
     stage.load(file);  // the run's own file: a damaged or foreign one is an error, not retrained
     log::info("ray-drop refinement: reusing ", file);

@@ -116,10 +116,10 @@ LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
   restore_hybrid_encoder(*run.model, c, ck);
   run.step = ck.step;
   run.pose_free = c.is_pose_free();
-  if (c.lidar4d && c.lidar4d->refine.enabled) {
+  if (c.ray_drop_refinement()) {
     const std::string file = ray_drop_unet_path(run_dir);
     if (fs::exists(file)) {
-      run.ray_drop = std::make_unique<RayDropStage>(rt, c.lidar4d->refine);
+      run.ray_drop = std::make_unique<RayDropStage>(rt, *c.lidar4d->refine);
       run.ray_drop->load(file);
     } else {
       log::warn(file, ": missing (the run did not finish, or trained before the ray-drop "

@@ -145,7 +145,7 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
                 "); the run's metrics describe a broken trajectory (summary.json trajectory_check)");
   }
   // LiDAR4D's ray-drop U-Net after the field (ray_drop_stage.hpp), once the run is finished.
-  if (s.finished && c.lidar4d && c.lidar4d->refine.enabled)
+  if (s.finished && c.ray_drop_refinement())
     j["ray_drop_refinement"] =
         refine_finished_run(rt, c, model, scene, d, current_poses(), req.run_dir);
   write_json_file((run / "summary.json").string(), j);

@@ -9,8 +9,8 @@ namespace sgnlf::pipeline {
 
 FlowSupervisionStep::FlowSupervisionStep(StepPolicy& inner, const Dataset& d, const Scene& scene,
                                          const TrainConfig& c, uint64_t seed)
-    : inner_(inner), scene_(scene), c_(c.lidar4d.value().flow),
-      points_(flow_points(d, scene, c.lidar4d->flow, seed ^ 0xF10Full)),
+    : inner_(inner), scene_(scene), c_(c.lidar4d.value().flow.value()),
+      points_(flow_points(d, scene, *c.lidar4d->flow, seed ^ 0xF10Full)),
       is_train_(d.frames.size(), false) {
   for (int f : scene.train) is_train_[size_t(f)] = true;
 }

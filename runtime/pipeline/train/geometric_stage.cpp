@@ -48,8 +48,8 @@ void write_graph_files(const std::string& run_dir, long epoch, const posegraph::
 
 }  // namespace
 
-double geometric_tau_scale(const GeometricScheduleConfig& g, const Sensor& sensor) {
-  if (g.tau_scale >= 0.0) return g.tau_scale;
+double geometric_tau_scale(double tau_scale, const Sensor& sensor) {
+  if (tau_scale >= 0.0) return tau_scale;
   return sensor.name == "nuscenes" ? 0.5 : 0.3;
 }
 
@@ -71,18 +71,9 @@ posegraph::FeatureProvider field_features(LidarNerfModel& model, const SceneNorm
 
 GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const TrainConfig& c,
                                     posegraph::FeatureProvider features, std::string run_dir) {
-  const GeometricScheduleConfig& g = c.pose_free->geometric;
-  if (!g.enabled || !c.pose_free->pose_optim.optimize) return {};
-  posegraph::GeometricConfig gc;
-  gc.edge_offsets = g.edge_offsets;
-  gc.lr_rotation = g.lr_rot;
-  gc.lr_translation = g.lr_trans;
-  gc.tau_scale = geometric_tau_scale(g, d.sensor);
-  gc.points_per_frame = size_t(g.points_per_frame);
-  gc.seed = g.seed;
-  gc.threads = g.threads;
-  gc.residual = g.residual;
-  gc.validate();
+  if (!c.geometric_stage()) return {};
+  const GeometricScheduleConfig& g = *c.pose_free->geometric;
+  const posegraph::GeometricConfig& gc = g.optimizer;
   std::vector<std::vector<PointXYZI>> scans;
   for (const auto& f : d.frames) scans.push_back(f.points);
   auto clouds = std::make_shared<const std::vector<posegraph::FrameCloud>>(

@@ -1,6 +1,6 @@
 // GeoNLF's geometric stage in a pose-free run (method.md §3): before each epoch, the device-free
 // graph optimiser (posegraph::GeometricOptimizer, robust Chamfer over the edges (i, i+k) of the
-// config's offsets) moves every pose for GeometricScheduleConfig::steps_at(epoch, progress)
+// optimizer's offsets) moves every pose for GeometricScheduleConfig::steps_at(epoch, progress)
 // pose-only Adam steps, fresh each time. Each frame's observed scan is subsampled once
 // (points_per_frame, its seed) and its k-d tree built once in its own LiDAR frame. The optimiser
 // works in metres: poses are denormalised before and normalised after. τ and the learning rates
@@ -12,7 +12,7 @@
 
 namespace sgnlf::pipeline {
 
-// An empty stage when the config disables it (or the poses are not optimised).
+// An empty stage when the config has no "geometric" section.
 // SG-NLF (TrainConfig::confidence_graph()): from pose_graph.start_epoch on, every
 // graph.reevaluate_every epochs, the refinement's graph is rebuilt as the confidence-aware pose
 // graph (posegraph::build_confidence_graph) from `features` (the field's f_hyb) under the current
@@ -27,7 +27,8 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
 // normalised, clamped to the scene box and encoded by `model` (blocking; between steps only).
 posegraph::FeatureProvider field_features(LidarNerfModel& model, const SceneNormalization& norm);
 
-// The τ scale in force for `sensor` under `g`.
-double geometric_tau_scale(const GeometricScheduleConfig& g, const Sensor& sensor);
+// The τ scale in force for `sensor`: `tau_scale`, or when it is negative GeoNLF's published
+// 0.5 (nuScenes) / 0.3 (KITTI) (sgnlf posegraph's --tau-scale).
+double geometric_tau_scale(double tau_scale, const Sensor& sensor);
 
 }  // namespace sgnlf::pipeline

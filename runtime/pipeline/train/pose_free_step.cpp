@@ -67,8 +67,9 @@ void PoseFreeStep::on_epoch(long epoch, long step) {
 }
 
 double PoseFreeStep::reweight(int frame) const {
-  const ReweightConfig& rc = cfg_.pose_free->reweight;
-  if (!rc.enabled || rc.fraction <= 0.0) return 1.0;
+  if (!cfg_.reweighting()) return 1.0;
+  const ReweightConfig& rc = *cfg_.pose_free->reweight;
+  if (rc.fraction <= 0.0) return 1.0;
   std::vector<double> losses;
   for (int f : scene_.train) {
     if (seen_[size_t(f)] == 0.0) return 1.0;  // every frame seen once before ranking
@@ -94,10 +95,10 @@ void PoseFreeStep::step(LidarNerfModel& model, uint64_t seed, long step, float l
   const bool pose_only =
       std::find(scene_.pose_only.begin(), scene_.pose_only.end(), b.frame) != scene_.pose_only.end();
   model.update(pose_only ? 0.0f : float(lr * reweight(b.frame)));
-  if (pc.reweight.enabled) {
+  if (pc.reweight) {
     const double l = model.read_loss().total();
     double& e = ema_[size_t(b.frame)];
-    e = seen_[size_t(b.frame)] == 0.0 ? l : pc.reweight.ema * e + (1.0 - pc.reweight.ema) * l;
+    e = seen_[size_t(b.frame)] == 0.0 ? l : pc.reweight->ema * e + (1.0 - pc.reweight->ema) * l;
     seen_[size_t(b.frame)] = 1.0;
   }
   if (!optimize) return;
