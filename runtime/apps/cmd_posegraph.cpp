@@ -40,6 +40,7 @@ struct PoseGraphArgs {
   posegraph::GeometricConfig cfg;
   double tau_scale = 1.5, lr_final = 0.05;
   posegraph::ReseedConfig reseed;
+  int reseed_rounds = 0;
   LoadOptions load;
   SensorRateOptions sensor_rate;
 };
@@ -63,7 +64,7 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
   sub.add_option("--offsets", a->cfg.edge_offsets, "Edges (i, i + k) for these k")->delimiter(',');
   sub.add_option("--residual", a->cfg.residual, "Direction term: point_to_point (GeoNLF's robust Chamfer) or point_to_plane")
       ->check(CLI::IsMember({"point_to_point", "point_to_plane"}));
-  sub.add_option("--reseed-rounds", a->reseed.max_rounds, "After the sequential alignment, re-seed edges stuck off their neighbours' motion (posegraph/edge_reseeding.hpp): passes over the edges, 0 = none");
+  sub.add_option("--reseed-rounds", a->reseed_rounds, "After the sequential alignment, re-seed edges stuck off their neighbours' motion (posegraph/edge_reseeding.hpp): passes over the edges, 0 = none");
   sub.add_option("--reseed-steps", a->reseed.steps, "Refinement steps per re-seeding hypothesis");
   sub.add_option("--reseed-min-difference", a->reseed.min_difference_m, "Re-seed an edge whose relative translation differs from a neighbour's by more than this (m)");
   sub.add_option("--reseed-min-gain", a->reseed.min_gain, "Keep a re-seeding when the crossing edges' loss falls by more than this fraction");
@@ -126,7 +127,8 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
     Json graph_cfg_json = nullptr, reseed_log = nullptr;
     if (a->graph == "sequential") {
       posegraph::run_annealed(loss, a->cfg, an, T, on_call);
-      if (a->reseed.max_rounds > 0) {
+      if (a->reseed_rounds > 0) {
+        a->reseed.max_rounds = a->reseed_rounds;
         const auto rs = posegraph::reseed_edges(loss, a->cfg, a->lr_final, a->reseed, T);
         for (const auto& t : rs.trials)
           std::printf("reseed round %d edge %d-%d from %d-%d (%.3f m): crossing %.5f -> %.5f, "

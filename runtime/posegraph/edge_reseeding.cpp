@@ -5,17 +5,12 @@
 #include <cmath>
 
 #include "core/config.hpp"
+#include "core/config_fields.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf::posegraph {
 
-void ReseedConfig::validate(const std::string& where) const {
-  check_range(where, "min_difference_m", min_difference_m, 0.0, 100.0);
-  check_range(where, "steps", steps, 1, 10000);
-  check_range(where, "lr_start", lr_start, 1e-6, 1.0);
-  check_range(where, "min_gain", min_gain, 0.0, 1.0);
-  check_range(where, "max_rounds", max_rounds, 0, 100);
-}
+void ReseedConfig::validate(const std::string& where) const { config::check_fields(*this, where); }
 
 std::vector<Edge> crossing_edges(const std::vector<Edge>& edges, int k) {
   std::vector<Edge> out;
@@ -45,7 +40,7 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
                                           " frames");
   ReseedResult out;
   const int n = int(T.size());
-  if (cfg.max_rounds == 0 || n < 3) return out;
+  if (n < 3) return out;
   const double tau = base.tau_scale;  // the final τ (progress 1)
   AnnealConfig refine;
   refine.steps = cfg.steps;

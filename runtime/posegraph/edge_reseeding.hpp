@@ -27,11 +27,18 @@ struct ReseedConfig {
   int steps = 30;                 // refinement steps per hypothesis (calls of 10, final τ)
   double lr_start = 0.2;          // refinement learning rates: this × the stage's, decaying to
                                   // the stage's lr_final
-  double min_gain = 0.05;         // kept when the crossing edges' loss falls by more than this
-  int max_rounds = 0;             // passes over the edges (a kept move can expose another);
-                                  // 0: no re-seeding
-  // ConfigError naming the field. (The training config lists these keys in its geometric
-  // section: pipeline/config/pose_free_config.hpp.)
+  double min_gain = 0.02;         // kept when the crossing edges' loss falls by more than this
+  int max_rounds = 2;             // passes over the edges (a kept move can expose another)
+
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("min_difference_m", s.min_difference_m, 0.0, 100.0);
+    v("steps", s.steps, 1, 10000);
+    v("lr_start", s.lr_start, 1e-6, 1.0);
+    v("min_gain", s.min_gain, 0.0, 1.0);
+    v("max_rounds", s.max_rounds, 1, 100);
+  }
+  // ConfigError naming the field.
   void validate(const std::string& where = "reseed") const;
 };
 

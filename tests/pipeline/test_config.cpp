@@ -388,3 +388,26 @@ TEST_CASE("the schema describes render, the confidence graph and the nested conf
     CHECK(schema["render"]["weights"].contains(field.key()));
   }
 }
+
+TEST_CASE("config: edge re-seeding is an optional section of the geometric stage",
+          "[config][reseed]") {
+  const TrainConfig plain = resolve_config("sg-nlf", "quick");
+  REQUIRE(plain.pose_free->geometric);
+  CHECK_FALSE(plain.pose_free->geometric->reseed);
+  CHECK_FALSE(train_config_to_json(plain)["geometric"].contains("reseed"));
+  const Json on{{"geometric", {{"reseed", {{"min_gain", 0.03}}}}}};
+  const TrainConfig c = resolve_config("sg-nlf", "quick", on);
+  REQUIRE(c.pose_free->geometric->reseed);
+  CHECK(c.pose_free->geometric->reseed->min_gain == 0.03);
+  CHECK(c.pose_free->geometric->reseed->max_rounds == posegraph::ReseedConfig{}.max_rounds);
+  CHECK(c.hash() != plain.hash());
+  CHECK(train_config_to_json(c)["geometric"]["reseed"]["steps"] == 30);
+  const std::string e = error_of([&] {
+    resolve_config("sg-nlf", "quick", Json{{"geometric", {{"reseed", {{"min_gian", 0.03}}}}}});
+  });
+  CHECK_THAT(e, Catch::Contains("geometric.reseed") && Catch::Contains("min_gian"));
+  const std::string r = error_of([&] {
+    resolve_config("sg-nlf", "quick", Json{{"geometric", {{"reseed", {{"max_rounds", 0}}}}}});
+  });
+  CHECK_THAT(r, Catch::Contains("max_rounds"));
+}

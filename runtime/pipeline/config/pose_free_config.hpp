@@ -9,6 +9,7 @@
 
 #include "core/config_choices.hpp"
 #include "core/config_fwd.hpp"
+#include "posegraph/edge_reseeding.hpp"
 #include "posegraph/geometric_optimizer.hpp"
 
 namespace sgnlf::pipeline {
@@ -82,6 +83,9 @@ struct GeometricScheduleConfig {
   double stop_progress = 0.6;
   double lr_final = 0.05;
   posegraph::GeometricConfig optimizer = default_optimizer();
+  // Edge re-seeding after the coarse alignment (posegraph/edge_reseeding.hpp; not in GeoNLF or
+  // the paper): on when present.
+  std::optional<posegraph::ReseedConfig> reseed;
   int steps_at(long epoch, double progress) const;
   // The pipeline's defaults for the optimiser (the module's, with GeoNLF's learning rates
   // 1e-2 rad / 1e-1 m, 12000 points a frame and two threads).
@@ -94,6 +98,7 @@ struct GeometricScheduleConfig {
     v("stop_progress", s.stop_progress, 0.0, 1.0);
     v("lr_final", s.lr_final, 1e-6, 1.0);
     v.section("optimizer", s.optimizer);
+    v.optional("reseed", s.reseed);
   }
 };
 

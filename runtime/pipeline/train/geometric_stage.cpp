@@ -96,7 +96,7 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
     std::vector<Pose> T(poses.size());
     for (size_t i = 0; i < poses.size(); ++i) T[i] = denormalize_pose(poses.pose(i), norm);
     posegraph::GeometricResult r;
-    Json graph_line;
+    Json graph_line, reseed_line;
     if (epoch == 0) {  // the coarse alignment (sequential graph)
       log::info("coarse geometric alignment: ", steps, " steps over ", poses.size(),
                 " scans before the first training step");
@@ -107,6 +107,13 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
       r = calls.back();
       r.loss_before = calls.front().loss_before;
       r.steps = steps;
+      if (g.reseed) {
+        const auto rs = posegraph::reseed_edges(loss, gc, g.lr_final, *g.reseed, T);
+        log::info("edge re-seeding: ", rs.trials.size(), " hypotheses tried, ", rs.kept, " kept");
+        reseed_line = posegraph::reseed_json(rs);
+        std::vector<posegraph::PoseGrad> grad;
+        r.loss_after = (*loss)(T, gc.tau_scale, grad);
+      }
     } else {  // the shrinking refinement at the final τ and learning rates
       if (confidence && epoch >= pg.start_epoch &&
           (graph->built_epoch < 0 || epoch - graph->built_epoch >= pg.graph.reevaluate_every)) {
@@ -157,6 +164,7 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
       if (!chk.converged)
         log::warn("the coarse geometric alignment did not converge: ", chk.reason);
     }
+    if (!reseed_line.is_null()) line["reseed"] = reseed_line;
     if (!graph_line.is_null()) {
       graph_line["edges_in_use"] = graph->edges.size();
       graph_line["graph_epoch"] = graph->built_epoch;
