@@ -9,6 +9,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/config_fwd.hpp"
@@ -57,5 +58,17 @@ struct PatchDiscriminatorConfig {
                                             const std::string& where = "discriminator");
   Json to_json() const;
 };
+
+// The size of the logits at `scale` (0: the input itself) for input images of h × w: pooled
+// 2 × 2 `scale` times, then through every layer (kernel, stride, padding); (0, 0) when the image
+// is too small for that (a pooled side below 2, or a layer's padded input below the kernel).
+std::pair<int, int> discriminator_logit_size(const PatchDiscriminatorConfig& c, int scale, int h, int w);
+
+// `c` fitted to input images of h × w, so that the discriminator runs on the image any sensor
+// yields (a 16-beam head's 16 rows leave no logits at the second scale): the most scales up to
+// c.scales whose logits all exist; when even one scale has none, the hidden layers' strides of
+// 2 become 1 from the first layer on until it has. `c` itself when it fits. Throws ConfigError
+// naming the image when nothing fits (an image smaller than the stride-1 layer stack).
+PatchDiscriminatorConfig fit_discriminator_to_image(const PatchDiscriminatorConfig& c, int h, int w);
 
 }  // namespace sgnlf::adversarial

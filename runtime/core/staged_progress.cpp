@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
@@ -12,27 +13,24 @@
 namespace sgnlf {
 
 StagedProgress::StagedProgress(std::string label, std::vector<std::string> stages,
-                               double plain_every_s)
+                               double plain_every_s, SecondsClock clock)
     : label_(std::move(label)),
       plain_every_s_(plain_every_s),
-      tty_(isatty(STDERR_FILENO) != 0),
-      start_(std::chrono::steady_clock::now()),
-      stage_start_(start_) {
+      clock_(std::move(clock)),
+      tty_(isatty(STDERR_FILENO) != 0) {
   require(!stages.empty(), "StagedProgress: no stages");
+  require(bool(clock_), "StagedProgress: no clock");
   for (auto& s : stages) stages_.push_back(Stage{std::move(s)});
+  start_ = stage_start_ = clock_();
 }
 
 StagedProgress::~StagedProgress() {
   if (!finished_ && tty_ && last_print_ > -1e9) std::cerr << "\n";
 }
 
-double StagedProgress::elapsed_s() const {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-}
+double StagedProgress::elapsed_s() const { return clock_() - start_; }
 
-double StagedProgress::stage_elapsed_s() const {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start_).count();
-}
+double StagedProgress::stage_elapsed_s() const { return clock_() - stage_start_; }
 
 void StagedProgress::estimate(size_t stage, double seconds) {
   require(stage < stages_.size(), "StagedProgress::estimate: stage " + std::to_string(stage));
@@ -48,18 +46,14 @@ void StagedProgress::begin(size_t stage) {
     }
   current_ = long(stage);
   done_ = total_ = 0;
-  rate_started_ = false;
-  stage_start_ = std::chrono::steady_clock::now();
+  rate_.reset();
+  stage_start_ = clock_();
   print("", true);
 }
 
 void StagedProgress::update(long done, long total, const std::string& extra) {
   if (current_ < 0) return;
-  if (!rate_started_) {
-    rate_started_ = true;
-    rate_done0_ = done;
-    rate_t0_ = std::chrono::steady_clock::now();
-  }
+  rate_.add(clock_(), done);
   done_ = done;
   total_ = total;
   print(extra, false);
@@ -73,26 +67,22 @@ void StagedProgress::end() {
   current_ = -1;
 }
 
+double StagedProgress::stage_eta_s() const {
+  if (current_ < 0) return -1.0;
+  if (total_ > 0 && rate_.known()) return rate_.remaining_s(total_);
+  const Stage& s = stages_[size_t(current_)];
+  if (s.estimate_s < 0) return -1.0;
+  return std::max(0.0, s.estimate_s - stage_elapsed_s());
+}
+
 double StagedProgress::eta_s() const {
   double eta = 0.0;
   for (size_t k = 0; k < stages_.size(); ++k) {
     const Stage& s = stages_[k];
     if (s.ended) continue;
-    if (long(k) == current_) {
-      const long ran = rate_started_ ? done_ - rate_done0_ : 0;
-      const double t = rate_started_ ? std::chrono::duration<double>(
-                                           std::chrono::steady_clock::now() - rate_t0_).count()
-                                     : 0.0;
-      if (ran > 0 && t > 0 && total_ > 0) {
-        eta += double(total_ - done_) * t / double(ran);
-      } else {
-        if (s.estimate_s < 0) return -1.0;
-        eta += std::max(0.0, s.estimate_s - stage_elapsed_s());
-      }
-      continue;
-    }
-    if (s.estimate_s < 0) return -1.0;
-    eta += s.estimate_s;
+    const double t = long(k) == current_ ? stage_eta_s() : s.estimate_s;
+    if (t < 0) return -1.0;
+    eta += t;
   }
   return eta;
 }
@@ -100,14 +90,12 @@ double StagedProgress::eta_s() const {
 std::string StagedProgress::line(const std::string& extra) const {
   std::string stage = "starting";
   if (current_ >= 0) {
-    char buf[160];
-    if (total_ > 0)
-      std::snprintf(buf, sizeof buf, "%s %ld/%ld", stages_[size_t(current_)].name.c_str(), done_, total_);
-    else
-      std::snprintf(buf, sizeof buf, "%s", stages_[size_t(current_)].name.c_str());
-    stage = buf;
+    stage = stages_[size_t(current_)].name;
+    if (total_ > 0) stage += " " + std::to_string(done_) + "/" + std::to_string(total_);
+    const double left = stage_eta_s();
+    if (left >= 0) stage += ", " + format_duration(left) + " left";
   }
-  char buf[320];
+  char buf[400];
   std::snprintf(buf, sizeof buf, "%s [%ld/%zu %s] elapsed %s ETA %s", label_.c_str(),
                 current_ >= 0 ? current_ + 1 : 0, stages_.size(), stage.c_str(),
                 format_duration(elapsed_s()).c_str(), format_duration(eta_s()).c_str());

@@ -104,9 +104,10 @@ SensorEstimate estimate_sensor(const std::vector<ScanSample>& scans, const Senso
   s.fov_up_deg = b.elevation_deg.front();
   // Rows are one step apart and the top and bottom beams sit on the first and last rows.
   s.fov_deg = (b.elevation_deg.front() - b.elevation_deg.back()) * b.rows / (b.rows - 1);
-  s.width = detail::estimate_width(scans, b);
+  const int measured_width = detail::estimate_width(scans, b);
+  s.width = std::max(kWidthMultiple, int(std::lround(double(measured_width) / kWidthMultiple)) * kWidthMultiple);
   if (long(s.height) * s.width > kMaxSensorPixels) {
-    const int w = int(kMaxSensorPixels / s.height);
+    const int w = std::max(1, int(kMaxSensorPixels / s.height) / kWidthMultiple) * kWidthMultiple;
     log::warn("sensor estimate: width ", s.width, " × ", s.height, " rows exceeds the pixel limit; width ", w);
     s.width = w;
   }
@@ -144,7 +145,7 @@ SensorEstimate estimate_sensor(const std::vector<ScanSample>& scans, const Senso
                 "; give --sensor NAME|FILE");
   log::info("sensor estimate (", scans.size(), " scans): ", s.height, " rows (",
             e.from_rings ? "ring field" : "elevation histogram peaks", "), fov_up ", s.fov_up_deg, "°, fov ",
-            s.fov_deg, "°, width ", s.width, ", range ", s.min_range_m, "-", s.max_range_m, " m; keeps ",
+            s.fov_deg, "°, width ", s.width, " (measured ", measured_width, "), range ", s.min_range_m, "-", s.max_range_m, " m; keeps ",
             100.0 * e.kept_fraction, " % of ", e.in_range_points, " in-range points");
   return e;
 }
@@ -152,10 +153,9 @@ SensorEstimate estimate_sensor(const std::vector<ScanSample>& scans, const Senso
 std::string matching_preset(const Sensor& est) {
   for (const std::string name : {"kitti360", "nuscenes"}) {
     const Sensor p = sensor_preset(name);
-    const double ratio = double(est.width) / p.width;
-    if (std::abs(est.height - p.height) <= std::max(2.0, 0.05 * p.height) &&
-        std::abs(est.fov_up_deg - p.fov_up_deg) <= 2.0 && std::abs(est.fov_deg - p.fov_deg) <= 0.1 * p.fov_deg &&
-        ratio >= 0.9)
+    const double fov_tol = 0.1 * p.fov_deg;
+    if (std::abs(est.height - p.height) <= p.height / 8.0 && std::abs(est.fov_up_deg - p.fov_up_deg) <= fov_tol &&
+        std::abs(est.fov_deg - p.fov_deg) <= fov_tol && double(est.width) >= 0.9 * p.width)
       return name;
   }
   return "";

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <memory>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "core/config.hpp"
 #include "core/error.hpp"
@@ -29,7 +31,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-enum Stage : size_t { kOdometry, kTrain, kEvaluate, kRender, kCloud, kReport };
+// The progress line's stages: the record's (kReconstructStages) with the training's coarse
+// geometric alignment ("align": the training's loading and its first geometric stage, before
+// step 1; minutes on a few dozen scans) shown as a stage of its own.
+enum Stage : size_t { kOdometry, kAlign, kTrain, kEvaluate, kRender, kCloud, kReport };
+const std::vector<std::string> kProgressStages{"odometry", "align", "train", "evaluate",
+                                               "render", "cloud", "report"};
 
 Json pose_errors_json(const std::vector<Pose>& est, const std::vector<Pose>& ref) {
   Json j = metrics::pose_metrics(est, ref);
@@ -163,8 +170,7 @@ Json reconstruct(cl::Runtime& rt, const ReconstructRequest& req) {
   req.load.validate();
   const pipeline::TrainConfig cfg = reconstruct_config(req);  // bad configs fail before any work
   JobRecord record((fs::path(req.run_dir) / "reconstruct.json").string(), req.to_json());
-  const std::vector<std::string> names(std::begin(kReconstructStages), std::end(kReconstructStages));
-  StagedProgress progress("reconstruct", names);
+  StagedProgress progress("reconstruct", kProgressStages);
 
   const Dataset d = load_dataset(req.scans, pipeline::run_load_options(req.run_dir, req.load));
   const std::vector<Pose> ref = reference_poses(d, req.reference_poses);
@@ -194,25 +200,26 @@ Json reconstruct(cl::Runtime& rt, const ReconstructRequest& req) {
   const double samples_per_step =
       double(cfg.schedule.rays_per_batch) * double(cfg.render.n_samples + cfg.render.n_importance);
   if (!record.done("train")) {
-    progress.begin(kTrain);
-    // Rendering estimates from the training's measured throughput, refreshed as it runs.
-    // From the first logged step on (not the geometric stage before it).
-    std::chrono::steady_clock::time_point t_first;
-    long step_first = -1;
+    progress.begin(kAlign);
+    // The coarse alignment's steps (epoch 0); the later epochs' geometric stages are part of
+    // the training steps' time.
+    tr.on_geometric_progress = [&](long epoch, long done, long total) {
+      if (epoch == 0 && progress.current() == long(kAlign)) progress.update(done, total);
+    };
+    // Rendering estimates from the training's measured throughput (its stage's rate: from the
+    // first logged step on, known after a few), refreshed as it runs.
     tr.on_progress = [&](long done, long end, const std::string& text) {
-      const auto now = std::chrono::steady_clock::now();
-      if (step_first < 0) {
-        step_first = done;
-        t_first = now;
+      if (progress.current() != long(kTrain)) {  // the first step: the alignment is over
+        progress.end();
+        progress.begin(kTrain);
       }
-      const double s = std::chrono::duration<double>(now - t_first).count();
-      if (done > step_first && s > 0) {
-        const double rate = double(done - step_first) * samples_per_step / s;
-        const double r = render_estimate_s(cfg, d.sensor, views, rate);
+      progress.update(done, end, text);
+      const double steps_per_s = progress.stage_units_per_s();
+      if (steps_per_s > 0) {
+        const double r = render_estimate_s(cfg, d.sensor, views, steps_per_s * samples_per_step);
         progress.estimate(kEvaluate, r);
         progress.estimate(kRender, r);
       }
-      progress.update(done, end, text);
     };
     tr.context = harness::context_block(&rt.device());  // the report's build row
     const Json summary = pipeline::train_run(rt, tr);

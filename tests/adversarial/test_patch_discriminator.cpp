@@ -384,3 +384,47 @@ TEST_CASE("PatchGAN config is read strictly and shapes are checked", "[adversari
   cl::Buffer img(rt, size_t(32) * 1080 * 2 * 4);
   REQUIRE_THROWS_WITH(D.forward(img, 1, 32, 1080), Catch::Contains("use fewer scales"));
 }
+
+TEST_CASE("PatchGAN fitted to the image any sensor yields", "[adversarial][config]") {
+  auto& rt = test::runtime();
+  const PatchDiscriminatorConfig def;  // 2 scales, strides [2, 2, 1], kernel 4
+  // The host sizes agree with the device discriminator's, and (0, 0) where it throws.
+  PatchDiscriminatorConfig three;
+  three.scales = 3;
+  PatchDiscriminator D(rt, three);
+  for (const auto& [h, w] : std::vector<std::pair<int, int>>{{66, 103}, {61, 167}, {32, 108}, {16, 90}, {12, 12}}) {
+    for (int sc = 0; sc < 3; ++sc) {
+      INFO(h << " x " << w << " scale " << sc);
+      const auto host = discriminator_logit_size(three, sc, h, w);
+      if (host.first > 0) {
+        CHECK(D.logit_size(sc, h, w) == host);
+      } else {
+        CHECK_THROWS(D.logit_size(sc, h, w));
+      }
+    }
+  }
+  // The presets' images (66 or 32 rows, a tenth of the columns) and the 61 × 2 004 estimate
+  // of a KITTI folder (stride 12: 167 columns) keep the configured network.
+  for (const auto& [h, w] : std::vector<std::pair<int, int>>{{66, 103}, {32, 108}, {61, 167}}) {
+    const auto f = fit_discriminator_to_image(def, h, w);
+    CHECK(f.to_json() == def.to_json());
+  }
+  // A 16-beam head's 16 rows: the second scale (8 rows) leaves no logits; one scale does.
+  CHECK(discriminator_logit_size(def, 1, 16, 90).first == 0);
+  const auto v = fit_discriminator_to_image(def, 16, 90);
+  CHECK(v.scales == 1);
+  CHECK(v.strides == def.strides);
+  CHECK(discriminator_logit_size(v, 0, 16, 90) == std::pair<int, int>{2, 20});
+  // 8 rows: one scale and the first stride 1.
+  const auto e = fit_discriminator_to_image(def, 8, 90);
+  CHECK(e.scales == 1);
+  CHECK(e.strides == std::vector<int>{1, 2, 1});
+  CHECK(discriminator_logit_size(e, 0, 8, 90).first >= 1);
+  // Smaller than the stride-1 stack (4 layers of kernel 4, padding 1: 5 rows at least).
+  CHECK(fit_discriminator_to_image(def, 5, 90).strides == std::vector<int>{1, 1, 1});
+  CHECK_THROWS_WITH(fit_discriminator_to_image(def, 4, 90), Catch::Contains("4 × 90"));
+  // The fitted network runs on its image.
+  PatchDiscriminator Dv(rt, v);
+  cl::Buffer img(rt, size_t(16) * 90 * 2 * 4);
+  CHECK_NOTHROW(Dv.forward(img, 1, 16, 90));
+}

@@ -138,6 +138,50 @@ TEST_CASE("sensor estimate takes the beam count from the ring field", "[datasets
   CHECK(estimate_sensor(no_ring).sensor.height == 31);
 }
 
+TEST_CASE("the preset match survives merged beams; other heads match nothing", "[datasets][sensor-estimate]") {
+  auto est = [](int rows, int width, double fov_up, double fov) {
+    Sensor s;
+    s.name = "estimated";
+    s.height = rows, s.width = width, s.fov_up_deg = fov_up, s.fov_deg = fov;
+    return s;
+  };
+  // A 21-scan folder of KITTI odometry HDL-64E scans: three beams merged (61 rows) and a
+  // measured width of 2 004 (no preset matched, and the quick preset's training stopped on it).
+  CHECK(matching_preset(est(61, 2004, 2.86, 27.4)) == "kitti360");
+  // The spread of one HDL-64E on subsets of the ten KITTI scans of ../shared: 59 to 69 rows,
+  // fov_up 3.1 to 3.9°, fov 27.8 to 28.6°.
+  CHECK(matching_preset(est(59, 2005, 3.81, 28.43)) == "kitti360");
+  CHECK(matching_preset(est(62, 2003, 3.92, 28.52)) == "kitti360");
+  CHECK(matching_preset(est(69, 2005, 3.92, 28.47)) == "kitti360");
+  // The HDL-32E with a beam missing (31 peaks) or an extra one.
+  CHECK(matching_preset(est(31, 1084, 10.67, 42.7)) == "nuscenes");
+  CHECK(matching_preset(est(33, 1084, 10.67, 42.7)) == "nuscenes");
+  // Heads of other beam counts or fields of view are none of the presets.
+  CHECK(matching_preset(est(57, 2005, 3.0, 27.0)).empty());   // more than 1/8 below 66
+  CHECK(matching_preset(est(128, 2048, 2.0, 26.9)).empty());  // a 128-beam head
+  CHECK(matching_preset(est(40, 1800, 7.0, 23.0)).empty());   // a 40-beam head (+7° to −16°)
+  CHECK(matching_preset(est(64, 1024, 22.5, 45.0)).empty());  // a 64-beam head of ±22.5°
+  CHECK(matching_preset(est(64, 2048, 5.0, 26.9)).empty());   // the top beam 3° off
+  CHECK(matching_preset(est(16, 900, 15.0, 32.0)).empty());   // VLP-16
+  CHECK(matching_preset(est(64, 900, 2.0, 26.9)).empty());    // coarser than the preset's image
+}
+
+TEST_CASE("the estimated width is a multiple of kWidthMultiple", "[datasets][sensor-estimate]") {
+  // The simulated native HDL-64E: 2 083 azimuth steps, estimated as 2 080 columns.
+  const SensorEstimate e = estimate_sensor(samples(street_scans("kitti360", "native")));
+  CHECK(e.sensor.width % kWidthMultiple == 0);
+  CHECK(std::abs(e.sensor.width - 2083) <= kWidthMultiple / 2);
+  // A 2 003-column head (a prime: no image stride but 1 would divide it) is estimated at 2 000.
+  const std::string sj = test::temp_dir("width_2003") + "/s.json";
+  Sensor v = sensor_preset("kitti360");
+  v.name = "w2003";
+  v.width = 2003;
+  write_json_file(sj, sensor_to_json(v));
+  const SensorEstimate w = estimate_sensor(samples(street_scans("kitti360", "grid", sj)));
+  CHECK(w.sensor.width == 2000);
+  CHECK(w.kept_fraction >= 0.99);
+}
+
 TEST_CASE("sensor estimate refuses a sensor that does not spin 360°", "[datasets][sensor-estimate]") {
   auto s = samples(street_scans("kitti360", "grid"));
   for (auto& sc : s) {
@@ -254,8 +298,9 @@ TEST_CASE("real HDL-64E scans (KITTI odometry) as a plain folder: the estimate",
   CHECK(e.sensor.height >= 60);
   CHECK(e.sensor.height <= 68);
   // Measured on the 10 scans: 65 rows, fov_up 3.23° (the real lasers stray above the nominal
-  // +2°), fov 27.8°, width 2006 (the HDL-64E's ~2 083 steps less its dropped columns); on the
-  // in-repo sample's 2 scans: 67 rows, fov_up 3.84°, fov 28.4°, width 2008.
+  // +2°), fov 27.8°, width 2006 (the HDL-64E's ~2 083 steps less its dropped columns; estimated
+  // as 2 010, a multiple of kWidthMultiple); on the in-repo sample's 2 scans: 67 rows, fov_up
+  // 3.84°, fov 28.4°, width 2008.
   CHECK(e.sensor.fov_up_deg == Approx(2.0).margin(2.0));
   CHECK(e.sensor.fov_deg == Approx(26.9).margin(2.0));
   CHECK(e.sensor.width > 1800);
@@ -267,4 +312,26 @@ TEST_CASE("real HDL-64E scans (KITTI odometry) as a plain folder: the estimate",
   UNSCOPED_INFO("estimate " << e.sensor.height << "x" << e.sensor.width << " fov_up " << e.sensor.fov_up_deg
                             << " fov " << e.sensor.fov_deg << " -> " << d.sensor.name);
   CHECK(d.sensor.name == "kitti360");
+}
+
+TEST_CASE("real HDL-64E scans with merged beams still get the kitti360 preset", "[real][sensor-estimate]") {
+  const test::RealData r = test::full_real_data("kitti-odometry-00-slice", "scans 41 to 49; the in-repo sample holds 2");
+  if (!r) return;
+  // Every other scan from 41: the estimate merges beams (59 rows × 2 005 measured columns,
+  // fov_up 3.81°, fov 28.43°); no preset matched it before and the folder got the estimate.
+  const std::string dir = test::temp_dir("kitti_odd_scans");
+  for (int k = 41; k <= 49; k += 2) {
+    const std::string name = "/0000" + std::to_string(k) + ".bin";
+    std::filesystem::copy_file(r.path + "/sequences/00/velodyne" + name, dir + name,
+                               std::filesystem::copy_options::overwrite_existing);
+  }
+  std::vector<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  const SensorEstimate e = estimate_sensor(read_scan_sample(files));
+  INFO("estimate " << e.sensor.height << "x" << e.sensor.width << " fov_up " << e.sensor.fov_up_deg
+                   << " fov " << e.sensor.fov_deg);
+  CHECK(e.sensor.height < 62);  // merged beams: the case this test is for
+  CHECK(matching_preset(e.sensor) == "kitti360");
+  CHECK(load_dataset(dir).sensor.name == "kitti360");
 }

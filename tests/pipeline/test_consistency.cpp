@@ -295,8 +295,11 @@ TEST_CASE("consistency config: validated section, unknown keys rejected, ablatio
   CHECK_NOTHROW(build(Json{{"consistency", {{"image_col_stride", 3}}}}));
   CHECK_THROWS_WITH(build(Json{{"consistency", {{"image_row_stride", 32}}}}),
                     Catch::Contains("image_row_stride"));
-  CHECK_THROWS_WITH(build(Json{{"consistency", {{"discriminator", {{"scales", 3}}}}}}),
-                    Catch::Contains("discriminator cannot run"));
+  // The discriminator is fitted to the image sub-sensor (16 × 128 / strides): three scales
+  // would leave the third none, so it runs with the scales that fit.
+  const auto three = *tiny_sgnlf(Json{{"consistency", {{"discriminator", {{"scales", 3}}}}}}).consistency;
+  CHECK(fit_consistency_to_sensor(three, scene.sensor).discriminator.scales < 3);
+  CHECK_NOTHROW(build(Json{{"consistency", {{"discriminator", {{"scales", 3}}}}}}));
   // The ablation has no section at all: its config (and hash) are what they were.
   const TrainConfig ab = resolve_config("sg-nlf-no-consistency", "smoke", Json::object());
   CHECK_FALSE(ab.consistency_term());
@@ -305,15 +308,24 @@ TEST_CASE("consistency config: validated section, unknown keys rejected, ablatio
                                    Json{{"consistency", {{"every", 1}}}}),
                     Catch::Contains("consistency"));
   // Every preset of sg-nlf resolves with the term on, and its sub-sensors and discriminator
-  // fit both sensors (the smoke tables simulate them 256 columns wide).
+  // fit both sensors (the smoke tables simulate them 256 columns wide) and the sensors plain
+  // folders yield: a KITTI HDL-64E estimate with merged beams (61 × 2 004, 59 rows: primes),
+  // a 16-beam head, a prime width.
   for (const char* scale : {"smoke", "quick", "paper"}) {
     const TrainConfig pc = resolve_config("sg-nlf", scale, Json::object());
     CHECK(pc.consistency_term());
-    for (const char* sensor : {"kitti360", "nuscenes"}) {
+    for (const std::string sensor : {"kitti360", "nuscenes", "61x2004", "59x2010", "16x900", "32x1087"}) {
       INFO(scale << " " << sensor);
       Scene sc;
-      sc.sensor = sensor_preset(sensor);
-      if (std::string(scale) == "smoke") sc.sensor.width = 256;
+      if (sensor == "kitti360" || sensor == "nuscenes") {
+        sc.sensor = sensor_preset(sensor);
+      } else {
+        sc.sensor = sensor_preset("kitti360");
+        sc.sensor.name = "estimated";
+        sc.sensor.height = std::stoi(sensor.substr(0, sensor.find('x')));
+        sc.sensor.width = std::stoi(sensor.substr(sensor.find('x') + 1));
+      }
+      if (std::string(scale) == "smoke" && (sensor == "kitti360" || sensor == "nuscenes")) sc.sensor.width = 256;
       sc.norm.scale = 0.01;
       sc.images.assign(2, RangeImage(sc.sensor.height, sc.sensor.width));
       CHECK_NOTHROW(ConsistencyTerm(test::runtime(), sc, *pc.consistency,

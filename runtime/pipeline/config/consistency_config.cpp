@@ -79,6 +79,14 @@ ConsistencyConfig fit_consistency_to_sensor(const ConsistencyConfig& c, const Se
              " × " + std::to_string(s.width) + " sensor as " +
              std::to_string(f.image_row_stride) + " × " + std::to_string(f.image_col_stride) +
              " (the nearest divisors)");
+  // The discriminator runs on that image sub-sensor: its scales and strides fitted to it.
+  try {
+    f.discriminator = adversarial::fit_discriminator_to_image(
+        c.discriminator, s.height / f.image_row_stride, s.width / f.image_col_stride);
+  } catch (const ConfigError& e) {
+    throw ConfigError(kWhere + ": the image sub-sensor (sensor / image strides) is too small for the " +
+                      e.what() + "; smaller image strides?");
+  }
   return f;
 }
 

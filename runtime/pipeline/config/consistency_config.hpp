@@ -62,9 +62,12 @@ struct ConsistencyConfig {
 
 // The divisor of `size` nearest to `stride` (ties: the larger one); `stride` when it divides.
 int fitted_stride(int size, int stride);
-// `c` with its image strides fitted to the sensor (fitted_stride, logged when they change), so
-// that every preset runs on any sensor a folder of scans yields (e.g. 2004 columns: stride 10
-// becomes 12). Throws ConfigError naming the key when a stride exceeds the sensor's size.
+// `c` with its image strides fitted to the sensor (fitted_stride, logged when they change) and
+// its discriminator fitted to the image sub-sensor they give (adversarial::
+// fit_discriminator_to_image: a 16-beam head's 16 rows take one scale), so that every preset
+// runs on any sensor a folder of scans yields (e.g. 2004 columns: stride 10 becomes 12).
+// Throws ConfigError naming the key when a stride exceeds the sensor's size, or the image
+// sub-sensor when no discriminator fits it.
 ConsistencyConfig fit_consistency_to_sensor(const ConsistencyConfig& c, const Sensor& s);
 // Frame i's render sub-sensor and frame j's image sub-sensor (with the fitted strides) for a
 // dataset sensor; both throw when the sub-sensor is narrower than the reprojection's minimum

@@ -96,6 +96,7 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
   RunStepParts parts(rt, d, scene, c, model, req.run_dir, req.manifest.seed);
   opt.policy = &find_method(c.method).compose(parts);
   PoseFreeStep* pose_step = parts.pose_step();
+  if (pose_step && req.on_geometric_progress) pose_step->set_geometric_progress(req.on_geometric_progress);
   ConsistencySchedule* consistency_step = parts.consistency_step();
   SpectralSchedule* spectral_step = parts.spectral_step();
   auto current_poses = [&] { return pose_step ? pose_step->poses_world() : rs.T_world_lidar_init; };

@@ -9,6 +9,7 @@
 #include "core/config.hpp"
 #include "pipeline/model/fast_renderer.hpp"
 #include "pipeline/run/run_dir.hpp"
+#include "pipeline/train/pose_free_step.hpp"
 #include "pipeline/train/trainer.hpp"
 
 namespace sgnlf::pipeline {
@@ -21,6 +22,10 @@ struct TrainRequest {
   bool show_progress = true;
   // Passed to TrainOptions::on_progress (done, end step, text).
   std::function<void(long, long, const std::string&)> on_progress;
+  // Given to a pose-free method's geometric stage (PoseFreeStep::set_geometric_progress): its
+  // optimiser steps (epoch, done, total) as it runs, the coarse alignment before the first
+  // training step among them.
+  GeometricProgress on_geometric_progress;
   // Where the training runs (git, build, machine, device: harness::context_block, which the
   // command fills in); written into summary.json as "context" when not null.
   Json context = nullptr;

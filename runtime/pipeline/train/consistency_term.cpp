@@ -12,8 +12,8 @@ namespace sgnlf::pipeline {
 ConsistencyTerm::ConsistencyTerm(cl::Runtime& rt, const Scene& scene,
                                  const ConsistencyConfig& cfg, int max_rays)
     : cfg_(fit_consistency_to_sensor(cfg, scene.sensor)),
-      sensor_i_(consistency_render_sensor(cfg, scene.sensor)),
-      sensor_j_(consistency_image_sensor(cfg, scene.sensor)),
+      sensor_i_(consistency_render_sensor(cfg_, scene.sensor)),
+      sensor_j_(consistency_image_sensor(cfg_, scene.sensor)),
       scale_(scene.norm.scale),
       dirs_i_(ray_directions(sensor_i_)) {
   const int n_i = sensor_i_.height * sensor_i_.width;
@@ -37,16 +37,8 @@ ConsistencyTerm::ConsistencyTerm(cl::Runtime& rt, const Scene& scene,
   }
   reproj_ = std::make_unique<render::CrossFrameReprojection>(rt, sensor_i_, sensor_j_, scale_);
   out_ = reproj_->make_output();
-  disc_ = std::make_unique<adversarial::PatchDiscriminator>(rt, cfg.discriminator);
-  for (int s = 0; s < cfg.discriminator.scales; ++s) {
-    try {
-      disc_->logit_size(s, h, w);
-    } catch (const Error& e) {
-      throw ConfigError("config.consistency: the discriminator cannot run on the " +
-                        std::to_string(h) + " × " + std::to_string(w) +
-                        " image sub-sensor (fewer scales, smaller strides?): " + e.what());
-    }
-  }
+  // cfg_'s discriminator is fitted to the h × w image sub-sensor (fit_consistency_to_sensor).
+  disc_ = std::make_unique<adversarial::PatchDiscriminator>(rt, cfg_.discriminator);
   const size_t n_j = size_t(h) * size_t(w);
   depth_i_ = cl::Buffer(rt, size_t(n_i) * 4), grad_depth_i_ = cl::Buffer(rt, size_t(n_i) * 4);
   grad_range_ = cl::Buffer(rt, n_j * 4);

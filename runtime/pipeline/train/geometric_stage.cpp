@@ -90,9 +90,18 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
 
   GeometricStage stage;
   stage.run = [g, gc, loss, norm, clouds, confidence, pg, graph, features,
-               run_dir](PoseSet& poses, long epoch, double progress) -> Json {
+               run_dir](PoseSet& poses, long epoch, double progress, const GeometricProgress& report) -> Json {
     const int steps = g.steps_at(epoch, progress);
     if (steps <= 0) return nullptr;
+    auto tell = [&](long done, long total) {
+      if (report) report(epoch, done, total);
+    };
+    // The steps of a run_annealed schedule after its k-th call, `offset` steps into the stage.
+    auto after_call = [&](long offset, long total, const posegraph::AnnealConfig& a) {
+      return [&, offset, total, a](int k, double, const posegraph::GeometricResult&) {
+        tell(offset + std::min<long>(long(k) * a.per_call, a.steps), total);
+      };
+    };
     std::vector<Pose> T(poses.size());
     for (size_t i = 0; i < poses.size(); ++i) T[i] = denormalize_pose(poses.pose(i), norm);
     posegraph::GeometricResult r;
@@ -103,7 +112,8 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
       posegraph::AnnealConfig a;
       a.steps = steps;
       a.lr_final = g.lr_final;
-      const auto calls = posegraph::run_annealed(loss, gc, a, T);
+      tell(0, steps);
+      const auto calls = posegraph::run_annealed(loss, gc, a, T, after_call(0, steps, a));
       r = calls.back();
       r.loss_before = calls.front().loss_before;
       r.steps = steps;
@@ -114,7 +124,9 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
         std::vector<posegraph::PoseGrad> grad;
         r.loss_after = (*loss)(T, gc.tau_scale, grad);
       }
+      tell(steps, steps);
     } else {  // the shrinking refinement at the final τ and learning rates
+      long build_done = 0;  // the steps settling the poses on a new graph, before the refinement's
       if (confidence && epoch >= pg.start_epoch &&
           (graph->built_epoch < 0 || epoch - graph->built_epoch >= pg.graph.reevaluate_every)) {
         const auto cg = posegraph::build_confidence_graph(*clouds, T, features, pg.graph);
@@ -136,7 +148,9 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
           a.lr_start = pg.lr_on_build;
           a.lr_final = g.lr_final;
           a.hold_clock = true;
-          const auto calls = posegraph::run_annealed(graph->loss, gc, a, T);
+          tell(0, build_steps + steps);
+          const auto calls = posegraph::run_annealed(graph->loss, gc, a, T, after_call(0, build_steps + steps, a));
+          build_done = build_steps;
           graph_line["build_run"] = Json{{"steps", build_steps},
                                          {"loss_before", calls.front().loss_before},
                                          {"loss_after", calls.back().loss_after}};
@@ -149,7 +163,9 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
       const auto& use = graph->loss ? graph->loss : loss;
       const posegraph::GeometricOptimizer opt(posegraph::GraphLoss::as_pose_loss(use),
                                               poses.size(), run_cfg);
+      tell(build_done, build_done + steps);
       r = opt.run(T, 1.0);
+      tell(build_done + steps, build_done + steps);
       if (graph->loss && graph_line.is_null()) graph_line = Json{{"built", false}};
     }
     for (size_t i = 0; i < poses.size(); ++i) poses.set_pose(i, normalize_pose(T[i], norm));

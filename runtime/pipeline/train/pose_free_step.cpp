@@ -48,7 +48,7 @@ void PoseFreeStep::on_epoch(long epoch, long step) {
   const double progress = double(step) / double(cfg_.schedule.iterations);
   const Json before = pose_errors();
   const auto t0 = std::chrono::steady_clock::now();
-  Json line = geometric_.run(poses_, epoch, progress);
+  Json line = geometric_.run(poses_, epoch, progress, report_);
   if (line.is_null()) return;  // the stage did nothing this epoch
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   geometric_seconds_ += secs;

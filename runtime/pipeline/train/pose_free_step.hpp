@@ -17,11 +17,16 @@
 
 namespace sgnlf::pipeline {
 
-// A geometric stage: `run` moves `poses` (normalised frame) before epoch `epoch` at `progress`
-// and returns a JSON summary (steps, losses) for the log, or null when it did nothing. A stage
-// with state of its own (SG-NLF's current pose graph) saves it with the step's checkpoint arrays.
+// Called as a geometric stage runs: `done` of its `total` optimiser steps before epoch `epoch`
+// (0 of them when it starts, total when it ends), e.g. for a progress line.
+using GeometricProgress = std::function<void(long epoch, long done, long total)>;
+
+// A geometric stage: `run` moves `poses` (normalised frame) before epoch `epoch` at `progress`,
+// reporting its steps to `report` (may be empty), and returns a JSON summary (steps, losses)
+// for the log, or null when it did nothing. A stage with state of its own (SG-NLF's current
+// pose graph) saves it with the step's checkpoint arrays.
 struct GeometricStage {
-  std::function<Json(PoseSet& poses, long epoch, double progress)> run;
+  std::function<Json(PoseSet& poses, long epoch, double progress, const GeometricProgress& report)> run;
   std::function<NamedArrays()> state;                  // optional
   std::function<void(const Checkpoint&)> load_state;  // optional
   explicit operator bool() const { return bool(run); }
@@ -43,6 +48,8 @@ class PoseFreeStep : public StepPolicy {
 
   // Current poses in the dataset's world frame (metres).
   std::vector<Pose> poses_world() const;
+  // Where the geometric stage reports its steps (none by default).
+  void set_geometric_progress(GeometricProgress report) { report_ = std::move(report); }
   // Wall time spent in the geometric stage by this process (not across a resume).
   double geometric_seconds() const { return geometric_seconds_; }
   // Network lr multiplier of `frame` under selective reweighting (1 when off or not yet known).
@@ -56,6 +63,7 @@ class PoseFreeStep : public StepPolicy {
   std::vector<Pose> gt_;
   std::string run_dir_;
   GeometricStage geometric_;
+  GeometricProgress report_;
   std::vector<double> ema_;   // per frame: moving average of the range loss
   std::vector<double> seen_;  // per frame: 1 once a step came from it
   std::vector<float> level_w_;
