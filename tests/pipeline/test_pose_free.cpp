@@ -34,6 +34,8 @@ TrainConfig tiny_pose_free(const std::string& method, const Json& extra = Json::
          {"render", {{"n_samples", 24}}},
          {"geometric", {{"first_steps", 5}, {"steps_per_epoch", 2.0},
                         {"optimizer", {{"points_per_frame", 400}}}}}};
+  // A method without the geometric stage (the frozen control) refuses its section.
+  if (!resolve_config(method, "smoke").geometric_stage()) o.erase("geometric");
   return resolve_config(method, "smoke", merge_config_json(o, extra));
 }
 
