@@ -167,3 +167,18 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
   CHECK_THROWS_WITH(train_run(test::runtime(), bad), Catch::Contains("position 40"));
   CHECK_FALSE(fs::exists(fs::path(bad.run_dir) / "run.json"));
 }
+
+TEST_CASE("a run folder of config shape 1 is refused with what to do", "[pipeline][session]") {
+  const std::string dir = test::temp_dir("session_run_shape1");
+  write_json_file(dir + "/run.json",
+                  Json{{"method", "sg-nlf"}, {"preset", "quick"}, {"dataset", "x"}, {"seed", 1},
+                       {"config_hash", "e3dab93155649326"},
+                       {"config", {{"field", {{"levels", 14}, {"features_per_level", 2}}}}}});
+  try {
+    read_manifest(dir);
+    FAIL("an old run folder was read");
+  } catch (const ConfigError& e) {
+    CHECK_THAT(e.what(), Catch::Contains(dir + "/run.json") && Catch::Contains("older sgnlf") &&
+                             Catch::Contains("field.grid"));
+  }
+}

@@ -38,6 +38,14 @@ RunManifest read_manifest(const std::string& run_dir) {
   r.get("dataset_options", data_options);
   r.finish();
   m.data_options = LoadOptions::from_json(data_options, path + ": dataset_options");
+  // Config shape 1 (before the modules' configs were embedded: field.levels, optim.beta1, …):
+  // its checkpoints hold that config's hash, so the run cannot be read back as it is.
+  if (cfg.is_object() && cfg.contains("field") && cfg["field"].is_object() &&
+      cfg["field"].contains("levels"))
+    throw ConfigError(path + ": this run was written by an older sgnlf (config shape 1: "
+                      "'field.levels' where the hash grid is now 'field.grid'); train it again "
+                      "with this version, or eval, render and resume it with the version that "
+                      "wrote it");
   m.config = train_config_from_json(cfg, path + ": config");
   return m;
 }
