@@ -24,7 +24,7 @@ struct FastRenderOptions {
         ->check(CLI::IsMember({"fast", "protocol"}));
     sub.add_option("--fast-config", config_file,
                    "JSON of the fast renderer's settings (keys of render/fast_render_config.hpp)");
-    sub.add_option("--cell", cell_m, "Occupancy grid cell of the fast renderer, metres (default 2)");
+    sub.add_option("--cell", cell_m, "Occupancy grid cell of the fast renderer, metres (default 1)");
   }
   // The settings (validated; a bad file or value throws naming it), read before the run loads.
   render::FastRenderConfig config() const {

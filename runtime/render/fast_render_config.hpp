@@ -13,8 +13,12 @@ struct FastRenderConfig {
   // a cell is occupied when it holds a return of a training scan (under the run's poses) or exp(σ)·δ at one of its probes³ stratified probe points exceeds
   // −log(1 − alpha) (one sample there, δ the renderer's bin width, would stop more than alpha
   // of the light), then dilated by `dilate` cells. Refused above max_cells cells.
-  float cell_m = 2.0f;
-  int probes_per_axis = 2;
+  // Defaults measured on SG-NLF quick fields of kitti360-low-a, opaque and translucent
+  // (docs/studies/fast-render): 1 m cells probed at their centres (probes 1 m apart, as 2 m
+  // cells with 2³ probes were) and waves doubling up to 8 cut the opaque field's density rows
+  // from 258 to 126 per ray, every test-view metric within 0.02 dB and 0.1 % of the protocol's.
+  float cell_m = 1.0f;
+  int probes_per_axis = 1;
   float alpha = 1e-4f;
   int dilate = 1;
   float margin_m = 2.0f;
@@ -26,7 +30,7 @@ struct FastRenderConfig {
   float stop_transmittance = 1e-4f;
   float head_weight_threshold = 1e-4f;
   int wave = 8;
-  int max_waves = 3;
+  int max_waves = 8;
 
   template <class Self, class V>
   static void fields(Self& s, V& v) {

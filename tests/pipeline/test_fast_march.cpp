@@ -145,6 +145,10 @@ TEST_CASE("occupancy grid: built from the density and from points, refused when 
 TEST_CASE("fast render config: defaults, round trip, refusals", "[pipeline][fast-render]") {
   const render::FastRenderConfig d;
   CHECK(render::FastRenderConfig::from_json(d.to_json()).to_json() == d.to_json());
+  // The measured defaults (docs/studies/fast-render).
+  CHECK(d.cell_m == 1.0f);
+  CHECK(d.probes_per_axis == 1);
+  CHECK(d.max_waves == 8);
   const auto c = render::FastRenderConfig::from_json(Json{{"cell_m", 0.5}, {"wave", 8}});
   CHECK(c.cell_m == 0.5f);
   CHECK(c.wave == 8);
