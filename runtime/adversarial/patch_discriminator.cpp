@@ -44,6 +44,7 @@ PatchDiscriminator::PatchDiscriminator(cl::Runtime& rt, const PatchDiscriminator
   ac.beta1 = cfg_.beta1;
   ac.beta2 = cfg_.beta2;
   ac.eps = cfg_.eps;
+  ac.weight_decay = cfg_.weight_decay;
   adam_ = std::make_unique<field::Adam>(rt_, layout_.total(), ac);
   const std::string f = "adversarial/patch_gan.cl";
   scale_k_ = rt_.kernel(f, "adv_scale");

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/config_choices.hpp"
 #include "core/config_fwd.hpp"
 
 namespace sgnlf::adversarial {
@@ -27,6 +28,7 @@ struct PatchDiscriminatorConfig {
   float beta1 = 0.5f;
   float beta2 = 0.999f;
   float eps = 1e-8f;
+  float weight_decay = 0.0f;
   // Input depths in metres are divided by this (the sensor's range: inputs in [0, 1]); pixels
   // without a return are 0 in the input and stay 0.
   float depth_scale_m = 80.0f;
@@ -47,6 +49,7 @@ struct PatchDiscriminatorConfig {
     v("beta1", s.beta1, 0.0f, 0.999999f);
     v("beta2", s.beta2, 0.0f, 0.999999f);
     v("eps", s.eps, 0.0f, 1.0f);
+    v("weight_decay", s.weight_decay, 0.0f, 1.0f, config::omit_when(0.0f));
     v("depth_scale_m", s.depth_scale_m, 1e-3f, 1e4f);
     v("init_std", s.init_std, 1e-6f, 10.0f);
     v("seed", s.seed);

@@ -414,3 +414,25 @@ TEST_CASE("config: edge re-seeding is an optional section of the geometric stage
   });
   CHECK_THAT(r, Catch::Contains("max_rounds"));
 }
+
+TEST_CASE("config: the annealed runs' steps per call and the discriminator's weight decay are keys",
+          "[config]") {
+  const TrainConfig plain = resolve_config("sg-nlf", "quick");
+  CHECK(plain.pose_free->geometric->per_call == 10);
+  CHECK(plain.consistency->discriminator.weight_decay == 0.0f);
+  // Written only when not the values every committed run used, so their hashes stay.
+  const Json w = train_config_to_json(plain);
+  CHECK_FALSE(w["geometric"].contains("per_call"));
+  CHECK_FALSE(w["consistency"]["discriminator"].contains("weight_decay"));
+  const TrainConfig c = resolve_config(
+      "sg-nlf", "quick",
+      Json{{"geometric", {{"per_call", 5}}},
+           {"consistency", {{"discriminator", {{"weight_decay", 1e-4}}}}}});
+  CHECK(c.pose_free->geometric->per_call == 5);
+  CHECK(c.consistency->discriminator.weight_decay == Approx(1e-4));
+  CHECK(c.hash() != plain.hash());
+  CHECK_THAT(error_of([] {
+               resolve_config("sg-nlf", "quick", Json{{"geometric", {{"per_call", 0}}}});
+             }),
+             Catch::Contains("per_call"));
+}

@@ -82,6 +82,9 @@ struct GeometricScheduleConfig {
   double steps_per_epoch = 10.0;
   double stop_progress = 0.6;
   double lr_final = 0.05;
+  // Adam steps per call of the annealed runs (coarse alignment, settling on a new graph): a
+  // fresh Adam each call (posegraph/annealed_run.hpp).
+  int per_call = 10;
   posegraph::GeometricConfig optimizer = default_optimizer();
   // Edge re-seeding after the coarse alignment (posegraph/edge_reseeding.hpp; not in GeoNLF or
   // the paper): on when present.
@@ -97,6 +100,7 @@ struct GeometricScheduleConfig {
     v("steps_per_epoch", s.steps_per_epoch, 0.0, 1e6);
     v("stop_progress", s.stop_progress, 0.0, 1.0);
     v("lr_final", s.lr_final, 1e-6, 1.0);
+    v("per_call", s.per_call, 1, 1 << 20, config::omit_when(10));
     v.section("optimizer", s.optimizer);
     v.optional("reseed", s.reseed);
   }

@@ -111,6 +111,7 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
                 " scans before the first training step");
       posegraph::AnnealConfig a;
       a.steps = steps;
+      a.per_call = g.per_call;
       a.lr_final = g.lr_final;
       tell(0, steps);
       const auto calls = posegraph::run_annealed(loss, gc, a, T, after_call(0, steps, a));
@@ -145,6 +146,7 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
         if (build_steps > 0) {  // settle the poses on the new graph (pose_graph_config.hpp)
           posegraph::AnnealConfig a;
           a.steps = build_steps;
+          a.per_call = g.per_call;
           a.lr_start = pg.lr_on_build;
           a.lr_final = g.lr_final;
           a.hold_clock = true;
