@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include "core/config.hpp"
 #include "datasets/simulate.hpp"
@@ -178,4 +179,30 @@ TEST_CASE("pose-free options: unknown init, ground-truth methods, too few frames
   d.split.train.insert(d.split.train.end(), d.split.test.begin(), d.split.test.end());
   d.split.test.clear();
   CHECK_THROWS_WITH(make_run_scene(d, tiny_pose_free("geonlf")), Catch::Contains("test frames"));
+}
+
+TEST_CASE("geometric.reseed runs after the coarse alignment and is logged",
+          "[pipeline][posefree][session][device]") {
+  const std::string data = test::temp_dir("posefree_reseed_data") + "/seq";
+  test::write_tiny_dataset(data);
+  auto first_line = [&](const Json& extra, const std::string& name) {
+    const std::string dir = test::temp_dir(name);
+    Json o = merge_config_json(Json{{"schedule", {{"iterations", 7}}}}, extra);
+    train_run(test::runtime(),
+              test::tiny_request("geonlf", data, tiny_pose_free("geonlf", o), dir, 3, -1, false));
+    std::ifstream f(dir + "/geometric_log.jsonl");
+    std::string line;
+    REQUIRE(std::getline(f, line));
+    return Json::parse(line);
+  };
+  const Json off = first_line(Json::object(), "posefree_reseed_off");
+  CHECK_FALSE(off.contains("reseed"));
+  // Every edge a candidate (min_difference 0): the hypotheses are tried and reported.
+  const Json on = first_line(
+      Json{{"geometric", {{"reseed", {{"min_difference_m", 0.0}, {"steps", 10}, {"max_rounds", 1}}}}}},
+      "posefree_reseed_on");
+  REQUIRE(on.contains("reseed"));
+  CHECK(on["reseed"]["trials"].size() >= 12);  // 13 edges, at least one neighbour each
+  CHECK(on["reseed"]["kept"].get<int>() >= 0);
+  for (const auto& t : on["reseed"]["trials"]) CHECK(t["edge"][1].get<int>() == t["edge"][0].get<int>() + 1);
 }
