@@ -14,6 +14,9 @@ namespace sgnlf::field {
 void SceneFlowConfig::validate(const std::string& where) const {
   config::check_fields(*this, where);
   check_feature_count(where, features);
+  HashGridConfig grid;  // the schedule's name, checked as the grid checks it
+  grid.schedule = schedule;
+  grid.validate(where);
   if (features % time_nodes != 0)
     throw ConfigError(where + ": 'time_nodes' = " + std::to_string(time_nodes) +
                       " must divide 'features' = " + std::to_string(features));
@@ -38,6 +41,9 @@ HashGridConfig SceneFlowConfig::grid_config() const {
   g.features = features;
   g.log2_table_size = log2_table_size;
   g.base_resolution = base_resolution;
+  g.deterministic = deterministic;
+  g.half_table = half_table;
+  g.schedule = schedule;
   g.per_level_scale =
       levels > 1 ? float(std::exp2(std::log2(double(max_resolution) / base_resolution) /
                                    double(levels - 1)))

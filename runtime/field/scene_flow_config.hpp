@@ -2,6 +2,7 @@
 #pragma once
 #include <string>
 
+#include "core/config_choices.hpp"
 #include "core/config_fwd.hpp"
 #include "field/hash_grid_config.hpp"
 
@@ -17,6 +18,10 @@ struct SceneFlowConfig {
   int hidden_width = 64;
   int hidden_layers = 2;          // LiDAR4D's num_layers = 3: two hidden, one output
   float out_init_std = 0.001f;
+  // The grid's backward and table (field::HashGridConfig's keys of the same names).
+  bool deterministic = true;
+  bool half_table = false;
+  std::string schedule = "auto";
 
   template <class Self, class V>
   static void fields(Self& s, V& v) {
@@ -29,6 +34,9 @@ struct SceneFlowConfig {
     v("hidden_width", s.hidden_width, 1, 128);
     v("hidden_layers", s.hidden_layers, 0, 8);
     v("out_init_std", s.out_init_std, 0.0f, 1.0f);
+    v("deterministic", s.deterministic, config::omit_when(true));
+    v("half_table", s.half_table, config::omit_when(false));
+    v("schedule", s.schedule, config::omit_when<std::string>("auto"));
   }
   // Ranges, features divisible by time_nodes, max_resolution ≥ base_resolution.
   void validate(const std::string& where = "scene_flow") const;  // throws ConfigError

@@ -51,6 +51,19 @@ TEST_CASE("scene flow config: LiDAR4D's sizes and refusals naming the key", "[fi
   refused(R"({"hidden_width": 0})", "hidden_width");
   CHECK(field::SceneFlowConfig::from_json(Json::parse(R"({"time_nodes": 2})"), "flow")
             .time_nodes == 2);
+  // The grid's backward, table and schedule reach its HashGridConfig; unwritten at their
+  // defaults (the committed configs keep their hashes).
+  CHECK(c.grid_config().deterministic);
+  CHECK_FALSE(c.to_json().contains("deterministic"));
+  CHECK_FALSE(c.to_json().contains("schedule"));
+  const auto g = field::SceneFlowConfig::from_json(
+                     Json::parse(R"({"deterministic": false, "half_table": true, "schedule": "per_point"})"),
+                     "flow")
+                     .grid_config();
+  CHECK_FALSE(g.deterministic);
+  CHECK(g.half_table);
+  CHECK(g.schedule == "per_point");
+  refused(R"({"schedule": "sideways"})", "schedule");
 }
 
 TEST_CASE("scene flow forward and backward match the host reference", "[field][flow]") {
