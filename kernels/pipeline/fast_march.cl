@@ -35,18 +35,23 @@ __kernel void pipeline_grid_lookup(const int n, const float4 lo, const float4 in
 }
 
 // Per ray r (S samples at x, ray-major): the indices of its samples in occupied cells, in order,
-// idx[r·S + k] for k < count[r].
+// idx[r·S + k] for k < count[r]; with use_known, without the samples already known
+// (known[r·S + s] = 1; known is not read otherwise).
 __kernel void pipeline_occupied_list(const int n_rays, const int S, const float4 lo,
                                      const float4 inv_cell, const int4 dims,
                                      __global const uchar* grid,
-                                     __global const float* x, __global int* idx,
+                                     __global const float* x, const int use_known,
+                                     __global const int* known, __global int* idx,
                                      __global int* count) {
   const int r = get_global_id(0);
   if (r >= n_rays) return;
   __global int* ir = idx + (size_t)r * S;
   int c = 0;
-  for (int s = 0; s < S; ++s)
-    if (fast_occupied(vload3((size_t)r * S + s, x), lo, inv_cell, dims, grid)) ir[c++] = s;
+  for (int s = 0; s < S; ++s) {
+    const size_t q = (size_t)r * S + s;
+    if (use_known && known[q]) continue;
+    if (fast_occupied(vload3(q, x), lo, inv_cell, dims, grid)) ir[c++] = s;
+  }
   count[r] = c;
 }
 
@@ -76,24 +81,6 @@ __kernel void pipeline_march_prefill(const int n, const int S_c, const int M, co
     }
   }
   known[q] = k;
-}
-
-// pipeline_occupied_list without the samples already known (known[r·S + s] = 1).
-__kernel void pipeline_occupied_unknown_list(const int n_rays, const int S, const float4 lo,
-                                             const float4 inv_cell, const int4 dims,
-                                             __global const uchar* grid,
-                                             __global const float* x,
-                                             __global const int* known, __global int* idx,
-                                             __global int* count) {
-  const int r = get_global_id(0);
-  if (r >= n_rays) return;
-  __global int* ir = idx + (size_t)r * S;
-  int c = 0;
-  for (int s = 0; s < S; ++s) {
-    const size_t q = (size_t)r * S + s;
-    if (!known[q] && fast_occupied(vload3(q, x), lo, inv_cell, dims, grid)) ir[c++] = s;
-  }
-  count[r] = c;
 }
 
 // One wave's rows: alive ray a (ray alive[a]) takes its occupied samples cursor[a] ..

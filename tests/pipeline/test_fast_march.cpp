@@ -188,7 +188,7 @@ TEST_CASE("fast march kernels match the host reference", "[pipeline][fast-render
   CHECK(inside > 50);
   CHECK(outside > 50);
   rt.kernel("pipeline/fast_march.cl", "pipeline_occupied_list")
-      .set_args(R, S, g.lo4(), g.inv_cell4(), g.dims4(), g.device(), bx, idx, count)
+      .set_args(R, S, g.lo4(), g.inv_cell4(), g.dims4(), g.device(), bx, 0, occ, idx, count)
       .launch({cl::round_up(size_t(R), 64)}, {64})
       .wait();
   const auto ix = idx.read_vec<int32_t>(size_t(R) * S), ct = count.read_vec<int32_t>(size_t(R));
@@ -255,8 +255,8 @@ TEST_CASE("fast march kernels match the host reference", "[pipeline][fast-render
       .set_args(R * M, S, M, stride, -100.0f, bsrc, bh0c, bdc, bh0, bdf, known)
       .launch({cl::round_up(size_t(R) * M, 64)}, {64})
       .wait();
-  rt.kernel("pipeline/fast_march.cl", "pipeline_occupied_unknown_list")
-      .set_args(R, M, g.lo4(), g.inv_cell4(), g.dims4(), g.device(), bxm, known, idxm, count)
+  rt.kernel("pipeline/fast_march.cl", "pipeline_occupied_list")
+      .set_args(R, M, g.lo4(), g.inv_cell4(), g.dims4(), g.device(), bxm, 1, known, idxm, count)
       .launch({cl::round_up(size_t(R), 64)}, {64})
       .wait();
   const auto kn = known.read_vec<int32_t>(size_t(R) * M), im = idxm.read_vec<int32_t>(size_t(R) * M),

@@ -28,8 +28,7 @@ FastMarch::FastMarch(cl::Runtime& rt, int max_rays, int max_samples,
       hgather_k_(rt.kernel(kFile, "pipeline_head_gather")),
       hscatter_k_(rt.kernel(kFile, "pipeline_head_scatter")),
       fill_k_(rt.kernel(kFile, "pipeline_march_fill")),
-      prefill_k_(rt.kernel(kFile, "pipeline_march_prefill")),
-      list_unknown_k_(rt.kernel(kFile, "pipeline_occupied_unknown_list")) {
+      prefill_k_(rt.kernel(kFile, "pipeline_march_prefill")) {
   cfg_.validate();
   const size_t R = size_t(max_rays), N = R * size_t(max_samples);
   idx_ = floats(rt, N), count_ = floats(rt, R), alive_ = floats(rt, R), cursor_ = floats(rt, R);
@@ -46,8 +45,8 @@ long FastMarch::density_pass(int n_rays, int S, const cl::Buffer& x,
                              const Weights& weights) {
   const int n = n_rays * S;
   fill_k_.set_args(n, kDeadLogit, kOffLogit, h0, head).launch({g64(size_t(n))}, {64});
-  list_k_.set_args(n_rays, S, grid.lo4(), grid.inv_cell4(), grid.dims4(), grid.device(), x, idx_,
-                   count_)
+  list_k_.set_args(n_rays, S, grid.lo4(), grid.inv_cell4(), grid.dims4(), grid.device(), x, 0,
+                   known_, idx_, count_)
       .launch({g64(size_t(n_rays))}, {64});
   return march(n_rays, S, x, h0, w, density, weights);
 }
@@ -67,8 +66,8 @@ long FastMarch::merged_pass(int n_rays, int S_c, int M, const cl::Buffer& x,
   prefill_k_.set_args(n, S_c, M, kDensStride, kDeadLogit, sources, h0_prev_, dens_prev_, h0,
                       dens_full_, known_)
       .launch({g64(size_t(n))}, {64});
-  list_unknown_k_.set_args(n_rays, M, grid.lo4(), grid.inv_cell4(), grid.dims4(), grid.device(),
-                           x, known_, idx_, count_)
+  list_k_.set_args(n_rays, M, grid.lo4(), grid.inv_cell4(), grid.dims4(), grid.device(), x, 1,
+                   known_, idx_, count_)
       .launch({g64(size_t(n_rays))}, {64});
   return march(n_rays, M, x, h0, w, density, weights);
 }

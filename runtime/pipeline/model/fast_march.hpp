@@ -55,7 +55,7 @@ class FastMarch {
 
   render::FastRenderConfig cfg_;
   cl::Kernel list_k_, gather_k_, scatter_k_, done_k_, hcount_k_, hgather_k_, hscatter_k_, fill_k_,
-      prefill_k_, list_unknown_k_;
+      prefill_k_;
   // Per ray: occupied sample indices and counts; per alive ray: ray, cursor, row offsets,
   // last evaluated sample, done flag; per wave row: position and full-layout index; the density
   // rows in the full layout; the head rows (density input, index, ray, output).
