@@ -67,6 +67,7 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
   sub.add_option("--reseed-rounds", a->reseed_rounds, "After the sequential alignment, re-seed edges stuck off their neighbours' motion (posegraph/edge_reseeding.hpp): passes over the edges, 0 = none");
   sub.add_option("--reseed-steps", a->reseed.steps, "Refinement steps per re-seeding hypothesis");
   sub.add_option("--reseed-min-difference", a->reseed.min_difference_m, "Re-seed an edge whose relative translation differs from a neighbour's by more than this (m)");
+  sub.add_option("--reseed-judge", a->reseed.judge, "Residual that decides a re-seeding: point_to_point or point_to_plane (default: the stage's)");
   sub.add_option("--reseed-min-gain", a->reseed.min_gain, "Keep a re-seeding when the crossing edges' loss falls by more than this fraction");
   sub.add_option("--out", a->out, "Folder for trajectories/ and posegraph_log.json");
   sub.add_option("--graph", a->graph, "Pose graph: sequential (GeoNLF) or confidence (SG-NLF, stand-in features)")
@@ -129,7 +130,9 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
       posegraph::run_annealed(loss, a->cfg, an, T, on_call);
       if (a->reseed_rounds > 0) {
         a->reseed.max_rounds = a->reseed_rounds;
-        const auto rs = posegraph::reseed_edges(loss, a->cfg, a->lr_final, a->reseed, T);
+        const auto rs = posegraph::reseed_edges(
+            loss, a->cfg, a->lr_final, a->reseed, T,
+            posegraph::make_judge_loss(*loss, scans, a->cfg, a->reseed));
         for (const auto& t : rs.trials)
           std::printf("reseed round %d edge %d-%d from %d-%d (%.3f m): crossing %.5f -> %.5f, "
                       "total %.5f -> %.5f%s\n", t.round, t.edge, t.edge + 1, t.neighbour,

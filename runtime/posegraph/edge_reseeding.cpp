@@ -10,7 +10,29 @@
 
 namespace sgnlf::posegraph {
 
-void ReseedConfig::validate(const std::string& where) const { config::check_fields(*this, where); }
+void ReseedConfig::validate(const std::string& where) const {
+  config::check_fields(*this, where);
+  if (!(judge.empty() || judge == "point_to_point" || judge == "point_to_plane"))
+    throw ConfigError(where + ".judge = \"" + judge +
+                      "\": must be \"point_to_point\", \"point_to_plane\" or \"\" (the "
+                      "stage's residual)");
+}
+
+std::shared_ptr<const GraphLoss> make_judge_loss(const GraphLoss& loss,
+                                                 const std::vector<std::vector<PointXYZI>>& scans,
+                                                 const GeometricConfig& base,
+                                                 const ReseedConfig& cfg) {
+  cfg.validate();
+  if (cfg.judge.empty() || cfg.judge == base.residual) return nullptr;
+  require(scans.size() == loss.frames(), "make_judge_loss: " + std::to_string(scans.size()) +
+                                             " scans for " + std::to_string(loss.frames()) +
+                                             " frames");
+  GeometricConfig j = base;
+  j.residual = cfg.judge;
+  auto clouds = std::make_shared<const std::vector<FrameCloud>>(j.clouds(scans));
+  return std::make_shared<const GraphLoss>(clouds, loss.edges(), loss.min_distance(), base.threads,
+                                           j.direction(), loss.max_distance());
+}
 
 std::vector<Edge> crossing_edges(const std::vector<Edge>& edges, int k) {
   std::vector<Edge> out;
@@ -32,8 +54,13 @@ double loss_at(const GraphLoss& loss, const std::vector<Pose>& T, double tau) {
 }  // namespace
 
 ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const GeometricConfig& base,
-                          double lr_final, const ReseedConfig& cfg, std::vector<Pose>& T) {
+                          double lr_final, const ReseedConfig& cfg, std::vector<Pose>& T,
+                          std::shared_ptr<const GraphLoss> judge) {
   require(loss != nullptr, "reseed_edges: null loss");
+  if (!judge) judge = loss;
+  require(judge->frames() == loss->frames(), "reseed_edges: the judge has " +
+                                                 std::to_string(judge->frames()) + " frames, the loss " +
+                                                 std::to_string(loss->frames()));
   cfg.validate();
   require(T.size() == loss->frames(), "reseed_edges: " + std::to_string(T.size()) +
                                           " poses for " + std::to_string(loss->frames()) +
@@ -62,8 +89,8 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
         const Pose hyp = relative(T, nb);
         const double diff = (hyp.translation() - rel.translation()).norm();
         if (!(diff > cfg.min_difference_m)) continue;
-        const GraphLoss local(loss->clouds(), crossing_edges(loss->edges(), k),
-                              loss->min_distance(), 1, loss->direction(), loss->max_distance());
+        const GraphLoss local(judge->clouds(), crossing_edges(judge->edges(), k),
+                              judge->min_distance(), 1, judge->direction(), judge->max_distance());
         ReseedTrial t;
         t.round = round, t.edge = k, t.neighbour = nb, t.difference_m = diff;
         if (!cur_valid) {
@@ -72,7 +99,7 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
           cur_valid = true;
         }
         t.crossing_before = loss_at(local, cur, tau);
-        t.total_before = loss_at(*loss, cur, tau);
+        t.total_before = loss_at(*judge, cur, tau);
         // The hypothesis: frames k+1 … moved rigidly so that edge k takes the neighbour's
         // relative motion.
         std::vector<Pose> cand = T;
@@ -80,7 +107,7 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
         for (int j = k + 1; j < n; ++j) cand[size_t(j)] = C * T[size_t(j)];
         polish(cand);
         t.crossing_after = loss_at(local, cand, tau);
-        t.total_after = loss_at(*loss, cand, tau);
+        t.total_after = loss_at(*judge, cand, tau);
         t.kept = std::isfinite(t.crossing_after) &&
                  t.crossing_after < (1.0 - cfg.min_gain) * t.crossing_before &&
                  t.total_after <= t.total_before;

@@ -98,3 +98,81 @@ TEST_CASE("reseed_edges: refusals name the key", "[posegraph][reseed]") {
   std::vector<Pose> wrong(2, Pose::Identity());
   CHECK_THROWS_AS(reseed_edges(loss, base(), 0.05, ReseedConfig{}, wrong), Error);
 }
+
+namespace {
+
+// The scans of frames at x = xs[k] (the smooth world in each frame's LiDAR coordinates).
+std::vector<std::vector<PointXYZI>> scans_at(const std::vector<double>& xs) {
+  const auto world = test::smooth_world_points(3000, 7);
+  std::vector<std::vector<PointXYZI>> scans;
+  for (double x : xs) {
+    const FrameCloud c = test::cloud_seen_from(world, Pose(Eigen::Translation3d(x, 0, 0)));
+    std::vector<PointXYZI> s;
+    for (const auto& p : c.points) s.push_back({p.x(), p.y(), p.z(), 0.5f});
+    scans.push_back(std::move(s));
+  }
+  return scans;
+}
+
+}  // namespace
+
+TEST_CASE("make_judge_loss: another residual over the same points and edges", "[posegraph][reseed]") {
+  const std::vector<double> xs{0, 1, 2, 3};
+  const auto scans = scans_at(xs);
+  GeometricConfig g = base();
+  auto loss = std::make_shared<const GraphLoss>(
+      std::make_shared<const std::vector<FrameCloud>>(g.clouds(scans)),
+      sequential_edges(int(xs.size()), {1, 2}), g.min_distance, 1, g.direction());
+  ReseedConfig cfg;
+  CHECK(make_judge_loss(*loss, scans, g, cfg) == nullptr);  // "": the stage's own loss
+  cfg.judge = "point_to_point";
+  CHECK(make_judge_loss(*loss, scans, g, cfg) == nullptr);  // the stage's residual already
+  cfg.judge = "point_to_plane";
+  const auto judge = make_judge_loss(*loss, scans, g, cfg);
+  REQUIRE(judge != nullptr);
+  REQUIRE(judge->frames() == loss->frames());
+  CHECK(judge->edges().size() == loss->edges().size());
+  for (size_t k = 0; k < judge->frames(); ++k) {
+    const auto& a = (*judge->clouds())[k];
+    const auto& b = (*loss->clouds())[k];
+    REQUIRE(a.size() == b.size());
+    CHECK(a.points == b.points);  // the same subsample
+    CHECK(a.normals.size() == a.size());
+    CHECK(b.normals.empty());
+  }
+  // The two residuals differ at a wrong pose, so the judge is not the loss under another name.
+  std::vector<Pose> T = poses_at({0, 1, 2.6, 3.6});
+  std::vector<PoseGrad> grad;
+  CHECK((*judge)(T, g.tau_scale, grad) != Approx((*loss)(T, g.tau_scale, grad)));
+  // Frames short by one for the scans: refused, naming both counts.
+  auto fewer = scans;
+  fewer.pop_back();
+  CHECK_THROWS_WITH(make_judge_loss(*loss, fewer, g, cfg), Catch::Contains("3 scans for 4"));
+}
+
+TEST_CASE("reseed_edges: judged by point-to-plane, the short edge is still restored",
+          "[posegraph][reseed]") {
+  const std::vector<double> truth{0, 1, 2, 3, 4, 5};
+  const auto scans = scans_at(truth);
+  GeometricConfig g = base();
+  auto loss = std::make_shared<const GraphLoss>(
+      std::make_shared<const std::vector<FrameCloud>>(g.clouds(scans)),
+      sequential_edges(int(truth.size()), {1, 2}), g.min_distance, 1, g.direction());
+  std::vector<Pose> T = poses_at({0, 1, 2, 1.5, 2.5, 3.5});
+  ReseedConfig cfg;
+  cfg.max_rounds = 2;
+  cfg.lr_start = 0.05;
+  cfg.judge = "point_to_plane";
+  const ReseedResult r = reseed_edges(loss, g, 0.05, cfg, T, make_judge_loss(*loss, scans, g, cfg));
+  REQUIRE(r.kept >= 1);
+  for (size_t k = 0; k < T.size(); ++k) {
+    INFO("frame " << k << " at x = " << T[k].translation().x());
+    CHECK(std::abs(T[k].translation().x() - (T[0].translation().x() + truth[k])) < 0.15);
+  }
+}
+
+TEST_CASE("ReseedConfig: an unknown judge is refused by name", "[posegraph][reseed]") {
+  ReseedConfig bad;
+  bad.judge = "point_to_line";
+  CHECK_THROWS_WITH(bad.validate(), Catch::Contains("judge") && Catch::Contains("point_to_line"));
+}

@@ -81,6 +81,8 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
   auto loss = std::make_shared<const posegraph::GraphLoss>(
       clouds, posegraph::sequential_edges(int(d.frames.size()), gc.edge_offsets), gc.min_distance,
       gc.threads, gc.direction());
+  // The re-seeding's judge, when it differs from the stage's residual (edge_reseeding.hpp).
+  const auto judge = g.reseed ? posegraph::make_judge_loss(*loss, scans, gc, *g.reseed) : nullptr;
   const SceneNormalization norm = scene.norm;
   const bool confidence = c.confidence_graph();
   if (confidence && !features.eval)
@@ -89,7 +91,7 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
   auto graph = std::make_shared<GraphState>();
 
   GeometricStage stage;
-  stage.run = [g, gc, loss, norm, clouds, confidence, pg, graph, features,
+  stage.run = [g, gc, loss, judge, norm, clouds, confidence, pg, graph, features,
                run_dir](PoseSet& poses, long epoch, double progress, const GeometricProgress& report) -> Json {
     const int steps = g.steps_at(epoch, progress);
     if (steps <= 0) return nullptr;
@@ -119,7 +121,7 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
       r.loss_before = calls.front().loss_before;
       r.steps = steps;
       if (g.reseed) {
-        const auto rs = posegraph::reseed_edges(loss, gc, g.lr_final, *g.reseed, T);
+        const auto rs = posegraph::reseed_edges(loss, gc, g.lr_final, *g.reseed, T, judge);
         log::info("edge re-seeding: ", rs.trials.size(), " hypotheses tried, ", rs.kept, " kept");
         reseed_line = posegraph::reseed_json(rs);
         std::vector<posegraph::PoseGrad> grad;
