@@ -34,10 +34,10 @@ std::shared_ptr<const GraphLoss> make_judge_loss(const GraphLoss& loss,
                                            j.direction(), loss.max_distance());
 }
 
-std::vector<Edge> crossing_edges(const std::vector<Edge>& edges, int k) {
+std::vector<Edge> crossing_edges(const std::vector<Edge>& edges, int k_first, int k_last) {
   std::vector<Edge> out;
   for (const Edge& e : edges)
-    if (std::min(e.i, e.j) <= k && std::max(e.i, e.j) > k) out.push_back(e);
+    if (std::min(e.i, e.j) <= k_last && std::max(e.i, e.j) > k_first) out.push_back(e);
   return out;
 }
 
@@ -82,43 +82,51 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
   bool cur_valid = false;
   for (int round = 0; round < cfg.max_rounds; ++round) {
     int kept_this_round = 0;
-    for (int k = 0; k + 1 < n; ++k) {
-      const Pose rel = relative(T, k);
-      for (const int nb : {k - 1, k + 1}) {
-        if (nb < 0 || nb + 1 >= n) continue;
-        const Pose hyp = relative(T, nb);
-        const double diff = (hyp.translation() - rel.translation()).norm();
-        if (!(diff > cfg.min_difference_m)) continue;
-        const GraphLoss local(judge->clouds(), crossing_edges(judge->edges(), k),
-                              judge->min_distance(), 1, judge->direction(), judge->max_distance());
+    // Each pair of adjacent edges (k, k+1), (k+1, k+2) whose motions disagree: either may be
+    // the broken one, so both hypotheses are refined and scored on the same edges (those
+    // crossing either cut), and the better one is kept if it beats the current poses.
+    for (int k = 0; k + 2 < n; ++k) {
+      const double diff = (relative(T, k).translation() - relative(T, k + 1).translation()).norm();
+      if (!(diff > cfg.min_difference_m)) continue;
+      const GraphLoss local(judge->clouds(), crossing_edges(judge->edges(), k, k + 1),
+                            judge->min_distance(), 1, judge->direction(), judge->max_distance());
+      if (!cur_valid) {
+        cur = T;
+        polish(cur);
+        cur_valid = true;
+      }
+      const double local_before = loss_at(local, cur, tau);
+      const double total_before = loss_at(*judge, cur, tau);
+      int best = -1;  // index into out.trials of the better kept hypothesis
+      std::vector<Pose> best_poses;
+      for (const auto& [edge, nb] : {std::pair{k, k + 1}, std::pair{k + 1, k}}) {
         ReseedTrial t;
-        t.round = round, t.edge = k, t.neighbour = nb, t.difference_m = diff;
-        if (!cur_valid) {
-          cur = T;
-          polish(cur);
-          cur_valid = true;
-        }
-        t.crossing_before = loss_at(local, cur, tau);
-        t.total_before = loss_at(*judge, cur, tau);
-        // The hypothesis: frames k+1 … moved rigidly so that edge k takes the neighbour's
+        t.round = round, t.edge = edge, t.neighbour = nb, t.difference_m = diff;
+        t.crossing_before = local_before;
+        t.total_before = total_before;
+        // The hypothesis: frames edge+1 … moved rigidly so that the edge takes its neighbour's
         // relative motion.
         std::vector<Pose> cand = T;
-        const Pose C = (T[size_t(k)] * hyp) * T[size_t(k) + 1].inverse();
-        for (int j = k + 1; j < n; ++j) cand[size_t(j)] = C * T[size_t(j)];
+        const Pose C = (T[size_t(edge)] * relative(T, nb)) * T[size_t(edge) + 1].inverse();
+        for (int j = edge + 1; j < n; ++j) cand[size_t(j)] = C * T[size_t(j)];
         polish(cand);
         t.crossing_after = loss_at(local, cand, tau);
         t.total_after = loss_at(*judge, cand, tau);
-        t.kept = std::isfinite(t.crossing_after) &&
-                 t.crossing_after < (1.0 - cfg.min_gain) * t.crossing_before &&
-                 t.total_after <= t.total_before;
+        const bool better = std::isfinite(t.crossing_after) &&
+                            t.crossing_after < (1.0 - cfg.min_gain) * t.crossing_before &&
+                            t.total_after <= t.total_before;
         out.trials.push_back(t);
-        if (t.kept) {
-          T = cand;
-          cur_valid = false;
-          ++out.kept;
-          ++kept_this_round;
-          break;  // edge k is settled; its other neighbour is tried in the next round
+        if (better && (best < 0 || t.crossing_after < out.trials[size_t(best)].crossing_after)) {
+          best = int(out.trials.size()) - 1;
+          best_poses = std::move(cand);
         }
+      }
+      if (best >= 0) {
+        out.trials[size_t(best)].kept = true;
+        T = std::move(best_poses);
+        cur_valid = false;
+        ++out.kept;
+        ++kept_this_round;
       }
     }
     if (kept_this_round == 0) break;

@@ -4,12 +4,15 @@
 // metre off along the road while the edges around it converge: on kitti360-low-b the relative
 // motion of edge 30 → 31 came out 0.96–1.24 m short, every other one within 0.08 m, and no later
 // stage moves it back (the confidence graph takes the edges around it as consistent with it).
-// The scans alone decide it: for every edge whose relative motion differs from a neighbouring
-// edge's by more than min_difference_m, the frames k+1 … are moved rigidly so that the edge takes
-// that neighbour's relative motion (a constant-velocity hypothesis), the trajectory is refined
-// for `steps` Adam steps at the final τ, and the move is kept only when the loss of the edges
-// crossing the cut (i ≤ k < j) falls by more than min_gain of its value while the whole graph's
-// does not rise. A rigid move of the suffix changes no other edge.
+// The scans alone decide it: for every pair of adjacent edges (k, k+1), (k+1, k+2) whose relative
+// motions differ by more than min_difference_m, either may be the broken one, so there are two
+// constant-velocity hypotheses: the frames after one edge are moved rigidly so that it takes
+// the other's relative motion (a rigid move of the suffix changes no other edge). Each is refined
+// for `steps` Adam steps at the final τ and scored on the same edges, those crossing either
+// cut (i ≤ k+1, j > k); the better one is kept only when that loss falls by more than min_gain
+// of its value (the current poses refined alike) while the whole graph's does not rise. Scoring
+// both on one edge set matters: copying a broken edge's motion onto its correct neighbour can
+// also lower the loss across that neighbour's own cut (nuscenes-low-a, edge 27 → 28).
 //
 // The decision may use another residual than the refinement (`judge`): the robust point-to-point
 // Chamfer at the final τ scores a metre-short step on a straight road no worse than the right one
@@ -58,7 +61,7 @@ struct ReseedTrial {
   int edge = 0;       // k: the edge (k, k+1)
   int neighbour = 0;  // the edge whose relative motion was tried (k − 1 or k + 1)
   double difference_m = 0.0;       // |t_rel(k) − t_rel(neighbour)| before the trial
-  double crossing_before = 0.0;    // loss of the crossing edges, current poses refined
+  double crossing_before = 0.0;    // loss of the edges crossing either cut, current poses refined
   double crossing_after = 0.0;     // the same with the hypothesis, refined
   double total_before = 0.0, total_after = 0.0;
   bool kept = false;
@@ -69,8 +72,9 @@ struct ReseedResult {
   int kept = 0;
 };
 
-// Edges (a, b) of `loss` with a ≤ k < b (either orientation).
-std::vector<Edge> crossing_edges(const std::vector<Edge>& edges, int k);
+// Edges (a, b) crossing any cut k_first … k_last, i.e. a ≤ k_last and b > k_first (either
+// orientation); one cut k: crossing_edges(edges, k, k).
+std::vector<Edge> crossing_edges(const std::vector<Edge>& edges, int k_first, int k_last);
 
 // The loss that judges the hypotheses: nullptr when cfg.judge is empty or names `base.residual`
 // (then `loss` judges). Otherwise the same edges over the same subsample of `scans` (base's

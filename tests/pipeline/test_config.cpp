@@ -394,17 +394,31 @@ TEST_CASE("the schema describes render, the confidence graph and the nested conf
 
 TEST_CASE("config: edge re-seeding is an optional section of the geometric stage",
           "[config][reseed]") {
-  const TrainConfig plain = resolve_config("sg-nlf", "quick");
+  // On in SG-NLF's quick and paper presets, judged by point-to-plane; GeoNLF's stays as
+  // published; `null` removes it.
+  const TrainConfig sg = resolve_config("sg-nlf", "quick");
+  REQUIRE(sg.pose_free->geometric);
+  REQUIRE(sg.pose_free->geometric->reseed);
+  CHECK(sg.pose_free->geometric->reseed->judge == "point_to_plane");
+  CHECK(resolve_config("sg-nlf", "paper").pose_free->geometric->reseed);
+  CHECK(resolve_config("sg-nlf-no-graph", "quick").pose_free->geometric->reseed);
+  const TrainConfig plain = resolve_config("geonlf", "quick");
   REQUIRE(plain.pose_free->geometric);
   CHECK_FALSE(plain.pose_free->geometric->reseed);
   CHECK_FALSE(train_config_to_json(plain)["geometric"].contains("reseed"));
+  const TrainConfig removed =
+      resolve_config("sg-nlf", "quick", Json{{"geometric", {{"reseed", nullptr}}}});
+  CHECK_FALSE(removed.pose_free->geometric->reseed);
+  CHECK(removed.hash() != sg.hash());
   const Json on{{"geometric", {{"reseed", {{"min_gain", 0.03}}}}}};
-  const TrainConfig c = resolve_config("sg-nlf", "quick", on);
+  const TrainConfig c = resolve_config("geonlf", "quick", on);
   REQUIRE(c.pose_free->geometric->reseed);
   CHECK(c.pose_free->geometric->reseed->min_gain == 0.03);
   CHECK(c.pose_free->geometric->reseed->max_rounds == posegraph::ReseedConfig{}.max_rounds);
+  CHECK(c.pose_free->geometric->reseed->judge.empty());  // the stage's own residual
   CHECK(c.hash() != plain.hash());
   CHECK(train_config_to_json(c)["geometric"]["reseed"]["steps"] == 30);
+  CHECK_FALSE(train_config_to_json(c)["geometric"]["reseed"].contains("judge"));
   const std::string e = error_of([&] {
     resolve_config("sg-nlf", "quick", Json{{"geometric", {{"reseed", {{"min_gian", 0.03}}}}}});
   });
@@ -413,6 +427,10 @@ TEST_CASE("config: edge re-seeding is an optional section of the geometric stage
     resolve_config("sg-nlf", "quick", Json{{"geometric", {{"reseed", {{"max_rounds", 0}}}}}});
   });
   CHECK_THAT(r, Catch::Contains("max_rounds"));
+  const std::string j = error_of([&] {
+    resolve_config("sg-nlf", "quick", Json{{"geometric", {{"reseed", {{"judge", "icp"}}}}}});
+  });
+  CHECK_THAT(j, Catch::Contains("judge") && Catch::Contains("icp"));
 }
 
 TEST_CASE("config: the annealed runs' steps per call and the discriminator's weight decay are keys",

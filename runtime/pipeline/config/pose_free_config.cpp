@@ -25,6 +25,7 @@ void PoseFreeConfig::validate(const std::string& w) const {
       throw ConfigError(w + ".geometric: the geometric stage moves the poses, and "
                         "pose_optim.optimize is false; remove the section (\"geometric\": null)");
     geometric->optimizer.validate(w + ".geometric.optimizer");
+    if (geometric->reseed) geometric->reseed->validate(w + ".geometric.reseed");
   }
 }
 
