@@ -1,7 +1,7 @@
-// LidarNerfModel: composition of the field and render launchers, and of the optional sampling
-// modes' launchers (encoding_reuse.hpp, sample_compaction.hpp, coarse_waves.hpp,
-// head_band.hpp), into one training step (method.md §0–1). Sample-major buffers hold
-// max_rays × (n_samples + n_importance) samples.
+// LidarNerfModel: composition of the field and render launchers, the samplers (sampler.hpp) and
+// the loss terms (loss_terms.hpp) into one training step, sample → forward → losses →
+// backward (method.md §0–1). Sample-major buffers hold max_rays × max(n_samples +
+// n_importance, surface samples) samples.
 #include "pipeline/model/model.hpp"
 
 #include "pipeline/model/model_detail.hpp"
@@ -123,6 +123,34 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
   loss_buf_.fill_zero();
   scene_scale_ = scene_scale;
   set_reuse_coarse_encodings(reuse_coarse_);  // off for the 4D encoder (see model.hpp)
+  // The samplers on the launchers above, the buffers and the field's density-only pass.
+  const SamplerParts parts{sampler_, reuse_.get(), live_.get(), waves_.get(), surface_.get()};
+  const SampleBuffers buffers{o_, d_, target_, t_c_, x_c_, w_c_, enc_c_, t_, x_, enc_, h0_};
+  const SamplerField field{
+      *encoder_, params_, off_grid_,
+      [this](const cl::Buffer& x, int rows, cl::Buffer& enc) -> const cl::Buffer& {
+        encoder_->forward(params_, off_grid_, x, rows, enc);
+        density_.forward(params_, off_density_, enc, rows, dens_, density_ctx_);
+        return dens_;
+      },
+      [this](const cl::Buffer& dens, int rows, cl::Buffer& h0) {
+        col_get_.set_args(rows, kDensStride, 0, dens, h0);
+        col_get_.launch({cl::round_up(size_t(rows), 64)}, {64});
+      },
+      [this](const cl::Buffer& t, const cl::Buffer& h0, int n_rays, int S, cl::Buffer& w) {
+        renderer_.weights(t, h0, n_rays, S, w);
+      },
+      [this](cl::Buffer& x, int rows) {
+        clamp_.set_args(rows * 3, kSceneBound, x);
+        clamp_.launch({cl::round_up(size_t(rows) * 3, 64)}, {64});
+      }};
+  protocol_ = make_sampler(pipeline::protocol_strategy(rc), rc, parts, buffers, field);
+  training_ = protocol_.get();
+  if (surface_) {
+    surface_sampler_ = make_sampler(SampleStrategy::Surface, rc, parts, buffers, field);
+    training_ = surface_sampler_.get();
+  }
+  losses_ = make_loss_terms(c, scene_scale, loss_, loss_buf_, carve_.get());
 }
 
 void LidarNerfModel::init_params(uint64_t seed) {
@@ -134,30 +162,64 @@ void LidarNerfModel::init_params(uint64_t seed) {
   adam_->reset();
 }
 
-void LidarNerfModel::field_forward(int n_rays, int samples) {
-  const int n = n_rays * samples;
-  ray_count_ = n_rays;
+SampleSet LidarNerfModel::sample(Sampler& s, int n_rays, bool jitter, uint64_t seed,
+                                 uint32_t step) {
+  last_ = ForwardContext{};
+  last_.pass = begin_pass();
+  stats_rays_ = 0;
+  SampleRequest r;
+  r.n_rays = n_rays, r.jitter = jitter, r.seed = seed, r.step = step;
+  r.reuse_encodings = reuse_coarse_;
+  last_.samples = s.sample(r);
+  return last_.samples;
+}
+
+ForwardContext LidarNerfModel::forward(const SampleSet& s) {
+  const int n_rays = s.n_rays, samples = s.per_ray, n = n_rays * samples;
+  ForwardContext ctx;
+  ctx.samples = s;
+  ctx.pass = pass_;
   // With early termination the field runs on the live rows only (live_); the renderer always
   // sees the full layout, dead samples at zero density.
-  const int rows = compacted_ ? int(n_live_) : n;
-  if (!encoded_ && !compacted_) encoder_->forward(params_, off_grid_, x_, n, enc_);
-  density_.forward(params_, off_density_, compacted_ ? live_->encodings() : enc_, rows, dens_,
+  const int rows = int(s.rows);
+  if (!s.encoded) encoder_->forward(params_, off_grid_, x_, n, enc_);
+  density_.forward(params_, off_density_, s.compacted ? live_->encodings() : enc_, rows, dens_,
                    density_ctx_);
   dirs_.forward(d_, n_rays, dir_enc_);
-  banded_ = false;
-  if (compacted_ && band_) {
-    head_band(n_rays, samples);
-  } else if (compacted_) {
+  if (s.compacted && band_) {
+    ctx.head = HeadRows::Band;
+    ctx.head_rows = head_band(n_rays, samples);
+  } else if (s.compacted) {
     const field::GroupIndex index = live_->index(n_rays);
     head_.forward(params_, off_head_, dens_, rows, live_->head_out(), head_ctx_, &dir_enc_, 1,
                   &index);
     live_->expand(n_rays, samples, dens_, h0_, head_out_);
+    ctx.head = HeadRows::Live;
+    ctx.head_rows = rows;
   } else {
     col_get_.set_args(n, kDensStride, 0, dens_, h0_);
     col_get_.launch({cl::round_up(size_t(n), 64)}, {64});
     head_.forward(params_, off_head_, dens_, n, head_out_, head_ctx_, &dir_enc_, samples);
+    ctx.head = HeadRows::All;
+    ctx.head_rows = n;
   }
   renderer_.forward(t_, h0_, head_out_, n_rays, samples, out_, weights_);
+  if (last_.pass == ctx.pass) last_ = ctx;
+  return ctx;
+}
+
+long LidarNerfModel::head_band(int n_rays, int M) {
+  // σ logits into the full layout (the head outputs written here are replaced below), then the
+  // weights the band is cut from: the renderer's own (same kernel arithmetic as its forward).
+  live_->expand(n_rays, M, dens_, h0_, head_out_);
+  renderer_.weights(t_, h0_, n_rays, M, weights_);
+  // The step's second host sync: the band's size sets the head's row count.
+  const long n_band = band_->select(n_rays, M, *live_, weights_, dens_);
+  const field::GroupIndex index = band_->index(n_rays);
+  head_.forward(params_, off_head_, band_->density(), int(n_band), band_->head_out(), head_ctx_,
+                &dir_enc_, 1, &index);
+  band_->expand_head(n_rays, M, head_out_);
+  return n_band;
 }
 
 void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long step,
@@ -176,39 +238,41 @@ void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long ste
   d_.write_vec(b.directions);
   target_.write_vec(target);
   // Training samples by the returns when render.surface_* says so, else the protocol's.
-  const int M = surface_ ? sample_surface(R, cfg_.render.jitter, seed, uint32_t(step))
-                         : sample(R, cfg_.render.jitter, seed, uint32_t(step));
-  half_w_ = float(cfg_.render.surface_band_m(step)) * scene_scale_;
-  field_forward(R, M);
-  // Loss (method.md §0) and its gradient; patch gradient loss on patch batches (§1).
-  loss_buf_.fill_zero();
-  loss_.range(out_, target_, R, grad_out_, terms_, loss_buf_);
-  if (b.patches) {
-    const int per_patch = cfg_.render.patch_rows * cfg_.render.patch_cols;
-    loss_.patch_gradient(out_, target_, R / per_patch, grad_out_, terms_, loss_buf_);
-  }
-  if (cfg_.lidar4d && cfg_.lidar4d->chamfer_weight > 0.0) add_chamfer_term(b);
-  backward_chain(R, M, grad_, ray_grads, carve_ != nullptr);
+  const ForwardContext ctx =
+      forward(sample(*training_, R, cfg_.render.jitter, seed, uint32_t(step)));
+  // The loss terms (method.md §0–2) in order: each adds its per-ray output gradient, then,
+  // inside the backward, its per-sample one.
+  LossPass pass{b,  step,   R,      ctx.samples.per_ray, out_,      target_,  t_, h0_,
+                weights_, grad_out_, terms_, loss_buf_,  g_h0_};
+  for (const auto& term : losses_) term->add_output_gradient(pass);
+  backward(ctx, grad_, ray_grads, &pass);
 }
 
-void LidarNerfModel::backward_chain(int R, int M, cl::Buffer& grad, bool ray_grads, bool carve) {
-  const int n = R * M;
+void LidarNerfModel::backward(const ForwardContext& ctx, cl::Buffer& grad, bool ray_grads,
+                              LossPass* pass) {
+  if (!ctx.valid() || ctx.pass != pass_)
+    throw Error("LidarNerfModel::backward: the activations of that forward were overwritten by a "
+                "later pass");
+  const int R = ctx.samples.n_rays, M = ctx.samples.per_ray, n = R * M;
+  const bool compacted = ctx.samples.compacted, banded = ctx.head == HeadRows::Band;
   // Backward chain: renderer → head MLP (into columns 1..15 of g_dens_, and per ray into
   // g_dir_enc_) → density MLP → hash grid.
   renderer_.backward(t_, h0_, head_out_, weights_, grad_out_, R, M, g_h0_, g_head_);
-  // Weight carving on the full layout (dead samples have zero weight and get no gradient).
-  if (carve) carve_->add(t_, h0_, weights_, target_, R, M, half_w_, g_h0_);
+  // The loss terms' per-sample gradients on the full layout (weight carving: dead samples have
+  // zero weight and get none).
+  if (pass)
+    for (const auto& term : losses_) term->add_sample_gradient(*pass);
   // With early termination the chain runs on the live rows: the dead samples' gradients are
   // dropped (they do not exist in the truncated field).
   int rows = n;
   const cl::Buffer *head_y = &head_out_, *g_head = &g_head_, *g_h0 = &g_h0_, *x = &x_;
-  if (compacted_) {
-    rows = int(n_live_);
-    live_->gather_gradients(R, M, g_h0_, banded_ ? nullptr : &g_head_);
+  if (compacted) {
+    rows = int(ctx.samples.rows);
+    live_->gather_gradients(R, M, g_h0_, banded ? nullptr : &g_head_);
     head_y = &live_->head_out(), g_head = &live_->grad_head(), g_h0 = &live_->grad_h0();
     x = &live_->positions();
   }
-  if (banded_) {
+  if (banded) {
     // The head ran on the band rows: its gradient goes into the band layout, then into the
     // live rows (zeros outside the band: the head outputs there are constants).
     band_->gather_head_gradient(R, M, *live_, g_head_);
@@ -234,7 +298,7 @@ void LidarNerfModel::backward_chain(int R, int M, cl::Buffer& grad, bool ray_gra
     g_dir_ = floats(rt_, size_t(max_rays_) * 3);
   }
   encoder_->backward(params_, off_grid_, *x, rows, g_enc_, grad, off_grid_, &g_x_);
-  ray_grad_.reduce_rows(compacted_ ? &live_->offsets() : nullptr, t_, o_, d_, g_x_, R, M,
+  ray_grad_.reduce_rows(compacted ? &live_->offsets() : nullptr, t_, o_, d_, g_x_, R, M,
                         kSceneBound, g_o_, g_d_);
   dirs_.backward(d_, R, g_dir_enc_, g_dir_);
   grad_rays_ = R;
@@ -249,27 +313,27 @@ std::vector<float> LidarNerfModel::forward_rays(const std::vector<float>& origin
           "LidarNerfModel::forward_rays: origins/directions must hold n × 3 floats");
   o_.write_vec(origins);
   d_.write_vec(directions);
-  const int M = sample(n, cfg_.render.jitter, seed, uint32_t(step));
-  field_forward(n, M);
-  fwd_rays_ = n, fwd_samples_ = M;
+  rays_ctx_ = forward(sample(*protocol_, n, cfg_.render.jitter, seed, uint32_t(step)));
   return out_.read_vec<float>(size_t(n) * 3);
 }
 
 void LidarNerfModel::backward_external(const std::vector<float>& grad_out, bool ray_grads) {
-  if (fwd_rays_ == 0)
-    throw Error("LidarNerfModel::backward_external: no forward_rays() to differentiate");
-  require(grad_out.size() == size_t(fwd_rays_) * 3,
+  if (!rays_ctx_.valid() || rays_ctx_.pass != pass_)
+    throw Error("LidarNerfModel::backward_external: no forward_rays() to differentiate (none, "
+                "differentiated already, or another pass ran since)");
+  const int n = rays_ctx_.samples.n_rays;
+  require(grad_out.size() == size_t(n) * 3,
           "LidarNerfModel::backward_external: " + std::to_string(grad_out.size()) +
-              " floats for " + std::to_string(fwd_rays_) + " rays × 3");
+              " floats for " + std::to_string(n) + " rays × 3");
   if (!grad_ext_) {
     grad_ext_ = floats(rt_, layout_.total());
     grad_ext_.fill_zero();  // alignment gaps between the slices stay zero
     add_k_ = rt_.kernel("field/accumulate.cl", "field_accumulate");
   }
   grad_out_.write_vec(grad_out);
-  backward_chain(fwd_rays_, fwd_samples_, grad_ext_, ray_grads);
+  backward(rays_ctx_, grad_ext_, ray_grads, nullptr);
   ext_full_ = true;
-  fwd_rays_ = 0;  // the activations belong to this forward only
+  rays_ctx_ = ForwardContext{};  // a forward is differentiated once
   ext_pending_ = true;
 }
 
@@ -303,9 +367,31 @@ LidarNerfModel::RayGrads LidarNerfModel::read_ray_grads() const {
 }
 
 render::LossValues LidarNerfModel::read_loss() const {
-  render::LossValues l = render::RangeLoss::read_losses(loss_buf_);
-  if (carve_) l.carve = float(carve_->read());  // 0 before the first step
+  render::LossValues l;
+  for (const auto& term : losses_) term->read(l);
   return l;
+}
+
+std::vector<int> LidarNerfModel::live_counts() const {
+  if (!last_.samples.compacted || last_.pass != pass_)
+    throw Error("LidarNerfModel::live_counts: the last pass did not terminate rays early");
+  return live_->counts(last_.samples.n_rays);
+}
+
+std::vector<std::string> LidarNerfModel::loss_names() const {
+  std::vector<std::string> names;
+  for (const auto& term : losses_) names.emplace_back(term->name());
+  return names;
+}
+
+double LidarNerfModel::loss_value(const std::string& name) const {
+  for (const auto& term : losses_)
+    if (name == term->name()) return term->value();
+  return 0.0;
+}
+
+std::vector<float> LidarNerfModel::read_output_gradient() const {
+  return grad_out_.read_vec<float>(size_t(std::max(1, last_.samples.n_rays)) * 3);
 }
 
 std::vector<float> LidarNerfModel::render_rays(const std::vector<float>& origins,
@@ -314,8 +400,7 @@ std::vector<float> LidarNerfModel::render_rays(const std::vector<float>& origins
                                        " rays, capacity " + std::to_string(max_rays_));
   o_.write_vec(origins);
   d_.write_vec(directions);
-  const int M = sample(n, false, 0, 0);
-  field_forward(n, M);
+  const int M = forward(sample(*protocol_, n, false, 0, 0)).samples.per_ray;
   if (cfg_.render.eval_depth == "median") renderer_.median_depth(t_, weights_, n, M, out_);
   stats_rays_ = n, stats_samples_ = M;
   return out_.read_vec<float>(size_t(n) * 3);
@@ -346,7 +431,7 @@ std::vector<float> LidarNerfModel::encode_points(const std::vector<float>& x, in
           "LidarNerfModel::encode_points: " + std::to_string(x.size()) + " floats for " +
               std::to_string(n) + " points");
   const int w = encoder_->width();
-  fwd_rays_ = 0;  // x_ and enc_ are overwritten: forward_rays()'s activations are gone
+  begin_pass();  // x_ and enc_ are overwritten: forward_rays()'s activations are gone
   std::vector<float> out(size_t(n) * size_t(w));
   // x_ and enc_ hold max_rays × samples rows.
   const int chunk = max_rays_ * cfg_.render.n_samples;

@@ -1,18 +1,32 @@
 // The LiDAR-NeRF model on the device (method.md §0–1): position encoder (field::Encoder: the
-// hash grid, or SG-NLF's hybrid [f_geo, λ·Ψ]) → density MLP (σ logit + 15 geometric features) → [geo, direction encoding] → LiDAR head → volume rendering, with
-// importance sampling from a density-only coarse pass, the range loss (+ the patch gradient
-// loss on patch batches), the backward chain and Adam over one flat parameter buffer.
+// hash grid, or SG-NLF's hybrid [f_geo, λ·Ψ]) → density MLP (σ logit + 15 geometric features)
+// → [geo, direction encoding] → LiDAR head → volume rendering, the training losses, the
+// backward chain and Adam over one flat parameter buffer.
+//
+// Every pass is sample → forward → (losses →) backward:
+// - a Sampler (sampler.hpp) places the pass's samples and returns a SampleSet: its strategy is
+//   the protocol's (uniform; importance with the coarse encodings reused; early termination's
+//   live rows, its coarse pass in waves) or, for training rays, samples by the return
+//   (render.surface_*);
+// - the forward runs the field on that set (the head on every row, the live rows, or the head
+//   band of render.head_weight_threshold) and returns a ForwardContext (forward_context.hpp):
+//   what the backward needs, and the pass number that says whether the activations are still
+//   this forward's;
+// - the loss terms (loss_terms.hpp: range, patch gradient, Chamfer, weight carving) each add
+//   their gradient, per ray or per sample, and report their values;
+// - the backward takes that context and the gradient through renderer → head → density →
+//   encoder into a parameter gradient (and the rays' gradients for the pose-free methods).
 // A training step is enqueued as a whole; the only host sync is the caller's loss read-back
-// (and those of the optional sampling modes below).
-// The model composes the field and render launchers and, per optional sampling mode, a launcher
-// of its own that owns that mode's kernels and buffers: EncodingReuse (the coarse encodings in
-// the merged pass of importance sampling), SampleCompaction (early ray termination),
-// CoarseWaves (render.coarse_waves) and HeadBand (render.head_weight_threshold).
+// (and those of early termination, the head band and the Chamfer term).
+// The model owns the field and render launchers and, per optional sampling mode, a launcher
+// that owns that mode's kernels and buffers: EncodingReuse, SampleCompaction, CoarseWaves,
+// HeadBand, render::SurfaceSampler; the samplers and loss terms use them.
 #pragma once
 #include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "cl/runtime.hpp"
@@ -25,9 +39,12 @@
 #include "pipeline/model/coarse_waves.hpp"
 #include "pipeline/model/encoding_reuse.hpp"
 #include "pipeline/model/fast_march.hpp"
+#include "pipeline/model/forward_context.hpp"
 #include "pipeline/model/head_band.hpp"
+#include "pipeline/model/loss_terms.hpp"
 #include "pipeline/model/ray_batch.hpp"
 #include "pipeline/model/sample_compaction.hpp"
+#include "pipeline/model/sampler.hpp"
 #include "render/range_loss.hpp"
 #include "render/ray_gradient.hpp"
 #include "render/ray_sampler.hpp"
@@ -83,21 +100,23 @@ class LidarNerfModel {
 
   // An externally given per-ray output gradient through the same backward chain (SG-NLF's
   // adversarial consistency term, method.md §4.3–4.4): forward_rays() is the training-mode
-  // forward of forward_backward (same sampling, jitter per the config from (seed, step)) that
-  // keeps the activations and returns n × 3 (depth normalised, return probability, intensity);
+  // forward of the protocol's sampling (jitter per the config from (seed, step)) that keeps
+  // its ForwardContext and returns n × 3 (depth normalised, return probability, intensity);
   // backward_external() takes dL/d(depth, return probability, intensity) per ray (n × 3, the
-  // caller's weight already applied) through renderer → head → density → encoder into a
-  // gradient buffer of its own, and, with `ray_grads`, the ray gradients read_ray_grads() returns.
+  // caller's weight already applied) through that context's backward into a gradient buffer
+  // of its own, and, with `ray_grads`, the ray gradients read_ray_grads() returns. It throws
+  // when another pass (a training step, a render, an encoding) ran since forward_rays(): the
+  // activations are then that pass's; and it differentiates a forward once.
   //
-  // Combination: the external gradient is ACCUMULATED into the range-loss gradient of the next
-  // update(), which adds it to the gradient forward_backward() wrote before the one Adam step.
-  // method.md §4.4 defines one total loss L = L_range + … + λ_con·L_con: one Adam step on the
-  // sum of the gradients is that loss's step, and λ_con keeps its meaning as a relative weight.
-  // Its own Adam step would not: Adam divides by the running RMS, so a separate step moves the
-  // parameters by ≈ lr whatever λ_con is, and it would advance Adam's step count (bias
-  // correction, lr schedule) twice per iteration. Call order within one training step:
-  // forward_rays → backward_external → forward_backward → update. Without a pending external
-  // gradient update() is exactly what it was (forward_backward is untouched).
+  // Combination: the external gradient is ACCUMULATED into the gradient of the next update(),
+  // which adds it to the gradient forward_backward() wrote before the one Adam step (so the
+  // external term of a step is computed before that step's forward_backward, whose gradient
+  // buffer it does not touch). method.md §4.4 defines one total loss L = L_range + … +
+  // λ_con·L_con: one Adam step on the sum of the gradients is that loss's step, and λ_con
+  // keeps its meaning as a relative weight. Its own Adam step would not: Adam divides by the
+  // running RMS, so a separate step moves the parameters by ≈ lr whatever λ_con is, and it
+  // would advance Adam's step count (bias correction, lr schedule) twice per iteration.
+  // Without a pending external gradient update() is exactly what it was.
   std::vector<float> forward_rays(const std::vector<float>& origins,
                                   const std::vector<float>& directions, int n, uint64_t seed,
                                   long step);
@@ -132,13 +151,21 @@ class LidarNerfModel {
   double flow_supervision(const std::vector<float>& x, int n, const FlowLoss& loss);
   // LiDAR4D's Chamfer term (config lidar4d.chamfer_weight) of the last forward_backward, 0 when
   // off; read back with the step (the term needs the batch's depths on the host).
-  double last_chamfer() const { return last_chamfer_; }
+  double last_chamfer() const { return loss_value("chamfer"); }
+  // The training loss terms in the order they run (loss_terms.hpp), and the value of the named
+  // one in the last forward_backward (0 when the config has no such term). Blocking.
+  std::vector<std::string> loss_names() const;
+  double loss_value(const std::string& name) const;
 
   // Encodings f (N × encoder().width()) at n points (N × 3, normalised box): the per-point
   // features of the pose graph's matching (method.md §4.2). Blocking; chunks of max_rays.
   std::vector<float> encode_points(const std::vector<float>& x, int n);
-  // The four loss terms of the last train_step (blocks until it finished).
+  // The loss values of the last train_step, each term's fields (blocks until it finished).
   render::LossValues read_loss() const;
+  // dL/d(depth, return probability, intensity) per ray (n_rays × 3) of the last
+  // forward_backward, all loss terms added (or the external one of backward_external).
+  // Blocking; for tests.
+  std::vector<float> read_output_gradient() const;
 
   // Renders rays (n ≤ max_rays; origins/directions n × 3, normalised frame) without jitter:
   // returns n × 3 (depth normalised, return probability, intensity). Blocking. The depth is the
@@ -178,43 +205,44 @@ class LidarNerfModel {
   // rows the backward runs on are encoded last, in one pass.
   void set_reuse_coarse_encodings(bool on) { reuse_coarse_ = on && four_d_ == nullptr; }
 
-  // Early ray termination (render.stop_transmittance > 0 with importance sampling): merged
-  // samples behind the point where the coarse pass's transmittance fell below the threshold
-  // are not evaluated (zero density). Live samples of the last sample()/train_step/render call:
-  std::vector<int> live_counts() const;  // per ray (blocking read)
-  long live_samples() const { return n_live_; }
-  // Coarse samples evaluated by the last sample()/train_step/render call (importance sampling
-  // only; 0 without): n_rays × n_samples in one pass, fewer with render.coarse_waves > 1.
-  long coarse_evaluated() const { return n_coarse_; }
+  // The sampling strategy of training rays and of every other pass (the protocol's).
+  SampleStrategy training_strategy() const { return training_->strategy(); }
+  SampleStrategy protocol_strategy() const { return protocol_->strategy(); }
+  // The context of the last sampled pass (train_step, forward_rays, render_rays): its samples
+  // and head rows; valid() false before the first.
+  const ForwardContext& last_forward() const { return last_; }
+
+  // Early ray termination (render.stop_transmittance > 0): merged samples behind the point
+  // where the coarse pass's transmittance fell below the threshold are not evaluated (zero
+  // density). Live samples of the last train_step/render call:
+  std::vector<int> live_counts() const;  // per ray (blocking read); the pass must be the last
+  long live_samples() const { return last_.samples.rows; }
+  // Coarse samples evaluated by the last train_step/render call (importance sampling or early
+  // termination; 0 without): n_rays × n_samples in one pass, fewer with render.coarse_waves > 1.
+  long coarse_evaluated() const { return last_.samples.coarse; }
   // Samples the LiDAR head ran on in the last call with render.head_weight_threshold > 0.
-  long head_rows() const { return n_band_; }
+  long head_rows() const { return last_.head == HeadRows::Band ? last_.head_rows : 0; }
 
   ModelState state() const;
   void set_state(const ModelState& s);
 
  private:
-  // Forward up to the head outputs on `samples` (rays × S samples at t_/x_); fills h0_, head_.
-  void field_forward(int n_rays, int samples);
-  // Samples (uniform + importance) for n_rays rays from o_/d_; returns samples per ray.
-  int sample(int n_rays, bool jitter, uint64_t seed, uint32_t step);
-  // Training samples placed by the batch's returns (target_; render.surface_*): every sample
-  // evaluated, no coarse pass; returns samples per ray.
-  int sample_surface(int n_rays, bool jitter, uint64_t seed, uint32_t step);
-  // Early termination: counts the live merged samples per ray (one blocking read of n_rays
-  // ints), then gathers their positions and encodings (live_).
-  void compact(int n_rays, int M);
-  // The coarse pass in render.coarse_waves waves (see render_config.hpp): fills enc_c_, h0_
-  // (σ logits, dead where not evaluated) and w_c_ for the n_rays × n_samples coarse samples.
-  void coarse_waves(int n_rays);
+  // Starts a pass that overwrites the activations (any earlier context is stale); returns its
+  // number.
+  uint64_t begin_pass() { return ++pass_; }
+  // A new sampled pass of n_rays rays from o_/d_ (and target_) with sampler `s`.
+  SampleSet sample(Sampler& s, int n_rays, bool jitter, uint64_t seed, uint32_t step);
+  // The field and renderer on the samples of `s` (at t_/x_, the live rows when compacted):
+  // fills h0_, head_out_, out_, weights_; returns the backward's context.
+  ForwardContext forward(const SampleSet& s);
   // The head on the band of samples with weight above render.head_weight_threshold (after the
-  // density on the live rows): fills h0_, weights_ and head_out_ (full layout).
-  void head_band(int n_rays, int M);
-  // LiDAR4D's Chamfer term on the batch's ray endpoints, added to grad_out_ (blocking).
-  void add_chamfer_term(const RayBatch& b);
-  // The backward chain of the last forward (R rays, M samples per ray) from grad_out_ into
-  // `grad` (every slice overwritten), and the ray gradients when `ray_grads`.
-  // With `carve` the weight-carving term of the batch's targets joins the renderer's gradient.
-  void backward_chain(int R, int M, cl::Buffer& grad, bool ray_grads, bool carve = false);
+  // density on the live rows): fills h0_, weights_ and head_out_ (full layout); returns its rows.
+  long head_band(int n_rays, int M);
+  // The backward of the forward `ctx` (throws when its activations were overwritten) from
+  // grad_out_ into `grad` (every slice overwritten), and the ray gradients when `ray_grads`.
+  // `pass`: the loss terms' per-sample gradients join the renderer's (null: none, the external
+  // gradient's backward).
+  void backward(const ForwardContext& ctx, cl::Buffer& grad, bool ray_grads, LossPass* pass);
 
   cl::Runtime& rt_;
   TrainConfig cfg_;
@@ -223,7 +251,6 @@ class LidarNerfModel {
   spectral::HybridEncoder* hybrid_ = nullptr;  // encoder_ when it is the hybrid one (set first)
   field::Lidar4DEncoder* four_d_ = nullptr;    // encoder_ when it is LiDAR4D's (set first)
   float scene_scale_ = 1.0f;
-  double last_chamfer_ = 0.0;
   // Flow supervision: points, times, flow and its gradient (capacity flow_cap_ points).
   cl::Buffer fx_, ft_, fflow_, fdflow_;
   int flow_cap_ = 0;
@@ -241,11 +268,11 @@ class LidarNerfModel {
   // Glue between the field and render launchers: σ logit column of the density output ↔ h0
   // (field/columns.cl), the clamp of sample positions to the scene box (render/sample.cl).
   cl::Kernel col_get_, col_set_, clamp_;
-  bool reuse_coarse_ = true, encoded_ = false, compacted_ = false;
-  long n_live_ = 0, n_coarse_ = 0;
-  bool banded_ = false;  // the last field_forward ran the head on the band
-  long n_band_ = 0;
-  int ray_count_ = 0;
+  bool reuse_coarse_ = true;
+  // The pass counter (begin_pass), the last sampled pass's context, forward_rays()'s context
+  // (invalid once differentiated).
+  uint64_t pass_ = 0;
+  ForwardContext last_, rays_ctx_;
   size_t off_grid_, off_density_, off_head_;
   field::MlpContext density_ctx_, head_ctx_;
   cl::Buffer params_, grad_;
@@ -261,7 +288,6 @@ class LidarNerfModel {
   cl::Buffer grad_ext_;
   cl::Kernel add_k_;
   bool ext_pending_ = false;
-  int fwd_rays_ = 0, fwd_samples_ = 0;  // the last forward_rays()
   // The optional sampling modes' launchers, null when the config does not use the mode:
   // importance sampling (n_importance > 0), early termination (stop_transmittance > 0), and
   // with it coarse waves (coarse_waves > 1) and the head band (head_weight_threshold > 0).
@@ -273,7 +299,11 @@ class LidarNerfModel {
   // (render.weights.carve > 0), null when off; the band's half-width of the last step.
   std::unique_ptr<render::SurfaceSampler> surface_;
   std::unique_ptr<render::WeightCarving> carve_;
-  float half_w_ = 0.0f;
+  // The samplers (sampler.hpp): the protocol's, and the training rays' (the surface sampler's
+  // with render.surface_*, else the protocol's); the training loss terms (loss_terms.hpp).
+  std::unique_ptr<Sampler> protocol_, surface_sampler_;
+  Sampler* training_ = nullptr;
+  std::vector<std::unique_ptr<LossTerm>> losses_;
   // depth_stats(): the last render_rays()'s rays and samples, and its outputs.
   int stats_rays_ = 0, stats_samples_ = 0;
   cl::Buffer stats_median_, stats_spread_;

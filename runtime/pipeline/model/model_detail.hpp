@@ -1,5 +1,5 @@
 // Constants and a buffer helper shared by the LidarNerfModel sources and its launchers
-// (model.cpp, model_sampling.cpp, encoding_reuse.cpp, sample_compaction.cpp, coarse_waves.cpp,
+// (model.cpp, samplers.cpp, encoding_reuse.cpp, sample_compaction.cpp, coarse_waves.cpp,
 // head_band.cpp); private to the pipeline module.
 #pragma once
 #include <algorithm>

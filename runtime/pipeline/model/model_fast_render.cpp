@@ -16,8 +16,7 @@ std::vector<float> LidarNerfModel::density_logits(const std::vector<float>& x, i
   require(n >= 0 && x.size() == size_t(n) * 3,
           "LidarNerfModel::density_logits: " + std::to_string(x.size()) + " floats for " +
               std::to_string(n) + " points");
-  fwd_rays_ = 0;  // x_, enc_ and dens_ are overwritten: forward_rays()'s activations are gone
-  encoded_ = compacted_ = false;
+  begin_pass();  // x_, enc_ and dens_ are overwritten: forward_rays()'s activations are gone
   std::vector<float> out(static_cast<size_t>(n));
   const int chunk = sample_capacity();
   for (int b = 0; b < n; b += chunk) {
@@ -43,8 +42,7 @@ std::vector<float> LidarNerfModel::render_rays_fast(const std::vector<float>& or
     fast_ = std::make_unique<FastMarch>(rt_, max_rays_, M, cfg);
     fast_cfg_ = cfg;
   }
-  fwd_rays_ = 0;
-  encoded_ = compacted_ = banded_ = false;
+  begin_pass();  // every sample buffer is overwritten
   o_.write_vec(origins);
   d_.write_vec(directions);
   const auto density = [&](const cl::Buffer& x, int rows) -> const cl::Buffer& {

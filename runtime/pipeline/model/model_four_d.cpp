@@ -1,6 +1,6 @@
-// LidarNerfModel's LiDAR4D parts (model.hpp): the frame time of the 4D encoder, the flow
-// supervision's pass through the flow field, and the Chamfer term on the batch's ray endpoints
-// (method.md §2).
+// LidarNerfModel's LiDAR4D parts (model.hpp): the frame time of the 4D encoder and the flow
+// supervision's pass through the flow field (method.md §2; the Chamfer term is a loss term,
+// loss_terms.hpp).
 #include <algorithm>
 #include <string>
 
@@ -8,7 +8,6 @@
 #include "field/lidar4d_encoder.hpp"
 #include "pipeline/model/model.hpp"
 #include "pipeline/model/model_detail.hpp"
-#include "render/chamfer_loss.hpp"
 
 namespace sgnlf::pipeline {
 using namespace model_detail;
@@ -52,25 +51,6 @@ double LidarNerfModel::flow_supervision(const std::vector<float>& x, int n, cons
   flow.backward(params_, off, fx_, ft_, n, fflow_, fdflow_, grad_ext_, off);
   ext_pending_ = true;
   return value;
-}
-
-void LidarNerfModel::add_chamfer_term(const RayBatch& b) {
-  const int R = b.n_rays;
-  const std::vector<float> out = out_.read_vec<float>(size_t(R) * 3);
-  std::vector<float> grad = grad_out_.read_vec<float>(size_t(R) * 3);
-  // Rays without a return carry depth 0 in both sets, as LiDAR4D masks them.
-  std::vector<float> depth(static_cast<size_t>(R)), gt(static_cast<size_t>(R));
-  for (size_t i = 0; i < size_t(R); ++i) {
-    const float mask = b.label[i] > 0.5f ? 1.0f : 0.0f;
-    depth[i] = out[3 * i] * mask;
-    gt[i] = b.range[i] * mask;
-  }
-  const render::RayChamferLoss c = render::ray_chamfer_loss(
-      b.directions, depth, gt, scene_scale_, float(cfg_.lidar4d->chamfer_weight));
-  for (size_t i = 0; i < size_t(R); ++i)
-    if (b.label[i] > 0.5f) grad[3 * i] += c.d_depth[i];
-  grad_out_.write_vec(grad);
-  last_chamfer_ = c.loss;
 }
 
 }  // namespace sgnlf::pipeline

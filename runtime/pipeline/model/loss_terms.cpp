@@ -1,0 +1,124 @@
+// The loss terms of loss_terms.hpp.
+#include "pipeline/model/loss_terms.hpp"
+
+#include "render/chamfer_loss.hpp"
+
+namespace sgnlf::pipeline {
+namespace {
+
+// The range loss (method.md §0): writes the output gradient and loss[0..2].
+class RangeTerm final : public LossTerm {
+ public:
+  RangeTerm(render::RangeLoss& l, const cl::Buffer& buf) : loss_(l), buf_(buf) {}
+  const char* name() const override { return "range"; }
+  void add_output_gradient(LossPass& p) override {
+    p.loss_buf.fill_zero();
+    loss_.range(p.out, p.target, p.n_rays, p.grad_out, p.terms, p.loss_buf);
+  }
+  void read(render::LossValues& v) const override {
+    const render::LossValues l = render::RangeLoss::read_losses(buf_);
+    v.depth = l.depth, v.ret = l.ret, v.intensity = l.intensity;
+  }
+  double value() const override {
+    render::LossValues v;
+    read(v);
+    return double(v.depth) + v.ret + v.intensity;
+  }
+
+ private:
+  render::RangeLoss& loss_;
+  const cl::Buffer& buf_;
+};
+
+// LiDAR-NeRF's range-image gradient loss on patch batches (method.md §1): adds to the depth
+// column, loss[3].
+class PatchGradientTerm final : public LossTerm {
+ public:
+  PatchGradientTerm(render::RangeLoss& l, const cl::Buffer& buf, int per_patch)
+      : loss_(l), buf_(buf), per_patch_(per_patch) {}
+  const char* name() const override { return "patch_gradient"; }
+  void add_output_gradient(LossPass& p) override {
+    if (!p.batch.patches) return;
+    loss_.patch_gradient(p.out, p.target, p.n_rays / per_patch_, p.grad_out, p.terms,
+                         p.loss_buf);
+  }
+  void read(render::LossValues& v) const override {
+    v.grad = render::RangeLoss::read_losses(buf_).grad;
+  }
+  double value() const override { return render::RangeLoss::read_losses(buf_).grad; }
+
+ private:
+  render::RangeLoss& loss_;
+  const cl::Buffer& buf_;
+  int per_patch_;
+};
+
+// LiDAR4D's Chamfer term on the batch's ray endpoints (method.md §2; host: one read of the
+// outputs and the gradient, one write).
+class ChamferTerm final : public LossTerm {
+ public:
+  ChamferTerm(float scale, float weight) : scale_(scale), weight_(weight) {}
+  const char* name() const override { return "chamfer"; }
+  void add_output_gradient(LossPass& p) override {
+    const RayBatch& b = p.batch;
+    const int R = b.n_rays;
+    const std::vector<float> out = p.out.read_vec<float>(size_t(R) * 3);
+    std::vector<float> grad = p.grad_out.read_vec<float>(size_t(R) * 3);
+    // Rays without a return carry depth 0 in both sets, as LiDAR4D masks them.
+    std::vector<float> depth(static_cast<size_t>(R)), gt(static_cast<size_t>(R));
+    for (size_t i = 0; i < size_t(R); ++i) {
+      const float mask = b.label[i] > 0.5f ? 1.0f : 0.0f;
+      depth[i] = out[3 * i] * mask;
+      gt[i] = b.range[i] * mask;
+    }
+    const render::RayChamferLoss c =
+        render::ray_chamfer_loss(b.directions, depth, gt, scale_, weight_);
+    for (size_t i = 0; i < size_t(R); ++i)
+      if (b.label[i] > 0.5f) grad[3 * i] += c.d_depth[i];
+    p.grad_out.write_vec(grad);
+    last_ = c.loss;
+  }
+  void read(render::LossValues&) const override {}
+  double value() const override { return last_; }
+
+ private:
+  float scale_, weight_;
+  double last_ = 0.0;
+};
+
+// NeuRAD's weight carving (render::WeightCarving): adds to the σ-logit gradient.
+class CarveTerm final : public LossTerm {
+ public:
+  CarveTerm(render::WeightCarving& c, const render::RenderConfig& rc, float scale)
+      : carve_(c), rc_(rc), scale_(scale) {}
+  const char* name() const override { return "carve"; }
+  void add_sample_gradient(LossPass& p) override {
+    const float half_w = float(rc_.surface_band_m(p.step)) * scale_;
+    carve_.add(p.t, p.h0, p.weights, p.target, p.n_rays, p.per_ray, half_w, p.g_h0);
+  }
+  void read(render::LossValues& v) const override { v.carve = float(carve_.read()); }
+  double value() const override { return carve_.read(); }
+
+ private:
+  render::WeightCarving& carve_;
+  render::RenderConfig rc_;
+  float scale_;
+};
+
+}  // namespace
+
+std::vector<std::unique_ptr<LossTerm>> make_loss_terms(const TrainConfig& c, float scene_scale,
+                                                        render::RangeLoss& range,
+                                                        const cl::Buffer& loss_buf,
+                                                        render::WeightCarving* carve) {
+  std::vector<std::unique_ptr<LossTerm>> terms;
+  terms.push_back(std::make_unique<RangeTerm>(range, loss_buf));
+  terms.push_back(std::make_unique<PatchGradientTerm>(
+      range, loss_buf, c.render.patch_rows * c.render.patch_cols));
+  if (c.lidar4d && c.lidar4d->chamfer_weight > 0.0)
+    terms.push_back(std::make_unique<ChamferTerm>(scene_scale, float(c.lidar4d->chamfer_weight)));
+  if (carve) terms.push_back(std::make_unique<CarveTerm>(*carve, c.render, scene_scale));
+  return terms;
+}
+
+}  // namespace sgnlf::pipeline
