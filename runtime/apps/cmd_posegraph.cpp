@@ -134,9 +134,10 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
             loss, a->cfg, a->lr_final, a->reseed, T,
             posegraph::make_judge_loss(*loss, scans, a->cfg, a->reseed));
         for (const auto& t : rs.trials)
-          std::printf("reseed round %d edge %d-%d from %d-%d (%.3f m): crossing %.5f -> %.5f, "
-                      "total %.5f -> %.5f%s\n", t.round, t.edge, t.edge + 1, t.neighbour,
-                      t.neighbour + 1, t.difference_m, t.crossing_before, t.crossing_after,
+          std::printf("reseed round %d edge %d-%d from %d-%d (%.3f m): crossing %.5f -> %.5f "
+                      "(stage %.5f -> %.5f), total %.5f -> %.5f%s\n", t.round, t.edge, t.edge + 1,
+                      t.neighbour, t.neighbour + 1, t.difference_m, t.crossing_before,
+                      t.crossing_after, t.stage_crossing_before, t.stage_crossing_after,
                       t.total_before, t.total_after, t.kept ? "  kept" : "");
         reseed_log = posegraph::reseed_json(rs);
         report(int(log.size()), 1.0, nullptr);

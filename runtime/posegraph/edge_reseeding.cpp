@@ -95,7 +95,11 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
         polish(cur);
         cur_valid = true;
       }
+      const GraphLoss stage_local(loss->clouds(), crossing_edges(loss->edges(), k, k + 1),
+                                  loss->min_distance(), 1, loss->direction(),
+                                  loss->max_distance());
       const double local_before = loss_at(local, cur, tau);
+      const double stage_before = loss_at(stage_local, cur, tau);
       const double total_before = loss_at(*judge, cur, tau);
       int best = -1;  // index into out.trials of the better kept hypothesis
       std::vector<Pose> best_poses;
@@ -103,6 +107,7 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
         ReseedTrial t;
         t.round = round, t.edge = edge, t.neighbour = nb, t.difference_m = diff;
         t.crossing_before = local_before;
+        t.stage_crossing_before = stage_before;
         t.total_before = total_before;
         // The hypothesis: frames edge+1 … moved rigidly so that the edge takes its neighbour's
         // relative motion.
@@ -111,6 +116,7 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
         for (int j = edge + 1; j < n; ++j) cand[size_t(j)] = C * T[size_t(j)];
         polish(cand);
         t.crossing_after = loss_at(local, cand, tau);
+        t.stage_crossing_after = loss_at(stage_local, cand, tau);
         t.total_after = loss_at(*judge, cand, tau);
         const bool better = std::isfinite(t.crossing_after) &&
                             t.crossing_after < (1.0 - cfg.min_gain) * t.crossing_before &&
@@ -143,6 +149,8 @@ Json reseed_json(const ReseedResult& r) {
                       {"difference_m", t.difference_m},
                       {"crossing_before", t.crossing_before},
                       {"crossing_after", t.crossing_after},
+                      {"stage_crossing_before", t.stage_crossing_before},
+                      {"stage_crossing_after", t.stage_crossing_after},
                       {"total_before", t.total_before},
                       {"total_after", t.total_after},
                       {"kept", t.kept}});

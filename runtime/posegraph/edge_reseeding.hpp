@@ -63,6 +63,8 @@ struct ReseedTrial {
   double difference_m = 0.0;       // |t_rel(k) − t_rel(neighbour)| before the trial
   double crossing_before = 0.0;    // loss of the edges crossing either cut, current poses refined
   double crossing_after = 0.0;     // the same with the hypothesis, refined
+  // The same two with the refinement's own loss (equal to the above without a judge).
+  double stage_crossing_before = 0.0, stage_crossing_after = 0.0;
   double total_before = 0.0, total_after = 0.0;
   bool kept = false;
 };
