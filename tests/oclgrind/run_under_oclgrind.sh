@@ -5,8 +5,8 @@
 #   run_under_oclgrind.sh [oclgrind options ...] -- BINARY [arguments ...]
 # `oclgrind` preloads its own OpenCL runtime, so the binary sees one platform, "Oclgrind";
 # SGNLF_DEVICE=Oclgrind makes the project's device choice (runtime/cl/device.hpp) say so, and
-# fail rather than run on another device. Oclgrind writes its reports to --log, which stays
-# empty on a clean run. Exit 77 (CTest skip) when oclgrind is not installed, unless CI=true or
+# fail rather than run on another device. Oclgrind writes its kernel reports to --log, which
+# stays empty on a clean run, and those of --check-api to stderr, which is searched for them. Exit 77 (CTest skip) when oclgrind is not installed, unless CI=true or
 # SGNLF_REQUIRE_OCLGRIND=1, where that fails.
 set -uo pipefail
 opts=()
@@ -25,9 +25,17 @@ if ! command -v oclgrind >/dev/null 2>&1; then
   exit 77
 fi
 log=$(mktemp "${TMPDIR:-/tmp}/sgnlf-oclgrind.XXXXXX")
-trap 'rm -f "$log"' EXIT
-SGNLF_DEVICE=Oclgrind oclgrind --log "$log" "${opts[@]}" "$@"
+out=$(mktemp "${TMPDIR:-/tmp}/sgnlf-oclgrind-out.XXXXXX")
+trap 'rm -f "$log" "$out"' EXIT
+SGNLF_DEVICE=Oclgrind oclgrind --log "$log" "${opts[@]}" "$@" > "$out" 2>&1
 rc=$?
+cat "$out"
+# --check-api prints its reports to stderr, not to the log.
+api=$(grep -c '^Oclgrind - OpenCL runtime error detected' "$out")
+if [ "$api" -gt 0 ]; then
+  echo "oclgrind reported $api OpenCL API error(s) (above, 'Oclgrind - OpenCL runtime error detected')" >&2
+  exit 1
+fi
 if [ -s "$log" ]; then
   # Each report starts with an unindented line naming its kind, then an indented "Kernel:"
   # line; count them by kind and kernel (addresses dropped).
