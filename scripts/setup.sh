@@ -12,6 +12,9 @@ if [ "${SGNLF_SETUP_CLANG:-0}" = "1" ]; then PACKAGES+=(clang libclang-rt-dev); 
 # The test job opens the `sgnlf report` page in headless Chromium (tests/report/test_browser.cpp;
 # without it that test warns and passes). run.sh does not need it.
 if [ "${SGNLF_SETUP_BROWSER:-0}" = "1" ]; then PACKAGES+=(chromium); fi
+# The test job's Oclgrind tests (CTest label oclgrind, tests/oclgrind/) run the device tests under
+# Debian's OpenCL device simulator. The package registers no ICD: other programs keep PoCL.
+if [ "${SGNLF_SETUP_OCLGRIND:-0}" = "1" ]; then PACKAGES+=(oclgrind); fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

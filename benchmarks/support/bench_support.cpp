@@ -1,8 +1,8 @@
 #include "support/bench_support.hpp"
 
 #include <algorithm>
-#include <memory>
 
+#include "cl/shared_runtime.hpp"
 #include "core/config.hpp"
 #include "harness/context.hpp"
 #include "harness/roofline.hpp"
@@ -10,12 +10,9 @@
 namespace sgnlf::bench {
 
 cl::Runtime& runtime() {
-  static std::unique_ptr<cl::Runtime> rt = [] {
-    auto r = std::make_unique<cl::Runtime>();
-    return r;
-  }();
+  cl::Runtime& rt = cl::shared_runtime();
   add_device_context();
-  return *rt;
+  return rt;
 }
 
 void add_device_context() {

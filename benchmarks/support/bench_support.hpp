@@ -10,7 +10,8 @@
 
 namespace sgnlf::bench {
 
-// The Runtime all benchmarks of a binary share (SGNLF_DEVICE or the default device).
+// The Runtime all benchmarks of a binary share (SGNLF_DEVICE or the default device):
+// cl::shared_runtime(), released by bench_main.cpp before main returns.
 cl::Runtime& runtime();
 
 // Adds the context block as "sgnlf.*" keys to the benchmark context (once). It runs from a

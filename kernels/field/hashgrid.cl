@@ -20,6 +20,7 @@
 #endif
 #define LF (LEVELS * FEATURES)
 
+#include "common/atomic_add.clh"
 #include "field/hashgrid.clh"
 
 // One work-item per (point, level); the level is the slow dimension (level-major scheduling).
@@ -107,17 +108,9 @@ __kernel void field_hashgrid_bwd(const int n, __global const float* x, __global 
   }
 }
 
-// Float add by compare-and-swap (OpenCL 1.2 has no float atomics).
-inline void hg_atomic_add(volatile __global float* p, float v) {
-  union { uint u; float f; } old, upd;
-  do {
-    old.f = *p;
-    upd.f = old.f + v;
-  } while (atomic_cmpxchg((volatile __global uint*)p, old.u, upd.u) != old.u);
-}
-
 // Non-deterministic parameter gradient: one work-item per (point, level), atomic adds into a
-// gradient slice the caller has zeroed. Summation order varies between runs.
+// gradient slice the caller has zeroed (common/atomic_add.clh). Summation order varies
+// between runs.
 __kernel void field_hashgrid_bwd_atomic(const int n, __global const float* x,
                                         __global const float* scale, __global const uint4* meta,
                                         __global const float* level_weight,
@@ -137,7 +130,7 @@ __kernel void field_hashgrid_bwd_atomic(const int n, __global const float* x,
     const float wc = CORNER_W(cx, cy, cz, fr) * w;
     const uint e = CORNER_E(cx, cy, cz, g, m);
     for (int f = 0; f < FEATURES; ++f)
-      hg_atomic_add(t + (size_t)e * FEATURES + f, wc * d_enc[(size_t)i * LF + l * FEATURES + f]);
+      atomic_add_float(t + (size_t)e * FEATURES + f, wc * d_enc[(size_t)i * LF + l * FEATURES + f]);
   }
 }
 

@@ -1,10 +1,12 @@
 // Catch2 v2 main shared by every test binary. A binary that contains device tests exits with
-// 77 (CTest SKIP_RETURN_CODE) when no OpenCL platform exists at all, and only then.
+// 77 (CTest SKIP_RETURN_CODE) when no OpenCL platform exists at all, and only then. The shared
+// test Runtime is released before main returns.
 #define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
 
 #include <cstdio>
 
+#include "cl/shared_runtime.hpp"
 #include "support/test_device.hpp"
 
 int main(int argc, char** argv) {
@@ -14,5 +16,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "no OpenCL platform found: device tests skipped (install pocl-opencl-icd)\n");
     return 77;
   }
-  return session.run();
+  const int rc = session.run();
+  // Before main returns, not at exit: runtime/cl/shared_runtime.hpp says why.
+  sgnlf::cl::release_shared_runtime();
+  return rc;
 }

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <memory>
 
+#include "cl/shared_runtime.hpp"
 #include "core/rng.hpp"
 
 namespace sgnlf::test {
@@ -18,10 +18,7 @@ bool& needs_device_flag() {
 void mark_needs_device() { needs_device_flag() = true; }
 bool binary_needs_device() { return needs_device_flag(); }
 
-cl::Runtime& runtime() {
-  static std::unique_ptr<cl::Runtime> rt = std::make_unique<cl::Runtime>();
-  return *rt;
-}
+cl::Runtime& runtime() { return cl::shared_runtime(); }
 
 std::string source_dir() { return SGNLF_SOURCE_DIR; }
 std::string shared_dir() {

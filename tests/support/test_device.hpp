@@ -17,7 +17,8 @@ namespace sgnlf::test {
 void mark_needs_device();
 bool binary_needs_device();
 
-// The Runtime every device test in a binary shares.
+// The Runtime every device test in a binary shares: cl::shared_runtime(), released by the
+// test main (catch_main.cpp) before it returns.
 cl::Runtime& runtime();
 
 std::string source_dir();
