@@ -64,9 +64,9 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
   sub.add_option("--offsets", a->cfg.edge_offsets, "Edges (i, i + k) for these k")->delimiter(',');
   sub.add_option("--residual", a->cfg.residual, "Direction term: point_to_point (GeoNLF's robust Chamfer) or point_to_plane")
       ->check(CLI::IsMember({"point_to_point", "point_to_plane"}));
-  sub.add_option("--reseed-rounds", a->reseed_rounds, "After the sequential alignment, re-seed edges stuck off their neighbours' motion (posegraph/edge_reseeding.hpp): passes over the edges, 0 = none");
+  sub.add_option("--reseed-rounds", a->reseed_rounds, "After the sequential alignment, re-seed edges whose motion spikes off both neighbours' (posegraph/edge_reseeding.hpp): passes over the edges, 0 = none");
   sub.add_option("--reseed-steps", a->reseed.steps, "Refinement steps per re-seeding hypothesis");
-  sub.add_option("--reseed-min-difference", a->reseed.min_difference_m, "Re-seed an edge whose relative translation differs from a neighbour's by more than this (m)");
+  sub.add_option("--reseed-min-difference", a->reseed.min_difference_m, "Re-seed an edge whose relative translation differs from both neighbours' by more than this while they agree within it (m)");
   sub.add_option("--reseed-judge", a->reseed.judge, "Residual that decides a re-seeding: point_to_point or point_to_plane (default: the stage's)");
   sub.add_option("--reseed-min-gain", a->reseed.min_gain, "Keep a re-seeding when the crossing edges' loss falls by more than this fraction");
   sub.add_option("--out", a->out, "Folder for trajectories/ and posegraph_log.json");
@@ -134,9 +134,9 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
             loss, a->cfg, a->lr_final, a->reseed, T,
             posegraph::make_judge_loss(*loss, scans, a->cfg, a->reseed));
         for (const auto& t : rs.trials)
-          std::printf("reseed round %d edge %d-%d from %d-%d (%.3f m): crossing %.5f -> %.5f "
-                      "(stage %.5f -> %.5f), total %.5f -> %.5f%s\n", t.round, t.edge, t.edge + 1,
-                      t.neighbour, t.neighbour + 1, t.difference_m, t.crossing_before,
+          std::printf("reseed round %d edge %d-%d (%.3f m off both neighbours): crossing %.5f -> "
+                      "%.5f (stage %.5f -> %.5f), total %.5f -> %.5f%s\n", t.round, t.edge,
+                      t.edge + 1, t.difference_m, t.crossing_before,
                       t.crossing_after, t.stage_crossing_before, t.stage_crossing_after,
                       t.total_before, t.total_after, t.kept ? "  kept" : "");
         reseed_log = posegraph::reseed_json(rs);

@@ -82,54 +82,50 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
   bool cur_valid = false;
   for (int round = 0; round < cfg.max_rounds; ++round) {
     int kept_this_round = 0;
-    // Each pair of adjacent edges (k, k+1), (k+1, k+2) whose motions disagree: either may be
-    // the broken one, so both hypotheses are refined and scored on the same edges (those
-    // crossing either cut), and the better one is kept if it beats the current poses.
-    for (int k = 0; k + 2 < n; ++k) {
-      const double diff = (relative(T, k).translation() - relative(T, k + 1).translation()).norm();
-      if (!(diff > cfg.min_difference_m)) continue;
-      const GraphLoss local(judge->clouds(), crossing_edges(judge->edges(), k, k + 1),
+    // A spike: edge e's motion differs from both neighbours' by more than min_difference_m while
+    // the neighbours agree with each other within it. Its hypothesis is their mean motion.
+    for (int e = 1; e + 2 < n; ++e) {
+      const Pose a = relative(T, e - 1), c = relative(T, e), b = relative(T, e + 1);
+      const double d_a = (c.translation() - a.translation()).norm();
+      const double d_b = (c.translation() - b.translation()).norm();
+      const double d_ab = (a.translation() - b.translation()).norm();
+      if (!(d_a > cfg.min_difference_m && d_b > cfg.min_difference_m &&
+            d_ab <= cfg.min_difference_m))
+        continue;
+      const GraphLoss local(judge->clouds(), crossing_edges(judge->edges(), e, e),
                             judge->min_distance(), 1, judge->direction(), judge->max_distance());
+      const GraphLoss stage_local(loss->clouds(), crossing_edges(loss->edges(), e, e),
+                                  loss->min_distance(), 1, loss->direction(),
+                                  loss->max_distance());
       if (!cur_valid) {
         cur = T;
         polish(cur);
         cur_valid = true;
       }
-      const GraphLoss stage_local(loss->clouds(), crossing_edges(loss->edges(), k, k + 1),
-                                  loss->min_distance(), 1, loss->direction(),
-                                  loss->max_distance());
-      const double local_before = loss_at(local, cur, tau);
-      const double stage_before = loss_at(stage_local, cur, tau);
-      const double total_before = loss_at(*judge, cur, tau);
-      int best = -1;  // index into out.trials of the better kept hypothesis
-      std::vector<Pose> best_poses;
-      for (const auto& [edge, nb] : {std::pair{k, k + 1}, std::pair{k + 1, k}}) {
-        ReseedTrial t;
-        t.round = round, t.edge = edge, t.neighbour = nb, t.difference_m = diff;
-        t.crossing_before = local_before;
-        t.stage_crossing_before = stage_before;
-        t.total_before = total_before;
-        // The hypothesis: frames edge+1 … moved rigidly so that the edge takes its neighbour's
-        // relative motion.
-        std::vector<Pose> cand = T;
-        const Pose C = (T[size_t(edge)] * relative(T, nb)) * T[size_t(edge) + 1].inverse();
-        for (int j = edge + 1; j < n; ++j) cand[size_t(j)] = C * T[size_t(j)];
-        polish(cand);
-        t.crossing_after = loss_at(local, cand, tau);
-        t.stage_crossing_after = loss_at(stage_local, cand, tau);
-        t.total_after = loss_at(*judge, cand, tau);
-        const bool better = std::isfinite(t.crossing_after) &&
-                            t.crossing_after < (1.0 - cfg.min_gain) * t.crossing_before &&
-                            t.total_after <= t.total_before;
-        out.trials.push_back(t);
-        if (better && (best < 0 || t.crossing_after < out.trials[size_t(best)].crossing_after)) {
-          best = int(out.trials.size()) - 1;
-          best_poses = std::move(cand);
-        }
-      }
-      if (best >= 0) {
-        out.trials[size_t(best)].kept = true;
-        T = std::move(best_poses);
+      ReseedTrial t;
+      t.round = round, t.edge = e, t.difference_m = std::min(d_a, d_b);
+      t.crossing_before = loss_at(local, cur, tau);
+      t.stage_crossing_before = loss_at(stage_local, cur, tau);
+      t.total_before = loss_at(*judge, cur, tau);
+      // The hypothesis: frames e+1 … moved rigidly so that edge e takes the neighbours' mean
+      // motion (a rigid move of the suffix changes no other edge).
+      const Eigen::Quaterniond qa(a.rotation()), qb(b.rotation());
+      Pose hyp = Pose::Identity();
+      hyp.linear() = qa.slerp(0.5, qb).toRotationMatrix();
+      hyp.translation() = 0.5 * (a.translation() + b.translation());
+      std::vector<Pose> cand = T;
+      const Pose C = (T[size_t(e)] * hyp) * T[size_t(e) + 1].inverse();
+      for (int j = e + 1; j < n; ++j) cand[size_t(j)] = C * T[size_t(j)];
+      polish(cand);
+      t.crossing_after = loss_at(local, cand, tau);
+      t.stage_crossing_after = loss_at(stage_local, cand, tau);
+      t.total_after = loss_at(*judge, cand, tau);
+      t.kept = std::isfinite(t.crossing_after) &&
+               t.crossing_after < (1.0 - cfg.min_gain) * t.crossing_before &&
+               t.total_after <= t.total_before;
+      out.trials.push_back(t);
+      if (t.kept) {
+        T = std::move(cand);
         cur_valid = false;
         ++out.kept;
         ++kept_this_round;
@@ -145,7 +141,6 @@ Json reseed_json(const ReseedResult& r) {
   for (const auto& t : r.trials)
     trials.push_back({{"round", t.round},
                       {"edge", Json::array({t.edge, t.edge + 1})},
-                      {"neighbour", Json::array({t.neighbour, t.neighbour + 1})},
                       {"difference_m", t.difference_m},
                       {"crossing_before", t.crossing_before},
                       {"crossing_after", t.crossing_after},

@@ -4,15 +4,16 @@
 // metre off along the road while the edges around it converge: on kitti360-low-b the relative
 // motion of edge 30 → 31 came out 0.96–1.24 m short, every other one within 0.08 m, and no later
 // stage moves it back (the confidence graph takes the edges around it as consistent with it).
-// The scans alone decide it: for every pair of adjacent edges (k, k+1), (k+1, k+2) whose relative
-// motions differ by more than min_difference_m, either may be the broken one, so there are two
-// constant-velocity hypotheses: the frames after one edge are moved rigidly so that it takes
-// the other's relative motion (a rigid move of the suffix changes no other edge). Each is refined
-// for `steps` Adam steps at the final τ and scored on the same edges, those crossing either
-// cut (i ≤ k+1, j > k); the better one is kept only when that loss falls by more than min_gain
-// of its value (the current poses refined alike) while the whole graph's does not rise. Scoring
-// both on one edge set matters: copying a broken edge's motion onto its correct neighbour can
-// also lower the loss across that neighbour's own cut (nuscenes-low-a, edge 27 → 28).
+// The scans alone decide it. A wrong minimum of one edge shows as a spike in the trajectory's
+// velocity: edge e's relative motion differs from both neighbours' by more than
+// min_difference_m while the neighbours agree with each other within it (at 2 Hz a car's
+// speed changes smoothly, so a genuine change of speed moves the neighbours apart too, and a
+// step that merely differs from one neighbour is no evidence which of the two is wrong). The
+// hypothesis moves the frames e+1 … rigidly so that edge e takes the neighbours' mean motion
+// (a rigid move of the suffix changes no other edge); it is refined for `steps` Adam steps at
+// the final τ and kept only when the loss of the edges crossing the cut (i ≤ e < j) falls by more
+// than min_gain of its value (the current poses refined alike) while the whole graph's does
+// not rise. The first and last edges have one neighbour and are never re-seeded.
 //
 // The decision may use another residual than the refinement (`judge`): the robust point-to-point
 // Chamfer at the final τ scores a metre-short step on a straight road no worse than the right one
@@ -59,9 +60,8 @@ struct ReseedConfig {
 struct ReseedTrial {
   int round = 0;
   int edge = 0;       // k: the edge (k, k+1)
-  int neighbour = 0;  // the edge whose relative motion was tried (k − 1 or k + 1)
-  double difference_m = 0.0;       // |t_rel(k) − t_rel(neighbour)| before the trial
-  double crossing_before = 0.0;    // loss of the edges crossing either cut, current poses refined
+  double difference_m = 0.0;       // min over the neighbours of |t_rel(e) − t_rel(e ± 1)|
+  double crossing_before = 0.0;    // loss of the edges crossing the cut, current poses refined
   double crossing_after = 0.0;     // the same with the hypothesis, refined
   // The same two with the refinement's own loss (equal to the above without a judge).
   double stage_crossing_before = 0.0, stage_crossing_after = 0.0;
