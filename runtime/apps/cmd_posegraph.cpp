@@ -135,10 +135,10 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
             posegraph::make_judge_loss(*loss, scans, a->cfg, a->reseed));
         for (const auto& t : rs.trials)
           std::printf("reseed round %d edge %d-%d (%.3f m off both neighbours): crossing %.5f -> "
-                      "%.5f (stage %.5f -> %.5f), total %.5f -> %.5f%s\n", t.round, t.edge,
+                      "%.5f (stage %.5f -> %.5f), other edges %.5f -> %.5f%s\n", t.round, t.edge,
                       t.edge + 1, t.difference_m, t.crossing_before,
                       t.crossing_after, t.stage_crossing_before, t.stage_crossing_after,
-                      t.total_before, t.total_after, t.kept ? "  kept" : "");
+                      t.rest_before, t.rest_after, t.kept ? "  kept" : "");
         reseed_log = posegraph::reseed_json(rs);
         report(int(log.size()), 1.0, nullptr);
       }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/config.hpp"
 #include "core/config_fields.hpp"
@@ -97,6 +98,13 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
       const GraphLoss stage_local(loss->clouds(), crossing_edges(loss->edges(), e, e),
                                   loss->min_distance(), 1, loss->direction(),
                                   loss->max_distance());
+      std::vector<Edge> rest_edges;  // the others: a rigid move leaves them alone, the refinement not
+      for (const Edge& x : judge->edges())
+        if (!(std::min(x.i, x.j) <= e && std::max(x.i, x.j) > e)) rest_edges.push_back(x);
+      std::optional<GraphLoss> rest;
+      if (!rest_edges.empty())
+        rest.emplace(judge->clouds(), rest_edges, judge->min_distance(), base.threads,
+                     judge->direction(), judge->max_distance());
       if (!cur_valid) {
         cur = T;
         polish(cur);
@@ -106,7 +114,7 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
       t.round = round, t.edge = e, t.difference_m = std::min(d_a, d_b);
       t.crossing_before = loss_at(local, cur, tau);
       t.stage_crossing_before = loss_at(stage_local, cur, tau);
-      t.total_before = loss_at(*judge, cur, tau);
+      t.rest_before = rest ? loss_at(*rest, cur, tau) : 0.0;
       // The hypothesis: frames e+1 … moved rigidly so that edge e takes the neighbours' mean
       // motion (a rigid move of the suffix changes no other edge).
       const Eigen::Quaterniond qa(a.rotation()), qb(b.rotation());
@@ -119,10 +127,10 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
       polish(cand);
       t.crossing_after = loss_at(local, cand, tau);
       t.stage_crossing_after = loss_at(stage_local, cand, tau);
-      t.total_after = loss_at(*judge, cand, tau);
+      t.rest_after = rest ? loss_at(*rest, cand, tau) : 0.0;
       t.kept = std::isfinite(t.crossing_after) &&
                t.crossing_after < (1.0 - cfg.min_gain) * t.crossing_before &&
-               t.total_after <= t.total_before;
+               t.rest_after <= (1.0 + cfg.min_gain) * t.rest_before;
       out.trials.push_back(t);
       if (t.kept) {
         T = std::move(cand);
@@ -146,8 +154,8 @@ Json reseed_json(const ReseedResult& r) {
                       {"crossing_after", t.crossing_after},
                       {"stage_crossing_before", t.stage_crossing_before},
                       {"stage_crossing_after", t.stage_crossing_after},
-                      {"total_before", t.total_before},
-                      {"total_after", t.total_after},
+                      {"rest_before", t.rest_before},
+                      {"rest_after", t.rest_after},
                       {"kept", t.kept}});
   return Json{{"kept", r.kept}, {"trials", trials}};
 }
