@@ -35,10 +35,10 @@ std::shared_ptr<const GraphLoss> make_judge_loss(const GraphLoss& loss,
                                            j.direction(), loss.max_distance());
 }
 
-std::vector<Edge> crossing_edges(const std::vector<Edge>& edges, int k_first, int k_last) {
+std::vector<Edge> crossing_edges(const std::vector<Edge>& edges, int k) {
   std::vector<Edge> out;
   for (const Edge& e : edges)
-    if (std::min(e.i, e.j) <= k_last && std::max(e.i, e.j) > k_first) out.push_back(e);
+    if (std::min(e.i, e.j) <= k && std::max(e.i, e.j) > k) out.push_back(e);
   return out;
 }
 
@@ -93,9 +93,9 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
       if (!(d_a > cfg.min_difference_m && d_b > cfg.min_difference_m &&
             d_ab <= cfg.min_difference_m))
         continue;
-      const GraphLoss local(judge->clouds(), crossing_edges(judge->edges(), e, e),
+      const GraphLoss local(judge->clouds(), crossing_edges(judge->edges(), e),
                             judge->min_distance(), 1, judge->direction(), judge->max_distance());
-      const GraphLoss stage_local(loss->clouds(), crossing_edges(loss->edges(), e, e),
+      const GraphLoss stage_local(loss->clouds(), crossing_edges(loss->edges(), e),
                                   loss->min_distance(), 1, loss->direction(),
                                   loss->max_distance());
       std::vector<Edge> rest_edges;  // the others: a rigid move leaves them alone, the refinement not

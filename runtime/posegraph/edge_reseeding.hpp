@@ -76,9 +76,8 @@ struct ReseedResult {
   int kept = 0;
 };
 
-// Edges (a, b) crossing any cut k_first … k_last, i.e. a ≤ k_last and b > k_first (either
-// orientation); one cut k: crossing_edges(edges, k, k).
-std::vector<Edge> crossing_edges(const std::vector<Edge>& edges, int k_first, int k_last);
+// Edges (a, b) of `edges` with a ≤ k < b (either orientation): those crossing the cut after k.
+std::vector<Edge> crossing_edges(const std::vector<Edge>& edges, int k);
 
 // The loss that judges the hypotheses: nullptr when cfg.judge is empty or names `base.residual`
 // (then `loss` judges). Otherwise the same edges over the same subsample of `scans` (base's
