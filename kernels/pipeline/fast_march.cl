@@ -3,26 +3,7 @@
 // in waves until the ray's transmittance falls below a threshold; the LiDAR head runs only on
 // samples whose weight exceeds a threshold. Host references: tests/pipeline/test_fast_march.cpp.
 
-// The grid: nx × ny × nz cells (x fastest) over the box lo + [0, n·cell] of the normalised
-// frame (the upper faces belong to the last cells); `inv_cell` = 1 / cell size per axis. −1 for
-// a point outside the box.
-inline int fast_cell(const float3 x, const float4 lo, const float4 inv_cell, const int4 dims) {
-  const float3 u = (x - lo.xyz) * inv_cell.xyz;
-  if (!(u.x >= 0.0f && u.y >= 0.0f && u.z >= 0.0f && u.x <= (float)dims.x &&
-        u.y <= (float)dims.y && u.z <= (float)dims.z))
-    return -1;
-  const int i = min((int)u.x, dims.x - 1), j = min((int)u.y, dims.y - 1),
-            k = min((int)u.z, dims.z - 1);
-  return (k * dims.y + j) * dims.x + i;
-}
-
-// Occupied, or outside the grid: the grid knows only its box (the training returns' box), so
-// samples beyond it are evaluated as the protocol's renderer evaluates them.
-inline int fast_occupied(const float3 x, const float4 lo, const float4 inv_cell, const int4 dims,
-                         __global const uchar* grid) {
-  const int c = fast_cell(x, lo, inv_cell, dims);
-  return c < 0 || grid[c] != 0;
-}
+#include "pipeline/occupancy.clh"
 
 // occ[p] = whether x[p] must be evaluated (its cell occupied, or outside the grid), for n points
 // (the lookup on its own, for tests).

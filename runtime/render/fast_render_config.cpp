@@ -6,7 +6,11 @@
 
 namespace sgnlf::render {
 
-void FastRenderConfig::validate(const std::string& where) const { config::check_fields(*this, where); }
+void FastRenderConfig::validate(const std::string& where) const {
+  config::check_fields(*this, where);
+  if (layout != "protocol" && layout != "march")
+    throw ConfigError(where + ": 'layout' = '" + layout + "' (expected \"protocol\" or \"march\")");
+}
 
 FastRenderConfig FastRenderConfig::from_json(const Json& j, const std::string& where) {
   FastRenderConfig c;

@@ -31,6 +31,14 @@ struct FastRenderConfig {
   float head_weight_threshold = 1e-4f;
   int wave = 8;
   int max_waves = 8;
+  // Where the samples are. "protocol": the protocol renderer's own samples (uniform, and
+  // importance samples from a marched coarse pass), of which those in free cells are skipped
+  // (pipeline::FastMarch). "march": samples placed by the grid (pipeline::GridMarch): a lattice
+  // `refine` times finer than the protocol's bins in occupied cells, free cells jumped over,
+  // the protocol's spacing outside the grid's box; no importance pass. In "march" the waves
+  // double up to wave·2^(max_waves−1) samples per ray and go on until every ray has stopped.
+  std::string layout = "protocol";
+  int refine = 4;
 
   template <class Self, class V>
   static void fields(Self& s, V& v) {
@@ -44,6 +52,8 @@ struct FastRenderConfig {
     v("head_weight_threshold", s.head_weight_threshold, 0.0f, 0.1f);
     v("wave", s.wave, 1, 1 << 16);
     v("max_waves", s.max_waves, 1, 1 << 16);
+    v("layout", s.layout);
+    v("refine", s.refine, 1, 64);
   }
   void validate(const std::string& where = "fast_render") const;
   // All keys optional, unknown keys rejected, validated.

@@ -39,6 +39,7 @@
 #include "pipeline/model/coarse_waves.hpp"
 #include "pipeline/model/encoding_reuse.hpp"
 #include "pipeline/model/fast_march.hpp"
+#include "pipeline/model/grid_march.hpp"
 #include "pipeline/model/forward_context.hpp"
 #include "pipeline/model/head_band.hpp"
 #include "pipeline/model/loss_terms.hpp"
@@ -182,7 +183,11 @@ class LidarNerfModel {
   // render_rays(), but only those in occupied cells of `grid` are evaluated, front to back
   // until the transmittance falls below cfg.stop_transmittance, and the head only where a
   // sample's weight exceeds cfg.head_weight_threshold. With importance sampling both the
-  // coarse and the merged pass march. Same output as render_rays(). Blocking.
+  // coarse and the merged pass march. Same output as render_rays(). With cfg.layout "march"
+  // the samples are placed by the grid instead (pipeline::GridMarch: a lattice cfg.refine
+  // times finer than the protocol's bins in occupied cells, no importance pass); with
+  // refine 1, a full grid and no thresholds that is render_rays() without importance
+  // sampling. Blocking.
   std::vector<float> render_rays_fast(const std::vector<float>& origins,
                                       const std::vector<float>& directions, int n,
                                       const render::OccupancyGrid& grid,
@@ -310,6 +315,7 @@ class LidarNerfModel {
   int samples_cap_ = 0;  // sample rows per ray the buffers hold
   // The fast renderer's marching, made on its first use with its config.
   std::unique_ptr<FastMarch> fast_;
+  std::unique_ptr<GridMarch> march_;
   render::FastRenderConfig fast_cfg_;
   long fast_evaluated_ = 0, fast_head_ = 0;
 };

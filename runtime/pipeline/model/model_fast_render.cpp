@@ -38,8 +38,13 @@ std::vector<float> LidarNerfModel::render_rays_fast(const std::vector<float>& or
   require(n > 0 && n <= max_rays_, "LidarNerfModel::render_rays_fast: " + std::to_string(n) +
                                        " rays, capacity " + std::to_string(max_rays_));
   const int S = cfg_.render.n_samples, I = cfg_.render.n_importance, M = S + I;
-  if (!fast_ || fast_cfg_.to_json() != cfg.to_json()) {
-    fast_ = std::make_unique<FastMarch>(rt_, max_rays_, M, cfg);
+  const bool march = cfg.layout == "march";
+  if ((march ? !march_ : !fast_) || fast_cfg_.to_json() != cfg.to_json()) {
+    fast_.reset(), march_.reset();
+    if (march)
+      march_ = std::make_unique<GridMarch>(rt_, max_rays_, M, cfg);
+    else
+      fast_ = std::make_unique<FastMarch>(rt_, max_rays_, M, cfg);
     fast_cfg_ = cfg;
   }
   begin_pass();  // every sample buffer is overwritten
@@ -50,6 +55,24 @@ std::vector<float> LidarNerfModel::render_rays_fast(const std::vector<float>& or
     density_.forward(params_, off_density_, enc_, rows, dens_, density_ctx_);
     return dens_;
   };
+  if (march) {
+    dirs_.forward(d_, n, dir_enc_);
+    const auto head = [&](const cl::Buffer& dens, int rows,
+                          const field::GroupIndex& index) -> const cl::Buffer& {
+      head_.forward(params_, off_head_, dens, rows, g_head_, head_ctx_, &dir_enc_, 1, &index);
+      return g_head_;
+    };
+    GridMarch::Lattice L;
+    L.near = cfg_.render.near_m * scene_scale_;
+    L.bin = bin_width();
+    L.bound = kSceneBound;
+    L.samples = S;
+    L.refine = cfg.refine;
+    march_->render(n, o_, d_, L, grid, cfg_.render.eval_depth == "median", density, head, out_);
+    fast_evaluated_ = march_->evaluated();
+    fast_head_ = march_->head_rows();
+    return out_.read_vec<float>(size_t(n) * 3);
+  }
   const auto clamp = [&](cl::Buffer& x, int rows) {
     clamp_.set_args(rows * 3, kSceneBound, x);
     clamp_.launch({cl::round_up(size_t(rows) * 3, 64)}, {64});

@@ -1,0 +1,113 @@
+// Host reference of the fast renderer's grid-placed marching (kernels/pipeline/grid_march.cl,
+// pipeline::GridMarch): the lattice walk, the waves and their termination, the compositing, the
+// median and the head threshold, written plainly, one ray at a time.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "render/occupancy_grid.hpp"
+
+namespace sgnlf::test {
+
+struct MarchSample {
+  float t, dt, x[3];
+};
+
+struct MarchLattice {
+  float near, h, bound;
+  int m, K;
+};
+
+// One step of the walk at lattice point k (the kernel's gm_step): true with the sample when k is
+// evaluated, false when it lies in a free cell (k then jumps past that cell).
+inline bool march_step(int& k, const float o[3], const float d[3], const MarchLattice& L,
+                       const render::OccupancyGrid& g, MarchSample& s) {
+  const float t = L.near + (float(k) + 0.5f) * L.h;
+  const float x[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]};
+  const bool in_bound = std::fabs(x[0]) <= L.bound && std::fabs(x[1]) <= L.bound &&
+                        std::fabs(x[2]) <= L.bound;
+  const long c = in_bound ? g.cell_of(x[0], x[1], x[2]) : -1;
+  if (c >= 0 && !g.cells()[size_t(c)]) {
+    const auto dims = g.dims();
+    const long idx[3] = {c % dims[0], (c / dims[0]) % dims[1], c / (long(dims[0]) * dims[1])};
+    const cl_float4 lo = g.lo4(), inv = g.inv_cell4();
+    float t_exit = INFINITY;
+    for (int a = 0; a < 3; ++a) {
+      if (d[a] == 0.0f) continue;
+      const float cell = 1.0f / inv.s[a];
+      const float lo_a = lo.s[a] + float(idx[a]) * cell;
+      t_exit = std::min(t_exit, ((d[a] > 0.0f ? lo_a + cell : lo_a) - o[a]) / d[a]);
+    }
+    const float kf = std::floor((t_exit - L.near) / L.h - 0.5f) + 1.0f;
+    k = kf > float(k) ? (kf < float(L.K) ? int(kf) : L.K) : k + 1;
+    return false;
+  }
+  const int step = c < 0 ? L.m : 1;
+  s.t = t;
+  s.dt = float(step) * L.h;
+  for (int a = 0; a < 3; ++a) s.x[a] = std::clamp(x[a], -L.bound, L.bound);
+  k += step;
+  return true;
+}
+
+struct MarchResult {
+  std::vector<float> out;  // n × 3
+  long evaluated = 0, head_rows = 0;
+};
+
+// σ logit at x; the head's logits (a, b) of a sample at x on ray r.
+using MarchDensity = std::function<float(const float x[3])>;
+using MarchHead = std::function<void(const float x[3], int r, float& a, float& b)>;
+
+// Rays (o, d: n × 3) marched in waves: wave i takes K_i samples, K_0 = wave, doubling, and the
+// cap from wave max_waves − 1 on; a ray stops after the wave its transmittance fell below eps in.
+inline MarchResult march_reference(const std::vector<float>& o, const std::vector<float>& d,
+                                   int n, const MarchLattice& L, const render::OccupancyGrid& g,
+                                   float eps, float thr, int wave, int max_waves, int cap,
+                                   bool median, const MarchDensity& density,
+                                   const MarchHead& head) {
+  MarchResult res;
+  res.out.assign(size_t(n) * 3, 0.0f);
+  for (int r = 0; r < n; ++r) {
+    const float* o3 = &o[3 * size_t(r)];
+    const float* d3 = &d[3 * size_t(r)];
+    int k = 0;
+    float T = 1.0f, depth = 0.0f, prob = 0.0f, inten = 0.0f, med = -1.0f;
+    for (int i = 0; k < L.K; ++i) {
+      const int K_i = i >= max_waves - 1 ? cap : std::min(cap, wave << std::min(i, 16));
+      std::vector<MarchSample> samples;
+      MarchSample s{};
+      while (k < L.K && int(samples.size()) < K_i)
+        if (march_step(k, o3, d3, L, g, s)) samples.push_back(s);
+      res.evaluated += long(samples.size());
+      for (const MarchSample& q : samples) {
+        const float e = std::exp(-std::exp(std::min(density(q.x), 80.0f)) * q.dt);
+        const float w = T * (1.0f - e);
+        if (med < 0.0f && (1.0f - T) + w >= 0.5f) {
+          const float alpha = std::min(w / std::max(T, 1e-30f), 1.0f);
+          const float tau = -std::log1p(-std::min(alpha, 1.0f - 1e-7f));
+          med = q.t + std::min(std::max(std::log(2.0f * T) / tau, 0.0f), 1.0f) * q.dt;
+        }
+        depth += w * q.t;
+        if (w > thr) {
+          float a = 0.0f, b = 0.0f;
+          head(q.x, r, a, b);
+          prob += w / (1.0f + std::exp(-a));
+          inten += w / (1.0f + std::exp(-b));
+          ++res.head_rows;
+        }
+        T *= e;
+      }
+      if (eps > 0.0f && T < eps) break;
+    }
+    const float t_last = L.near + (float(L.K) - 0.5f) * L.h;
+    res.out[3 * size_t(r)] = median ? (med < 0.0f ? t_last : med) : depth;
+    res.out[3 * size_t(r) + 1] = prob;
+    res.out[3 * size_t(r) + 2] = inten;
+  }
+  return res;
+}
+
+}  // namespace sgnlf::test
