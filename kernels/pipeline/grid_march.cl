@@ -10,8 +10,16 @@
 //   - in a free cell: jump to the first lattice point past the cell's exit along the ray.
 // A sample stands for [t_k, t_k + δ), as in render_volume_fwd (δ = the distance to the next
 // lattice point visited; a free cell after it keeps zero density, as FastMarch's dead samples).
+// Occupied cells are walked at the coarse spacing too (δ = m·h, k += m) while the ray is in
+// coarse mode: the first coarse sample in an occupied cell whose α = 1 − exp(−σδ) reaches
+// hit_alpha is not composited; the ray rewinds to k_hit − (m − 1) (at least one past its last
+// composited sample) and walks the fine lattice (δ = h, k += 1) until m fine samples in a row
+// stay below hit_alpha, then coarse again. The coarse sample before the hit, composited with
+// δ = m·h, then overlaps the first m − 1 fine ones: optical depth of at most hit_alpha counted
+// twice. hit_alpha = 0 walks every occupied cell finely.
 // Rays march in waves of up to K_w samples; after each wave the rays whose transmittance fell
-// below eps stop. Sequential sums in sample order per ray: deterministic.
+// below eps stop (and the rows after a hit in its wave are dropped). Sequential sums in sample
+// order per ray: deterministic.
 
 #include "pipeline/occupancy.clh"
 
@@ -29,9 +37,12 @@ inline int gm_inside_bound(const float3 x, const float bound) {
 // One step of the walk at lattice point *k of ray (o, d): returns 1 with the sample's t, δ and
 // clamped position when k is evaluated (then *k moves past it), 0 when k lies in a free cell
 // (then *k jumps past that cell).
-inline int gm_step(int* k, const float3 o, const float3 d, const gm_lattice L, const float4 lo,
-                   const float4 inv_cell, const int4 dims, __global const uchar* grid,
-                   float* t_out, float* dt_out, float3* x_out) {
+// `fine`: the ray's mode (occupied cells at the fine spacing); *in_cell = whether the sample
+// lies in an occupied cell (not outside the box).
+inline int gm_step(int* k, const int fine, const float3 o, const float3 d, const gm_lattice L,
+                   const float4 lo, const float4 inv_cell, const int4 dims,
+                   __global const uchar* grid, float* t_out, float* dt_out, float3* x_out,
+                   int* in_cell) {
   const float t = L.near + ((float)(*k) + 0.5f) * L.h;
   const float3 x = o + t * d;
   const int c = gm_inside_bound(x, L.bound) ? fast_cell(x, lo, inv_cell, dims) : -1;
@@ -49,7 +60,8 @@ inline int gm_step(int* k, const float3 o, const float3 d, const gm_lattice L, c
     *k = kf > (float)(*k) ? (kf < (float)L.K ? (int)kf : L.K) : *k + 1;
     return 0;
   }
-  const int step = c < 0 ? L.m : 1;
+  const int step = c < 0 || !fine ? L.m : 1;
+  *in_cell = c >= 0;
   *t_out = t;
   *dt_out = (float)step * L.h;
   *x_out = clamp(x, -L.bound, L.bound);
@@ -57,12 +69,19 @@ inline int gm_step(int* k, const float3 o, const float3 d, const gm_lattice L, c
   return 1;
 }
 
-// Per ray: the cursor at the lattice's start, transmittance 1, sums 0, no median yet.
-__kernel void pipeline_gm_init(const int n_rays, __global int* cursor, __global float* trans,
-                               __global float* acc, __global float* median) {
+// Per ray: the cursor at the lattice's start, transmittance 1, sums 0, no median yet; `mode`
+// fine when start_fine (hit_alpha = 0 or m = 1), else coarse; no fine sample yet (quiet), no
+// composited sample (last_k = −1).
+__kernel void pipeline_gm_init(const int n_rays, const int start_fine, __global int* cursor,
+                               __global float* trans, __global float* acc,
+                               __global float* median, __global int* mode, __global int* quiet,
+                               __global int* last_k) {
   const int r = get_global_id(0);
   if (r >= n_rays) return;
   cursor[r] = 0;
+  mode[r] = start_fine;
+  quiet[r] = 0;
+  last_k[r] = -1;
   trans[r] = 1.0f;
   acc[3 * r + 0] = 0.0f;
   acc[3 * r + 1] = 0.0f;
@@ -78,8 +97,8 @@ __kernel void pipeline_gm_count(const int n_alive, const int K_w, const float ne
                                 const float4 inv_cell, const int4 dims, __global const uchar* grid,
                                 __global const int* alive, __global const float* o,
                                 __global const float* d, __global const int* cursor,
-                                const int use_done, __global const int* done,
-                                __global int* count) {
+                                __global const int* mode, const int use_done,
+                                __global const int* done, __global int* count) {
   const int a = get_global_id(0);
   if (a >= n_alive) return;
   const int r = alive[a];
@@ -87,41 +106,48 @@ __kernel void pipeline_gm_count(const int n_alive, const int K_w, const float ne
   if (!(use_done && done[a])) {
     const gm_lattice L = {near, h, bound, m, K};
     const float3 o3 = vload3(r, o), d3 = vload3(r, d);
-    int k = cursor[r];
+    const int fine = mode[r];
+    int k = cursor[r], in_cell;
     float t, dt;
     float3 x;
     while (k < K && c < K_w)
-      if (gm_step(&k, o3, d3, L, lo, inv_cell, dims, grid, &t, &dt, &x)) ++c;
+      if (gm_step(&k, fine, o3, d3, L, lo, inv_cell, dims, grid, &t, &dt, &x, &in_cell)) ++c;
   }
   count[a] = c;
 }
 
 // The wave's rows: alive ray a writes its samples (offset[a + 1] − offset[a] of them, as
-// pipeline_gm_count counted) at rows offset[a] ..: position x_w (clamped), t_w, dt_w; and moves
-// its cursor past them.
+// pipeline_gm_count counted) at rows offset[a] ..: position x_w (clamped), t_w, dt_w, lattice
+// index k_w, whether in an occupied cell (cell_w); and moves its cursor past them.
 __kernel void pipeline_gm_emit(const int n_alive, const float near, const float h, const int m,
                                const int K, const float bound, const float4 lo,
                                const float4 inv_cell, const int4 dims, __global const uchar* grid,
                                __global const int* alive, __global const float* o,
                                __global const float* d, __global int* cursor,
-                               __global const int* offset, __global float* x_w,
-                               __global float* t_w, __global float* dt_w) {
+                               __global const int* mode, __global const int* offset,
+                               __global float* x_w, __global float* t_w, __global float* dt_w,
+                               __global int* k_w, __global int* cell_w) {
   const int a = get_global_id(0);
   if (a >= n_alive) return;
   const int r = alive[a];
   const gm_lattice L = {near, h, bound, m, K};
   const float3 o3 = vload3(r, o), d3 = vload3(r, d);
-  int k = cursor[r], row = offset[a];
+  const int fine = mode[r];
+  int k = cursor[r], row = offset[a], in_cell;
   const int end = offset[a + 1];
   float t, dt;
   float3 x;
-  while (row < end && k < K)
-    if (gm_step(&k, o3, d3, L, lo, inv_cell, dims, grid, &t, &dt, &x)) {
+  while (row < end && k < K) {
+    const int k0 = k;
+    if (gm_step(&k, fine, o3, d3, L, lo, inv_cell, dims, grid, &t, &dt, &x, &in_cell)) {
       vstore3(x, row, x_w);
       t_w[row] = t;
       dt_w[row] = dt;
+      k_w[row] = k0;
+      cell_w[row] = in_cell;
       ++row;
     }
+  }
   cursor[r] = k;
 }
 
@@ -129,21 +155,39 @@ __kernel void pipeline_gm_emit(const int n_alive, const float near, const float 
 // density row, `stride` floats): e = exp(−exp(min(h0, 80))·δ), w = T·(1 − e), T ← T·e (the
 // arithmetic of render_volume_fwd); acc[3 r] += w·t; the median (render_median_depth's
 // crossing) where the accumulated weight first reaches 1/2; w_w[row] = w; hcount[a] = rows with
-// w > thr; done[a] = T < eps (eps = 0: never).
+// w > thr; done[a] = T < eps (eps = 0: never). In coarse mode a row in an occupied cell with
+// 1 − e ≥ hit_alpha (m > 1) is a hit: it and the wave's later rows get w = 0 (not composited,
+// no head), the cursor rewinds and the mode turns fine (see the top of this file); in fine
+// mode m rows in a row below hit_alpha turn it coarse again after the wave.
 __kernel void pipeline_gm_composite(const int n_alive, const int stride, const float eps,
-                                    const float thr, __global const int* alive,
-                                    __global const int* offset, __global const float* dens,
-                                    __global const float* t_w, __global const float* dt_w,
-                                    __global float* trans, __global float* acc,
-                                    __global float* median, __global float* w_w,
-                                    __global int* hcount, __global int* done) {
+                                    const float thr, const float hit_alpha, const int m,
+                                    __global const int* alive, __global const int* offset,
+                                    __global const float* dens, __global const float* t_w,
+                                    __global const float* dt_w, __global const int* k_w,
+                                    __global const int* cell_w, __global float* trans,
+                                    __global float* acc, __global float* median,
+                                    __global int* cursor, __global int* mode,
+                                    __global int* quiet, __global int* last_k,
+                                    __global float* w_w, __global int* hcount,
+                                    __global int* done) {
   const int a = get_global_id(0);
   if (a >= n_alive) return;
   const int r = alive[a];
   float T = trans[r], depth = acc[3 * r], med = median[r];
-  int hc = 0;
-  for (int row = offset[a]; row < offset[a + 1]; ++row) {
+  int hc = 0, fine = mode[r], q = quiet[r], lk = last_k[r];
+  const int end = offset[a + 1];
+  for (int row = offset[a]; row < end; ++row) {
     const float e = exp(-exp(fmin(dens[(size_t)row * stride], 80.0f)) * dt_w[row]);
+    if (!fine && m > 1 && cell_w[row] && 1.0f - e >= hit_alpha) {
+      // A hit: rewind to the fine lattice just behind it; this row and the later ones drop.
+      cursor[r] = max(k_w[row] - (m - 1), lk + 1);
+      fine = 1;
+      q = 0;
+      for (int z = row; z < end; ++z) w_w[z] = 0.0f;
+      break;
+    }
+    if (fine) q = 1.0f - e < hit_alpha ? q + 1 : 0;
+    lk = k_w[row];
     const float w = T * (1.0f - e);
     if (med < 0.0f && (1.0f - T) + w >= 0.5f) {
       const float alpha = fmin(w / fmax(T, 1e-30f), 1.0f);
@@ -155,9 +199,13 @@ __kernel void pipeline_gm_composite(const int n_alive, const int stride, const f
     hc += w > thr ? 1 : 0;
     T *= e;
   }
+  if (fine && m > 1 && hit_alpha > 0.0f && q >= m) fine = 0, q = 0;
   trans[r] = T;
   acc[3 * r] = depth;
   median[r] = med;
+  mode[r] = fine;
+  quiet[r] = q;
+  last_k[r] = lk;
   hcount[a] = hc;
   done[a] = eps > 0.0f && T < eps;
 }

@@ -35,10 +35,15 @@ struct FastRenderConfig {
   // importance samples from a marched coarse pass), of which those in free cells are skipped
   // (pipeline::FastMarch). "march": samples placed by the grid (pipeline::GridMarch): a lattice
   // `refine` times finer than the protocol's bins in occupied cells, free cells jumped over,
-  // the protocol's spacing outside the grid's box; no importance pass. In "march" the waves
-  // double up to wave·2^(max_waves−1) samples per ray and go on until every ray has stopped.
+  // the protocol's spacing outside the grid's box; no importance pass. Occupied cells are
+  // walked at the protocol's spacing too until a sample there stops more than hit_alpha of the
+  // light; the ray then rewinds one bin and walks the fine lattice until `refine` fine samples
+  // in a row stay below hit_alpha (0: every occupied cell at the fine lattice). In "march" the
+  // waves double up to wave·2^(max_waves−1) samples per ray and go on until every ray has
+  // stopped.
   std::string layout = "protocol";
   int refine = 4;
+  float hit_alpha = 1e-3f;
 
   template <class Self, class V>
   static void fields(Self& s, V& v) {
@@ -54,6 +59,7 @@ struct FastRenderConfig {
     v("max_waves", s.max_waves, 1, 1 << 16);
     v("layout", s.layout);
     v("refine", s.refine, 1, 64);
+    v("hit_alpha", s.hit_alpha, 0.0f, 0.5f);
   }
   void validate(const std::string& where = "fast_render") const;
   // All keys optional, unknown keys rejected, validated.

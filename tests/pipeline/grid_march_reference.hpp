@@ -13,6 +13,8 @@ namespace sgnlf::test {
 
 struct MarchSample {
   float t, dt, x[3];
+  int k;
+  bool in_cell;
 };
 
 struct MarchLattice {
@@ -21,9 +23,10 @@ struct MarchLattice {
 };
 
 // One step of the walk at lattice point k (the kernel's gm_step): true with the sample when k is
-// evaluated, false when it lies in a free cell (k then jumps past that cell).
-inline bool march_step(int& k, const float o[3], const float d[3], const MarchLattice& L,
-                       const render::OccupancyGrid& g, MarchSample& s) {
+// evaluated, false when it lies in a free cell (k then jumps past that cell). Occupied cells
+// step by 1 in fine mode, by m in coarse mode, as outside the box.
+inline bool march_step(int& k, bool fine, const float o[3], const float d[3],
+                       const MarchLattice& L, const render::OccupancyGrid& g, MarchSample& s) {
   const float t = L.near + (float(k) + 0.5f) * L.h;
   const float x[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]};
   const bool in_bound = std::fabs(x[0]) <= L.bound && std::fabs(x[1]) <= L.bound &&
@@ -44,7 +47,9 @@ inline bool march_step(int& k, const float o[3], const float d[3], const MarchLa
     k = kf > float(k) ? (kf < float(L.K) ? int(kf) : L.K) : k + 1;
     return false;
   }
-  const int step = c < 0 ? L.m : 1;
+  const int step = c < 0 || !fine ? L.m : 1;
+  s.k = k;
+  s.in_cell = c >= 0;
   s.t = t;
   s.dt = float(step) * L.h;
   for (int a = 0; a < 3; ++a) s.x[a] = std::clamp(x[a], -L.bound, L.bound);
@@ -61,29 +66,41 @@ struct MarchResult {
 using MarchDensity = std::function<float(const float x[3])>;
 using MarchHead = std::function<void(const float x[3], int r, float& a, float& b)>;
 
-// Rays (o, d: n × 3) marched in waves: wave i takes K_i samples, K_0 = wave, doubling, and the
-// cap from wave max_waves − 1 on; a ray stops after the wave its transmittance fell below eps in.
+// Rays (o, d: n × 3) marched in waves: wave i takes K_i = min(cap, wave·2^min(i, max_waves − 1))
+// samples; a ray stops after the wave its transmittance fell below eps in. In coarse mode the
+// first sample in an occupied cell with α ≥ hit is dropped with the rest of its wave and the ray
+// rewinds to k − (m − 1) (at least one past its last composited sample) in fine mode; m fine
+// samples in a row below hit turn it coarse after the wave.
 inline MarchResult march_reference(const std::vector<float>& o, const std::vector<float>& d,
                                    int n, const MarchLattice& L, const render::OccupancyGrid& g,
-                                   float eps, float thr, int wave, int max_waves, int cap,
-                                   bool median, const MarchDensity& density,
+                                   float eps, float thr, float hit, int wave, int max_waves,
+                                   int cap, bool median, const MarchDensity& density,
                                    const MarchHead& head) {
   MarchResult res;
   res.out.assign(size_t(n) * 3, 0.0f);
   for (int r = 0; r < n; ++r) {
     const float* o3 = &o[3 * size_t(r)];
     const float* d3 = &d[3 * size_t(r)];
-    int k = 0;
+    int k = 0, quiet = 0, last_k = -1;
+    bool fine = L.m == 1 || hit <= 0.0f;
     float T = 1.0f, depth = 0.0f, prob = 0.0f, inten = 0.0f, med = -1.0f;
     for (int i = 0; k < L.K; ++i) {
-      const int K_i = i >= max_waves - 1 ? cap : std::min(cap, wave << std::min(i, 16));
+      const int K_i = std::min(cap, wave << std::min(i, std::min(max_waves - 1, 16)));
       std::vector<MarchSample> samples;
       MarchSample s{};
       while (k < L.K && int(samples.size()) < K_i)
-        if (march_step(k, o3, d3, L, g, s)) samples.push_back(s);
+        if (march_step(k, fine, o3, d3, L, g, s)) samples.push_back(s);
       res.evaluated += long(samples.size());
       for (const MarchSample& q : samples) {
         const float e = std::exp(-std::exp(std::min(density(q.x), 80.0f)) * q.dt);
+        if (!fine && L.m > 1 && q.in_cell && 1.0f - e >= hit) {
+          k = std::max(q.k - (L.m - 1), last_k + 1);
+          fine = true;
+          quiet = 0;
+          break;
+        }
+        if (fine) quiet = 1.0f - e < hit ? quiet + 1 : 0;
+        last_k = q.k;
         const float w = T * (1.0f - e);
         if (med < 0.0f && (1.0f - T) + w >= 0.5f) {
           const float alpha = std::min(w / std::max(T, 1e-30f), 1.0f);
@@ -100,6 +117,7 @@ inline MarchResult march_reference(const std::vector<float>& o, const std::vecto
         }
         T *= e;
       }
+      if (fine && L.m > 1 && hit > 0.0f && quiet >= L.m) fine = false, quiet = 0;
       if (eps > 0.0f && T < eps) break;
     }
     const float t_last = L.near + (float(L.K) - 0.5f) * L.h;

@@ -116,26 +116,41 @@ TEST_CASE("grid march kernels match the host reference", "[pipeline][fast-render
     return head;
   };
   cl::Buffer out(rt, size_t(R) * 3 * 4);
-  for (const bool median : {false, true})
-    for (const float eps : {0.0f, 1e-2f})
-      for (const float thr : {0.0f, 1e-3f}) {
-        INFO("median " << median << ", stop_transmittance " << eps << ", head threshold " << thr);
-        const render::FastRenderConfig cfg = march_config(eps, thr);
+  struct Case {
+    bool median;
+    float eps, thr, hit;
+  };
+  long hits_fewer = -1, all_fine = -1;
+  for (const Case k : {Case{false, 0.0f, 0.0f, 0.0f}, Case{false, 0.0f, 0.0f, 1e-2f},
+                       Case{false, 1e-2f, 1e-3f, 0.0f}, Case{true, 1e-2f, 1e-3f, 1e-2f},
+                       Case{true, 0.0f, 1e-3f, 0.05f}, Case{false, 1e-2f, 0.0f, 1e-3f}}) {
+        const bool median = k.median;
+        const float eps = k.eps, thr = k.thr;
+        INFO("median " << median << ", stop_transmittance " << eps << ", head threshold " << thr
+                       << ", hit alpha " << k.hit);
+        render::FastRenderConfig cfg = march_config(eps, thr);
+        cfg.hit_alpha = k.hit;
         GridMarch march(rt, R, cap, cfg);
         seen_rays.clear();
         march.render(R, bo, bd, L, g, median, density, run_head, out);
         const auto got = out.read_vec<float>(size_t(R) * 3);
         const test::MarchResult ref =
-            test::march_reference(o, d, R, ref_L, g, eps, thr, cfg.wave, cfg.max_waves, cap,
-                                  median, slab_logit, slab_head);
+            test::march_reference(o, d, R, ref_L, g, eps, thr, k.hit, cfg.wave, cfg.max_waves,
+                                  cap, median, slab_logit, slab_head);
         CHECK(march.evaluated() == ref.evaluated);
         CHECK(march.head_rows() == ref.head_rows);
         CHECK(long(seen_rays.size()) == ref.head_rows);
         CHECK(march.waves() >= 4);
         for (int ch = 0; ch < 3; ++ch) CHECK(test::worst_channel_diff(ref.out, got, ch) < 2e-5);
-      }
+        if (!median && eps == 0.0f && thr == 0.0f) (k.hit > 0.0f ? hits_fewer : all_fine) = march.evaluated();
+  }
+  // Coarse steps until a hit evaluate fewer rows than the fine walk of every occupied cell.
+  INFO("rows: hit_alpha 0.01 " << hits_fewer << ", every occupied cell fine " << all_fine);
+  CHECK(hits_fewer > 0);
+  CHECK(hits_fewer < all_fine);
   // The walk skipped free cells: fewer rows than the lattice's points.
-  const render::FastRenderConfig cfg = march_config(0.0f, 0.0f);
+  render::FastRenderConfig cfg = march_config(0.0f, 0.0f);
+  cfg.hit_alpha = 0.0f;
   GridMarch march(rt, R, cap, cfg);
   march.render(R, bo, bd, L, g, false, density, run_head, out);
   CHECK(march.evaluated() < long(R) * S * L.refine);

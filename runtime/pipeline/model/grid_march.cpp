@@ -33,6 +33,8 @@ GridMarch::GridMarch(cl::Runtime& rt, int max_rays, int max_wave,
   median_ = floats(rt, R), alive_ = floats(rt, R), offset_ = floats(rt, R + 1);
   count_ = floats(rt, R), hcount_ = floats(rt, R), hoffset_ = floats(rt, R + 1);
   done_ = floats(rt, R), groups_ = floats(rt, R + 1);
+  mode_ = floats(rt, R), quiet_ = floats(rt, R), last_k_ = floats(rt, R);
+  k_w_ = floats(rt, N), cell_w_ = floats(rt, N);
   x_w_ = floats(rt, 3 * N), t_w_ = floats(rt, N), dt_w_ = floats(rt, N), w_w_ = floats(rt, N);
   dens_h_ = floats(rt, N * kDensStride), w_h_ = floats(rt, N), ray_h_ = floats(rt, N);
 }
@@ -54,14 +56,16 @@ void GridMarch::render(int n_rays, const cl::Buffer& o, const cl::Buffer& d,
   const cl_int4 dims = grid.dims4();
   evaluated_ = 0, head_rows_ = 0, waves_ = 0;
 
-  init_k_.set_args(n_rays, cursor_, trans_, acc_, median_).launch({g64(size_t(n_rays))}, {64});
+  const int start_fine = m == 1 || cfg_.hit_alpha <= 0.0f ? 1 : 0;
+  init_k_.set_args(n_rays, start_fine, cursor_, trans_, acc_, median_, mode_, quiet_, last_k_)
+      .launch({g64(size_t(n_rays))}, {64});
   std::vector<int32_t> alive(static_cast<size_t>(n_rays));
   for (int r = 0; r < n_rays; ++r) alive[size_t(r)] = r;
   alive_.write(alive.data(), alive.size() * 4);
   // The first wave's counts.
   int K_w = std::min(cfg_.wave, max_wave_);
   count_k_.set_args(n_rays, K_w, L.near, h, m, K, L.bound, lo, inv, dims, grid.device(), alive_,
-                    o, d, cursor_, 0, done_, count_)
+                    o, d, cursor_, mode_, 0, done_, count_)
       .launch({g64(size_t(n_rays))}, {64});
   std::vector<int32_t> count = count_.read_vec<int32_t>(size_t(n_rays)), hcount, off, hoff, next;
   while (true) {
@@ -80,20 +84,20 @@ void GridMarch::render(int n_rays, const cl::Buffer& o, const cl::Buffer& d,
     alive_.write(alive.data(), A * 4);
     offset_.write(off.data(), (A + 1) * 4);
     emit_k_.set_args(int(A), L.near, h, m, K, L.bound, lo, inv, dims, grid.device(), alive_, o, d,
-                     cursor_, offset_, x_w_, t_w_, dt_w_)
+                     cursor_, mode_, offset_, x_w_, t_w_, dt_w_, k_w_, cell_w_)
         .launch({g64(A)}, {64});
     const cl::Buffer& dens = density(x_w_, rows);
     evaluated_ += rows;
     ++waves_;
     composite_k_.set_args(int(A), kDensStride, cfg_.stop_transmittance,
-                          cfg_.head_weight_threshold, alive_, offset_, dens, t_w_, dt_w_, trans_,
-                          acc_, median_, w_w_, hcount_, done_)
+                          cfg_.head_weight_threshold, cfg_.hit_alpha, m, alive_, offset_, dens,
+                          t_w_, dt_w_, k_w_, cell_w_, trans_, acc_, median_, cursor_, mode_,
+                          quiet_, last_k_, w_w_, hcount_, done_)
         .launch({g64(A)}, {64});
-    // The next wave's size: doubling up to the cap; wave max_waves on takes the cap.
-    K_w = waves_ + 1 >= cfg_.max_waves ? max_wave_
-                                        : std::min(max_wave_, cfg_.wave << std::min(waves_, 16));
+    // The next wave's size: doubling up to wave·2^(max_waves − 1) (and the capacity).
+    K_w = std::min(max_wave_, cfg_.wave << std::min(waves_, std::min(cfg_.max_waves - 1, 16)));
     count_k_.set_args(int(A), K_w, L.near, h, m, K, L.bound, lo, inv, dims, grid.device(),
-                      alive_, o, d, cursor_, 1, done_, count_)
+                      alive_, o, d, cursor_, mode_, 1, done_, count_)
         .launch({g64(A)}, {64});
     // One host sync per wave: the head rows of this wave and the next wave's counts.
     hcount = hcount_.read_vec<int32_t>(A);

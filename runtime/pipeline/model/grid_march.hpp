@@ -1,8 +1,9 @@
 // The fast renderer's marching with samples placed by the occupancy grid
 // (render::FastRenderConfig layout "march"; kernels/pipeline/grid_march.cl): each ray walks a
-// lattice m times finer than the protocol's bins, evaluating the lattice points in occupied
-// cells (δ = the fine step), jumping over free cells, and taking the protocol's spacing outside
-// the grid's box; in waves (`wave` samples per ray, doubling up to the cap) until its
+// lattice m times finer than the protocol's bins: the protocol's spacing outside the grid's box
+// and in occupied cells until a sample there stops more than hit_alpha of the light, then the
+// fine step around it (rewinding one bin) until the ray is quiet again; free cells jumped over;
+// in waves (`wave` samples per ray, doubling up to wave·2^(max_waves − 1)) until its
 // transmittance falls below stop_transmittance or the lattice ends. Each wave is composited as
 // it comes (no full sample layout is kept) and the LiDAR head runs on its samples whose weight
 // exceeds head_weight_threshold. One host sync per wave.
@@ -51,6 +52,9 @@ class GridMarch {
   // head rows: density row, weight, ray; an offsets buffer for the head's group index.
   cl::Buffer cursor_, trans_, acc_, median_, alive_, offset_, count_, hcount_, hoffset_, done_,
       x_w_, t_w_, dt_w_, w_w_, dens_h_, w_h_, ray_h_, groups_;
+  // Per ray: fine or coarse mode, fine samples in a row below hit_alpha, the last composited
+  // sample's lattice index; per wave row: its lattice index and whether in an occupied cell.
+  cl::Buffer mode_, quiet_, last_k_, k_w_, cell_w_;
   long evaluated_ = 0, head_rows_ = 0;
   int waves_ = 0;
 };
