@@ -75,12 +75,16 @@ inline int gm_step(int* k, const int fine, const float3 o, const float3 d, const
 __kernel void pipeline_gm_init(const int n_rays, const int start_fine, __global int* cursor,
                                __global float* trans, __global float* acc,
                                __global float* median, __global int* mode, __global int* quiet,
-                               __global int* last_k) {
+                               __global int* last_k, __global int* stats) {
   const int r = get_global_id(0);
   if (r >= n_rays) return;
   cursor[r] = 0;
   mode[r] = start_fine;
   quiet[r] = 0;
+  stats[4 * r + 0] = 0;
+  stats[4 * r + 1] = 0;
+  stats[4 * r + 2] = 0;
+  stats[4 * r + 3] = 0;
   last_k[r] = -1;
   trans[r] = 1.0f;
   acc[3 * r + 0] = 0.0f;
@@ -158,7 +162,9 @@ __kernel void pipeline_gm_emit(const int n_alive, const float near, const float 
 // w > thr; done[a] = T < eps (eps = 0: never). In coarse mode a row in an occupied cell with
 // 1 − e ≥ hit_alpha (m > 1) is a hit: it and the wave's later rows get w = 0 (not composited,
 // no head), the cursor rewinds and the mode turns fine (see the top of this file); in fine
-// mode m rows in a row below hit_alpha turn it coarse again after the wave.
+// mode m rows in a row below hit_alpha turn it coarse again after the wave. stats[4 r ..]
+// counts the ray's composited rows in occupied cells at the coarse and at the fine spacing,
+// outside the box, and its dropped rows.
 __kernel void pipeline_gm_composite(const int n_alive, const int stride, const float eps,
                                     const float thr, const float hit_alpha, const int m,
                                     __global const int* alive, __global const int* offset,
@@ -169,13 +175,14 @@ __kernel void pipeline_gm_composite(const int n_alive, const int stride, const f
                                     __global int* cursor, __global int* mode,
                                     __global int* quiet, __global int* last_k,
                                     __global float* w_w, __global int* hcount,
-                                    __global int* done) {
+                                    __global int* done, __global int* stats) {
   const int a = get_global_id(0);
   if (a >= n_alive) return;
   const int r = alive[a];
   float T = trans[r], depth = acc[3 * r], med = median[r];
   int hc = 0, fine = mode[r], q = quiet[r], lk = last_k[r];
-  const int end = offset[a + 1];
+  const int end = offset[a + 1], emitted_fine = fine;
+  __global int* st = stats + 4 * r;
   for (int row = offset[a]; row < end; ++row) {
     const float e = exp(-exp(fmin(dens[(size_t)row * stride], 80.0f)) * dt_w[row]);
     if (!fine && m > 1 && cell_w[row] && 1.0f - e >= hit_alpha) {
@@ -184,10 +191,12 @@ __kernel void pipeline_gm_composite(const int n_alive, const int stride, const f
       fine = 1;
       q = 0;
       for (int z = row; z < end; ++z) w_w[z] = 0.0f;
+      st[3] += end - row;
       break;
     }
     if (fine) q = 1.0f - e < hit_alpha ? q + 1 : 0;
     lk = k_w[row];
+    st[!cell_w[row] ? 2 : emitted_fine ? 1 : 0] += 1;
     const float w = T * (1.0f - e);
     if (med < 0.0f && (1.0f - T) + w >= 0.5f) {
       const float alpha = fmin(w / fmax(T, 1e-30f), 1.0f);

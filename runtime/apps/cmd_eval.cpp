@@ -85,6 +85,13 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
                   "head rows per ray (protocol: every sample)\n",
                   r.at("render_seconds").get<double>(), r.at("grid_seconds").get<double>(),
                   r.at("density_rows_per_ray").get<double>(), r.at("head_rows_per_ray").get<double>());
+      if (r.contains("density_rows_per_ray_by_kind")) {
+        const Json& k = r.at("density_rows_per_ray_by_kind");
+        std::printf("density rows per ray by kind: %.1f coarse, %.1f fine, %.1f outside the grid, "
+                    "%.1f dropped after a hit\n",
+                    k.at("coarse").get<double>(), k.at("fine").get<double>(),
+                    k.at("outside_grid").get<double>(), k.at("dropped_after_hit").get<double>());
+      }
     } else {
       std::printf("\nprotocol renderer: %.1f s rendering the test views\n",
                   j.at("render_eval_seconds").get<double>());

@@ -92,6 +92,12 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
       summary["grids"] = c.grids;
       summary["density_rows_per_ray"] = rays > 0 ? double(c.evaluated) / double(rays) : 0.0;
       summary["head_rows_per_ray"] = rays > 0 ? double(c.head_rows) / double(rays) : 0.0;
+      if (fcfg.layout == "march" && rays > 0)
+        summary["density_rows_per_ray_by_kind"] =
+            Json{{"coarse", double(c.march.coarse) / double(rays)},
+                 {"fine", double(c.march.fine) / double(rays)},
+                 {"outside_grid", double(c.march.outside) / double(rays)},
+                 {"dropped_after_hit", double(c.march.dropped) / double(rays)}};
       summary["fast_config"] = fcfg.to_json();
     }
     std::cerr << "render: " << frames << " frame(s) of " << shown.height << " x "

@@ -14,6 +14,7 @@
 #include "pipeline/model/fast_renderer.hpp"
 #include "pipeline/model/grid_march.hpp"
 #include "pipeline/model/ray_batch.hpp"
+#include "pipeline/train/trainer.hpp"
 #include "render/occupancy_grid.hpp"
 #include "support/test_device.hpp"
 #include "grid_march_reference.hpp"
@@ -138,6 +139,13 @@ TEST_CASE("grid march kernels match the host reference", "[pipeline][fast-render
             test::march_reference(o, d, R, ref_L, g, eps, thr, k.hit, cfg.wave, cfg.max_waves,
                                   cap, median, slab_logit, slab_head);
         CHECK(march.evaluated() == ref.evaluated);
+        const GridMarch::Rows& kinds = march.rows();
+        CHECK(kinds.coarse + kinds.fine + kinds.outside + kinds.dropped == march.evaluated());
+        CHECK(kinds.outside > 0);
+        if (k.hit > 0.0f) CHECK(kinds.dropped > 0);
+        // Above the thin air's α at the coarse spacing (about 0.004), coarse rows composite.
+        if (k.hit >= 1e-2f) CHECK(kinds.coarse > 0);
+        if (k.hit == 0.0f) CHECK((kinds.coarse == 0 && kinds.dropped == 0 && kinds.fine > 0));
         CHECK(march.head_rows() == ref.head_rows);
         CHECK(long(seen_rays.size()) == ref.head_rows);
         CHECK(march.waves() >= 4);
@@ -205,4 +213,40 @@ TEST_CASE("render_rays_fast with samples placed by the grid: the protocol's with
   INFO(close << " of " << both << " rays with a return in both within 5 % of far");
   CHECK(both > 100);
   CHECK(close >= both * 9 / 10);
+}
+
+TEST_CASE("render_rays_fast with samples placed by the grid on LiDAR4D's 4D field: the "
+          "protocol's with refine 1 and a full grid",
+          "[pipeline][fast-render][lidar4d][device]") {
+  const Dataset& d = test::tiny_dataset();
+  const Scene scene = make_scene(d);
+  const Json over{{"schedule", {{"iterations", 20}, {"checkpoint_every", 0}, {"rays_per_batch", 128},
+                                {"render_chunk_rays", 512}}},
+                  {"render", {{"n_samples", 16}, {"n_importance", 0}}}};
+  const TrainConfig c = resolve_config("lidar4d", "smoke", over);
+  LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
+  TrainOptions opt;
+  opt.run_dir = test::temp_dir("march_l4d");
+  opt.seed = 3;
+  opt.show_progress = false;
+  train(model, scene, c, opt);
+  REQUIRE(model.temporal());
+  std::vector<float> o, dir;
+  image_rays(scene, normalize_pose(d.frames[13].T_world_lidar, scene.norm), 600, 1112, o, dir);
+  render::GridBox box;
+  box.lo = {-1.0f, -1.0f, -1.0f};
+  box.hi = {1.0f, 1.0f, 1.0f};
+  const render::OccupancyGrid full(test::runtime(), box, {4, 4, 4}, std::vector<uint8_t>(64, 1));
+  render::FastRenderConfig cfg = march_config(0.0f, 0.0f);
+  cfg.refine = 1;
+  // Two frame times: the march reads the field at the time set_frame set.
+  std::vector<std::vector<float>> refs;
+  for (const int frame : {13, 2}) {
+    INFO("frame " << frame);
+    model.set_frame(frame, int(d.frames.size()));
+    refs.push_back(model.render_rays(o, dir, 512));
+    const auto got = model.render_rays_fast(o, dir, 512, full, cfg);
+    for (int ch = 0; ch < 3; ++ch) CHECK(test::worst_channel_diff(refs.back(), got, ch) < 1e-5);
+  }
+  CHECK(test::worst_channel_diff(refs[0], refs[1], 0) > 1e-4);  // the times differ
 }

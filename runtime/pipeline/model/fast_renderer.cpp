@@ -73,6 +73,8 @@ RangeImage FastRenderer::render(const Pose& T_world_lidar, int frame, const Scen
   ++counts_.frames;
   counts_.evaluated += fast.evaluated;
   counts_.head_rows += fast.head_rows;
+  counts_.march.coarse += fast.march.coarse, counts_.march.fine += fast.march.fine;
+  counts_.march.outside += fast.march.outside, counts_.march.dropped += fast.march.dropped;
   counts_.rays += long(img.size());
   return img;
 }

@@ -32,6 +32,7 @@ class FastRenderer {
   struct Counts {
     long frames = 0, rays = 0;
     long evaluated = 0, head_rows = 0;  // density and head rows, summed over chunks
+    GridMarch::Rows march;              // layout "march": the density rows by kind
     double render_seconds = 0.0;        // render() wall time, grids excluded
     double grid_seconds = 0.0;          // grid builds
     int grids = 0;

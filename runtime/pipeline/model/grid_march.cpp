@@ -34,7 +34,7 @@ GridMarch::GridMarch(cl::Runtime& rt, int max_rays, int max_wave,
   count_ = floats(rt, R), hcount_ = floats(rt, R), hoffset_ = floats(rt, R + 1);
   done_ = floats(rt, R), groups_ = floats(rt, R + 1);
   mode_ = floats(rt, R), quiet_ = floats(rt, R), last_k_ = floats(rt, R);
-  k_w_ = floats(rt, N), cell_w_ = floats(rt, N);
+  k_w_ = floats(rt, N), cell_w_ = floats(rt, N), stats_ = floats(rt, 4 * R);
   x_w_ = floats(rt, 3 * N), t_w_ = floats(rt, N), dt_w_ = floats(rt, N), w_w_ = floats(rt, N);
   dens_h_ = floats(rt, N * kDensStride), w_h_ = floats(rt, N), ray_h_ = floats(rt, N);
 }
@@ -57,7 +57,8 @@ void GridMarch::render(int n_rays, const cl::Buffer& o, const cl::Buffer& d,
   evaluated_ = 0, head_rows_ = 0, waves_ = 0;
 
   const int start_fine = m == 1 || cfg_.hit_alpha <= 0.0f ? 1 : 0;
-  init_k_.set_args(n_rays, start_fine, cursor_, trans_, acc_, median_, mode_, quiet_, last_k_)
+  init_k_.set_args(n_rays, start_fine, cursor_, trans_, acc_, median_, mode_, quiet_, last_k_,
+                   stats_)
       .launch({g64(size_t(n_rays))}, {64});
   std::vector<int32_t> alive(static_cast<size_t>(n_rays));
   for (int r = 0; r < n_rays; ++r) alive[size_t(r)] = r;
@@ -92,7 +93,7 @@ void GridMarch::render(int n_rays, const cl::Buffer& o, const cl::Buffer& d,
     composite_k_.set_args(int(A), kDensStride, cfg_.stop_transmittance,
                           cfg_.head_weight_threshold, cfg_.hit_alpha, m, alive_, offset_, dens,
                           t_w_, dt_w_, k_w_, cell_w_, trans_, acc_, median_, cursor_, mode_,
-                          quiet_, last_k_, w_w_, hcount_, done_)
+                          quiet_, last_k_, w_w_, hcount_, done_, stats_)
         .launch({g64(A)}, {64});
     // The next wave's size: doubling up to wave·2^(max_waves − 1) (and the capacity).
     K_w = std::min(max_wave_, cfg_.wave << std::min(waves_, std::min(cfg_.max_waves - 1, 16)));
@@ -119,6 +120,11 @@ void GridMarch::render(int n_rays, const cl::Buffer& o, const cl::Buffer& d,
   const float t_last = L.near + (float(K) - 0.5f) * h;
   finish_k_.set_args(n_rays, int(median), t_last, acc_, median_, out)
       .launch({g64(size_t(n_rays))}, {64});
+  const std::vector<int32_t> st = stats_.read_vec<int32_t>(4 * size_t(n_rays));
+  rows_ = Rows{};
+  for (size_t r = 0; r < size_t(n_rays); ++r)
+    rows_.coarse += st[4 * r], rows_.fine += st[4 * r + 1], rows_.outside += st[4 * r + 2],
+        rows_.dropped += st[4 * r + 3];
 }
 
 }  // namespace sgnlf::pipeline

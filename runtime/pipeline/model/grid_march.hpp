@@ -42,6 +42,12 @@ class GridMarch {
   long evaluated() const { return evaluated_; }
   long head_rows() const { return head_rows_; }
   int waves() const { return waves_; }
+  // The last render's density rows by kind: composited in occupied cells at the coarse and at
+  // the fine spacing, outside the grid's box, and dropped after a hit (they sum to evaluated()).
+  struct Rows {
+    long coarse = 0, fine = 0, outside = 0, dropped = 0;
+  };
+  const Rows& rows() const { return rows_; }
 
  private:
   render::FastRenderConfig cfg_;
@@ -54,7 +60,8 @@ class GridMarch {
       x_w_, t_w_, dt_w_, w_w_, dens_h_, w_h_, ray_h_, groups_;
   // Per ray: fine or coarse mode, fine samples in a row below hit_alpha, the last composited
   // sample's lattice index; per wave row: its lattice index and whether in an occupied cell.
-  cl::Buffer mode_, quiet_, last_k_, k_w_, cell_w_;
+  cl::Buffer mode_, quiet_, last_k_, k_w_, cell_w_, stats_;
+  Rows rows_;
   long evaluated_ = 0, head_rows_ = 0;
   int waves_ = 0;
 };

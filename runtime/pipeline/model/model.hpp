@@ -195,6 +195,8 @@ class LidarNerfModel {
   // Samples the last render_rays_fast() evaluated with the density MLP, and head rows.
   long fast_evaluated() const { return fast_evaluated_; }
   long fast_head_rows() const { return fast_head_; }
+  // Its density rows by kind with layout "march" (zeros with "protocol").
+  const GridMarch::Rows& march_rows() const { return march_rows_; }
   // σ logits (σ = exp(h0)) of the field at n points (n × 3, normalised box), at the time
   // set_frame() set for a 4D encoder: what render::OccupancyGrid::build probes. Blocking.
   std::vector<float> density_logits(const std::vector<float>& x, int n);
@@ -318,6 +320,7 @@ class LidarNerfModel {
   std::unique_ptr<GridMarch> march_;
   render::FastRenderConfig fast_cfg_;
   long fast_evaluated_ = 0, fast_head_ = 0;
+  GridMarch::Rows march_rows_;
 };
 
 // Capacity (rays) a model needs for training and chunked rendering under `c`.

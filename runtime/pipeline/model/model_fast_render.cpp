@@ -71,6 +71,7 @@ std::vector<float> LidarNerfModel::render_rays_fast(const std::vector<float>& or
     march_->render(n, o_, d_, L, grid, cfg_.render.eval_depth == "median", density, head, out_);
     fast_evaluated_ = march_->evaluated();
     fast_head_ = march_->head_rows();
+    march_rows_ = march_->rows();
     return out_.read_vec<float>(size_t(n) * 3);
   }
   const auto clamp = [&](cl::Buffer& x, int rows) {
@@ -78,6 +79,7 @@ std::vector<float> LidarNerfModel::render_rays_fast(const std::vector<float>& or
     clamp_.launch({cl::round_up(size_t(rows) * 3, 64)}, {64});
   };
   fast_evaluated_ = 0;
+  march_rows_ = GridMarch::Rows{};
   if (I == 0) {
     sampler_.uniform(o_, d_, n, false, 0, 0, t_, x_);
     clamp(x_, n * S);

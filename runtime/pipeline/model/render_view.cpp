@@ -40,7 +40,12 @@ RangeImage render_view(LidarNerfModel& model, const Scene& scene, const Pose& T_
     image_rays(scene, T, begin, end, o, d);
     const auto out = fast ? model.render_rays_fast(o, d, int(end - begin), *fast->grid, *fast->cfg)
                           : model.render_rays(o, d, int(end - begin));
-    if (fast) fast->evaluated += model.fast_evaluated(), fast->head_rows += model.fast_head_rows();
+    if (fast) {
+      fast->evaluated += model.fast_evaluated(), fast->head_rows += model.fast_head_rows();
+      const GridMarch::Rows& k = model.march_rows();
+      fast->march.coarse += k.coarse, fast->march.fine += k.fine;
+      fast->march.outside += k.outside, fast->march.dropped += k.dropped;
+    }
     for (size_t p = begin; p < end; ++p) {
       const float* v = &out[3 * (p - begin)];
       img.range[p] = float(double(v[0]) / scene.norm.scale);

@@ -296,6 +296,12 @@ Json eval_run(LoadedRun& run, const std::string& run_dir, FastRenderer* fast) {
                          {"grid_seconds", c.grid_seconds},
                          {"density_rows_per_ray", double(c.evaluated) / rays},
                          {"head_rows_per_ray", double(c.head_rows) / rays}};
+    if (fast->config().layout == "march")
+      j["renderer"]["density_rows_per_ray_by_kind"] =
+          Json{{"coarse", double(c.march.coarse) / rays},
+               {"fine", double(c.march.fine) / rays},
+               {"outside_grid", double(c.march.outside) / rays},
+               {"dropped_after_hit", double(c.march.dropped) / rays}};
   }
   write_json_file((fs::path(run_dir) / (fast ? "metrics-fast.json" : "metrics.json")).string(), j);
   return j;
