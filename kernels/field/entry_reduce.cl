@@ -5,14 +5,14 @@
 // vector; the gradient of an entry is Σ coef · vec over its pairs in pair order, which is the
 // serial kernels' order (point by point, corner by corner). These kernels sort each unit's
 // pairs by key with a stable LSD radix sort (4-bit digits; per pass a histogram per tile of
-// RADIX_TILE pairs, an exclusive scan per unit, a scatter that walks each tile in order) and then
-// sum each entry's run with one work-item per entry, in the sorted (= pair) order, with the
-// serial kernels' fma. No float atomics: the result is bit-identical to the serial kernels'.
+// RADIX_TILE pairs, an exclusive scan per unit, a scatter that walks each tile in order); then
+// the first pair of each entry's run sums the run in the sorted (= pair) order with the serial
+// kernels' fma, after entry_zero cleared the units' entries (unless accumulating). No float
+// atomics: the result is bit-identical to the serial kernels'.
 //
 // Layouts: keys/vals/coef[u·m + j] (m = n·P pairs per unit; vals start as j), vec[(u·m + j)/PV]
 // (FEATURES floats each), hist[(u·16 + digit)·tiles + tile]. ranges[r] = (unit, first entry,
-// entries, first work-item): the entries unit r.x owns, every one written by entry_reduce
-// (entries no pair names get zeros, or keep their value when accumulating).
+// entries, first work-item): the entries unit r.x owns (entry_zero's work-items).
 //
 // Defines: FEATURES (1, 2, 4, 8), RADIX_TILE (pairs per work-item of hist and scatter),
 // SCAN_WG (work-group size of the scan).
@@ -94,17 +94,6 @@ __kernel void entry_radix_scatter(const uint m, const uint tiles, const uint shi
   }
 }
 
-// First position in k[0, m) whose key is ≥ key (k sorted).
-inline uint er_lower_bound(__global const uint* k, uint m, uint key) {
-  uint lo = 0u, hi = m;
-  while (lo < hi) {
-    const uint mid = lo + (hi - lo) / 2u;
-    if (k[mid] < key) lo = mid + 1u;
-    else hi = mid;
-  }
-  return lo;
-}
-
 // The range of work-item w and the entry it owns.
 inline uint4 er_range(uint w, uint n_ranges, __global const uint4* ranges) {
   uint lo = 0u, hi = n_ranges;
@@ -116,24 +105,23 @@ inline uint4 er_range(uint w, uint n_ranges, __global const uint4* ranges) {
   return ranges[lo];
 }
 
-// One work-item per entry of every range: grad[entry] = (accumulate ? grad[entry] : 0) +
-// Σ coef · vec over the entry's pairs, in sorted order, each term one fma.
-__kernel void entry_reduce(const uint items, const uint n_ranges, __global const uint4* ranges,
-                           const uint m, const uint pv, __global const uint* keys,
+// One work-item per sorted pair position j of unit u; the first pair of each entry's run sums
+// the run in order: grad[entry] = (accumulate ? grad[entry] : 0) + Σ coef · vec, each term one
+// fma. Entries no pair names are left alone (entry_zero clears them first unless accumulating).
+__kernel void entry_reduce(const uint m, const uint pv, __global const uint* keys,
                            __global const uint* vals, __global const float* coef,
                            __global const float* vec, __global float* grad,
                            const uint grad_offset, const int accumulate) {
-  const uint w = get_global_id(0);
-  if (w >= items) return;
-  const uint4 r = er_range(w, n_ranges, ranges);
-  const uint key = r.y + (w - r.w);
-  const size_t base = (size_t)r.x * m;
+  const uint j = get_global_id(0), u = get_global_id(1);
+  if (j >= m) return;
+  const size_t base = (size_t)u * m;
   __global const uint* k = keys + base;
-  const uint a = er_lower_bound(k, m, key), b = er_lower_bound(k, m, key + 1u);
+  const uint key = k[j];
+  if (j > 0u && k[j - 1u] == key) return;
   __global float* out = grad + grad_offset + (size_t)key * FEATURES;
   featv acc = accumulate ? LOADF(out) : (featv)(0.0f);
-  for (uint j = a; j < b; ++j) {
-    const size_t pair = base + vals[base + j];
+  for (uint r = j; r < m && k[r] == key; ++r) {
+    const size_t pair = base + vals[base + r];
     acc = fma((featv)(coef[pair]), LOADF(vec + (pair / pv) * FEATURES), acc);
   }
   STOREF(acc, out);

@@ -86,28 +86,23 @@ void EntryReduction::reduce(int n, cl::Buffer& grad, size_t grad_offset, bool ac
                 std::to_string(points_) + " (reserve first)");
   const uint32_t m = uint32_t(size_t(n) * size_t(pairs_));
   const uint32_t tiles = (m + kTile - 1) / kTile;
+  if (!accumulate) zero(grad, grad_offset);
+  if (m == 0) return;
   int cur = 0;
-  if (m > 0) {
-    for (int p = 0; p < passes_; ++p) {
-      const uint32_t shift = uint32_t(p) * kRadixBits;
-      hist_k_.set_args(m, tiles, shift, keys_[cur], hist_);
-      cl::launch_rows(hist_k_, tiles, size_t(units_));
-      scan_k_.set_args(uint32_t(16 * tiles), hist_);
-      scan_k_.launch({kScanWg * size_t(units_)}, {kScanWg});
-      scatter_k_.set_args(m, tiles, shift, keys_[cur], vals_[cur], hist_, keys_[1 - cur],
-                          vals_[1 - cur]);
-      cl::launch_rows(scatter_k_, tiles, size_t(units_));
-      cur = 1 - cur;
-    }
+  for (int p = 0; p < passes_; ++p) {
+    const uint32_t shift = uint32_t(p) * kRadixBits;
+    hist_k_.set_args(m, tiles, shift, keys_[cur], hist_);
+    cl::launch_rows(hist_k_, tiles, size_t(units_));
+    scan_k_.set_args(uint32_t(16 * tiles), hist_);
+    scan_k_.launch({kScanWg * size_t(units_)}, {kScanWg});
+    scatter_k_.set_args(m, tiles, shift, keys_[cur], vals_[cur], hist_, keys_[1 - cur],
+                        vals_[1 - cur]);
+    cl::launch_rows(scatter_k_, tiles, size_t(units_));
+    cur = 1 - cur;
   }
-  // With no points the key buffers may be empty: any buffer serves, m = 0 reads none.
-  const cl::Buffer& keys = m > 0 ? keys_[cur] : ranges_;
-  const cl::Buffer& vals = m > 0 ? vals_[cur] : ranges_;
-  const cl::Buffer& coef = m > 0 ? coef_ : ranges_;
-  const cl::Buffer& vec = m > 0 ? vec_ : ranges_;
-  reduce_k_.set_args(uint32_t(entries_), n_ranges_, ranges_, m, uint32_t(per_vector_), keys, vals,
-                     coef, vec, grad, uint32_t(grad_offset), accumulate ? 1 : 0);
-  cl::launch_1d(reduce_k_, entries_);
+  reduce_k_.set_args(m, uint32_t(per_vector_), keys_[cur], vals_[cur], coef_, vec_, grad,
+                     uint32_t(grad_offset), accumulate ? 1 : 0);
+  cl::launch_rows(reduce_k_, m, size_t(units_));
 }
 
 void EntryReduction::zero(cl::Buffer& grad, size_t grad_offset) {

@@ -4,12 +4,14 @@
 // entry, an index into the module's gradient slice in entries of F floats), vals() (j),
 // coef() (a scalar) and, once per PV consecutive pairs, vec() (F floats). reduce() then sorts
 // each unit's pairs by entry (stable radix sort, ⌈bits/4⌉ passes of histogram, scan and
-// scatter) and writes each entry the fma-sum of coef · vec over its pairs in pair order: the
-// serial kernels' summation order, so the result is bit-identical to them, with one work-item
-// per tile of pairs or per entry instead of one per unit.
+// scatter) and writes each entry the fma-sum of coef · vec over its pairs in pair order (the
+// first pair of each entry's run sums the run): the serial kernels' summation order, so the
+// result is bit-identical to them, with one work-item per tile of pairs or per pair instead of
+// one per unit.
 //
-// The ranges say which entries each unit owns: reduce() writes every one of them (zero, or the
-// old value when accumulating, where no pair names it), and only them.
+// The ranges say which entries each unit owns, and every key a unit's pair kernel writes must
+// be one of them: reduce() then writes every one of them (zero, or the old value when
+// accumulating, where no pair names it) and nothing else.
 #pragma once
 #include <cstdint>
 #include <vector>
