@@ -1,6 +1,7 @@
 // Multi-resolution hash-grid encoding (method.md §0, instant-ngp): forward, race-free
-// level-partitioned parameter backward, an atomic (non-deterministic) parameter backward kept for
-// comparison, and the input-position backward d_x that carries gradients into poses.
+// level-partitioned parameter backward, an atomic (non-deterministic) parameter backward, the
+// pairs of the deterministic parallel backward (field/entry_reduce.cl), and the input-position
+// backward d_x that carries gradients into poses.
 //
 // Defines: LEVELS (L), FEATURES (F, 1..8), HALF_TABLE (0|1), CHUNK. Level table `meta` holds
 // per level (res, entry offset, entry count, hashed flag); `scale` the float grid scale. Entry e of level l stores its F
@@ -132,6 +133,37 @@ __kernel void field_hashgrid_bwd_atomic(const int n, __global const float* x,
     for (int f = 0; f < FEATURES; ++f)
       atomic_add_float(t + (size_t)e * FEATURES + f, wc * d_enc[(size_t)i * LF + l * FEATURES + f]);
   }
+}
+
+// The pairs of the deterministic parallel backward (field/entry_reduce.cl, unit = level, 8
+// pairs per point, one vector per point): one work-item per (point, level) writes, for corner
+// c of point i, pair j = 8i + c: key = the entry (from the module slice's start), coef = the
+// corner's trilinear weight, and vec[l·n + i] = w_l · d_enc[i, l] (zero for a level of weight
+// 0, whose serial gradient is zero). The same expressions as field_hashgrid_bwd, so the sums
+// entry_reduce forms in pair order equal it bit for bit.
+__kernel void field_hashgrid_bwd_pairs(const int n, __global const float* x,
+                                       __global const float* scale, __global const uint4* meta,
+                                       __global const float* level_weight,
+                                       __global const float* d_enc, __global uint* keys,
+                                       __global uint* vals, __global float* coef,
+                                       __global float* vec) {
+  const int i = get_global_id(0);
+  const int l = get_global_id(1);
+  if (i >= n) return;
+  const float w = level_weight[l];
+  const uint4 m = meta[l];
+  const featv de = w == 0.0f ? (featv)(0.0f) : w * LOADF(d_enc + (size_t)i * LF + l * FEATURES);
+  STOREF(de, vec + ((size_t)l * n + i) * FEATURES);
+  uint3 g;
+  const float3 fr = hg_locate(x, i, scale[l], &g);
+  const size_t base = ((size_t)l * n + i) * 8;
+#define PAIR_CORNER(c, cx, cy, cz)                            \
+  keys[base + c] = m.y + CORNER_E(cx, cy, cz, g, m);          \
+  vals[base + c] = (uint)i * 8u + c;                          \
+  coef[base + c] = CORNER_W(cx, cy, cz, fr);
+  PAIR_CORNER(0, 0, 0, 0) PAIR_CORNER(1, 1, 0, 0) PAIR_CORNER(2, 0, 1, 0) PAIR_CORNER(3, 1, 1, 0)
+  PAIR_CORNER(4, 0, 0, 1) PAIR_CORNER(5, 1, 0, 1) PAIR_CORNER(6, 0, 1, 1) PAIR_CORNER(7, 1, 1, 1)
+#undef PAIR_CORNER
 }
 
 // Input-position gradient, level-major like the forward: one work-item per (point, level)

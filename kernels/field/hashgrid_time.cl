@@ -2,7 +2,8 @@
 // xz, yz, each a stack of SLICES 2D multi-resolution hash grids (one per time slice); a time t
 // blends its two neighbouring slices linearly, and the three planes' blended features are
 // multiplied (Hadamard) per level. Forward, and a race-free level-partitioned parameter
-// backward that also gives the input-position gradient d_x.
+// backward that also gives the input-position gradient d_x; its parallel forms (per point and
+// level: atomic adds, or the pairs of the deterministic backward of field/entry_reduce.cl).
 //
 // Defines: LEVELS (L), FEATURES (F, 1..8), SLICES (T ≥ 1), CHUNK (points per work-item of the
 // forward; 1 = one work-item per point); the backward runs L work-items.
@@ -34,7 +35,13 @@
 #define CHUNK 64
 #endif
 #define HALF_TABLE 0
+#include "common/atomic_add.clh"
 #include "field/hashgrid.clh"
+
+// Contributions per point of one level in the parallel backwards: 3 planes × 4 corners × the
+// slices written (2, or 1 with one slice); pair j = (p·4 + c)·TH_SLOTS + slot.
+#define TH_SLOTS (SLICES > 1 ? 2 : 1)
+#define TH_PAIRS (12 * TH_SLOTS)
 
 // The two spatial axes of plane p: xy, xz, yz.
 inline int th_axis_a(int p) { return p == 2 ? 1 : 0; }
@@ -209,6 +216,90 @@ __kernel void field_hashgrid_time_bwd(const int n, __global const float* params,
                        hg_sum(gq[1] * db[1] + gq[2] * db[2])),
               (size_t)l * n + i, part);
   }
+}
+
+// The parallel backwards, one work-item per (point i, level l), with field_hashgrid_time_bwd's
+// arithmetic for one point (the same expressions, so the pair sums equal it bit for bit) and
+// its d_x part. atomic = 0: the pairs of the deterministic parallel backward
+// (field/entry_reduce.cl; unit = level, TH_PAIRS pairs per point, one vector per plane):
+// keys[base + j] = the entry, coef = time weight · bilinear weight, vec = the plane's
+// d_enc ⊙ (product of the other two planes). atomic = 1: adds the same terms into grad with
+// compare-and-swap float adds (common/atomic_add.clh; order varies), after the caller zeroed
+// the gradient unless accumulating.
+__kernel void field_hashgrid_time_bwd_points(
+    const int n, __global const float* params, const uint param_offset, __global const float* x,
+    __global const float* t, __global const float* scale, __global const uint4* meta,
+    __global const uint2* pmeta, __global const float* d_enc, const int stride, const int col,
+    const int atomic, __global uint* keys, __global uint* vals, __global float* coef,
+    __global float* vec, __global float* grad, const uint grad_offset, const int with_dx,
+    __global float* part) {
+  const int i = get_global_id(0), l = get_global_id(1);
+  if (i >= n) return;
+  const float sc = scale[l];
+  __global const float* tbl = params + param_offset;
+  const featv de = LOADF(d_enc + (size_t)i * stride + col + l * FEATURES);
+  int s1;
+  float w1;
+  const int s0 = th_slices(t, i, &s1, &w1);
+  const float w0 = 1.0f - w1;
+  uint e0[3][4], e1[3][4];
+  float w[3][4];
+  featv v[3], da[3], db[3];
+  for (int p = 0; p < 3; ++p) {
+    const uint4 m = meta[p * LEVELS + l];
+    const uint2 pm = pmeta[p];
+    uint2 g;
+    const float2 fr = th_locate(x, i, p, sc, &g);
+    const uint o0 = pm.x + (uint)s0 * pm.y + m.y, o1 = pm.x + (uint)s1 * pm.y + m.y;
+    featv cv[4];  // time-blended corners
+    for (int c = 0; c < 4; ++c) {
+      const uint cx = c & 1, cy = c >> 1;
+      const uint e = hg_index(g.x + cx, g.y + cy, 0u, m);
+      w[p][c] = (cx ? fr.x : 1.0f - fr.x) * (cy ? fr.y : 1.0f - fr.y);
+      e0[p][c] = o0 + e;
+      e1[p][c] = o1 + e;
+      cv[c] = TH_BLEND(tbl + (size_t)e0[p][c] * FEATURES, tbl + (size_t)e1[p][c] * FEATURES,
+                       w0, w1, 0);
+    }
+    v[p] = w[p][0] * cv[0] + w[p][1] * cv[1] + w[p][2] * cv[2] + w[p][3] * cv[3];
+    da[p] = (0.5f * sc) * fma((featv)(fr.y), (cv[3] - cv[2]) - (cv[1] - cv[0]), cv[1] - cv[0]);
+    db[p] = (0.5f * sc) * fma((featv)(fr.x), (cv[3] - cv[1]) - (cv[2] - cv[0]), cv[2] - cv[0]);
+  }
+  const featv gq[3] = {de * v[1] * v[2], de * v[0] * v[2], de * v[0] * v[1]};
+  if (atomic) {
+    __global float* gr = grad + grad_offset;
+    for (int p = 0; p < 3; ++p) {
+      float gf[FEATURES];
+      STOREF(gq[p], gf);
+      for (int c = 0; c < 4; ++c)
+        for (int f = 0; f < FEATURES; ++f) {
+          atomic_add_float(gr + (size_t)e0[p][c] * FEATURES + f, w0 * w[p][c] * gf[f]);
+#if SLICES > 1
+          atomic_add_float(gr + (size_t)e1[p][c] * FEATURES + f, w1 * w[p][c] * gf[f]);
+#endif
+        }
+    }
+  } else {
+    const size_t base = ((size_t)l * n + i) * TH_PAIRS;
+    for (int p = 0; p < 3; ++p) {
+      STOREF(gq[p], vec + (((size_t)l * n + i) * 3 + p) * FEATURES);
+      for (int c = 0; c < 4; ++c) {
+        const int j = (p * 4 + c) * TH_SLOTS;
+        keys[base + j] = e0[p][c];
+        vals[base + j] = (uint)i * TH_PAIRS + j;
+        coef[base + j] = w0 * w[p][c];
+#if SLICES > 1
+        keys[base + j + 1] = e1[p][c];
+        vals[base + j + 1] = (uint)i * TH_PAIRS + j + 1;
+        coef[base + j + 1] = w1 * w[p][c];
+#endif
+      }
+    }
+  }
+  if (with_dx)  // xy, xz, yz: x from xy and xz, y from xy and yz, z from xz and yz
+    vstore3((float3)(hg_sum(gq[0] * da[0] + gq[1] * da[1]), hg_sum(gq[0] * db[0] + gq[2] * da[2]),
+                     hg_sum(gq[1] * db[1] + gq[2] * db[2])),
+            (size_t)l * n + i, part);
 }
 
 // d_x[i] = Σ_l part[l][i], levels in order (deterministic).

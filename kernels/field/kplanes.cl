@@ -1,8 +1,9 @@
 // K-Planes-style 4D plane encoding (method.md §2, LiDAR4D's planes): forward, and a race-free
 // (scale, group)-partitioned parameter backward that also gives the input-position gradient d_x
 // (LiDAR4D samples the dynamic planes at x + scene flow, so the flow network learns through d_x).
-// The backward runs S·groups work-items: enough for a CPU, too few for a GPU (as the hash grid's
-// deterministic backward).
+// The serial backward runs S·groups work-items: enough for a CPU, too few for a GPU (as the hash
+// grid's); its parallel forms run per (point, scale-group): atomic adds, or the pairs of the
+// deterministic backward of field/entry_reduce.cl.
 //
 // Defines: SCALES (S), FEATURES (F, 1..8), CHUNK (points per work-item of the forward; 1 = one
 // work-item per point, the GPU schedule). Planes per scale, in order: static xy, xz, yz,
@@ -24,6 +25,7 @@
 #define CHUNK 64
 #endif
 #define HALF_TABLE 0
+#include "common/atomic_add.clh"
 #include "field/hashgrid.clh"
 
 // The two axes of plane p (0, 1, 2 = x, y, z; 3 = t).
@@ -160,6 +162,73 @@ __kernel void field_kplanes_bwd(const int n, __global const float* params, const
         dp = (float3)(d0, d1, d2);
       vstore3(dp, (size_t)(gi * SCALES + s) * n + i, part);
     }
+  }
+}
+
+// The parallel backwards, one work-item per (point i, scale-group row r = s + S·gi), with
+// field_kplanes_bwd's arithmetic for one point (the same expressions, so the pair sums equal it
+// bit for bit) and its d_x part. atomic = 0: the pairs of the deterministic parallel backward
+// (field/entry_reduce.cl; unit = row, 12 pairs per point: plane k's corners 00, 10, 01, 11 as
+// kp_scatter visits them, j = 4k + corner; one vector per plane): keys = the entry, coef = the
+// bilinear weight, vec = d_enc ⊙ (product of the other two planes). atomic = 1: adds the same
+// terms into grad with compare-and-swap float adds (common/atomic_add.clh; order varies), after
+// the caller zeroed the planes unless accumulating.
+__kernel void field_kplanes_bwd_points(
+    const int n, __global const float* params, const uint param_offset, __global const float* x,
+    __global const float* t, __global const uint4* meta, const int group_first,
+    __global const float* d_enc, const int stride, const int col, const int atomic,
+    __global uint* keys, __global uint* vals, __global float* coef, __global float* vec,
+    __global float* grad, const uint grad_offset, const int with_dx, __global float* part) {
+  const int i = get_global_id(0), r = get_global_id(1);
+  if (i >= n) return;
+  const int s = r % SCALES, gi = r / SCALES;
+  const int p0 = 3 * (group_first + gi);
+  __global const float* tbl = params + param_offset;
+  const featv de = LOADF(d_enc + (size_t)i * stride + col + (gi * SCALES + s) * FEATURES);
+  featv v[3], da[3], db[3];
+  float pa[3], pb[3], fa[3], fb[3];
+  for (int k = 0; k < 3; ++k) {
+    const uint4 m = meta[s * 6 + p0 + k];
+    pa[k] = kp_pos(x, t, i, kp_axis_a(p0 + k), m.y, &fa[k]);
+    pb[k] = kp_pos(x, t, i, kp_axis_b(p0 + k), m.z, &fb[k]);
+    v[k] = kp_sample(tbl, m, pa[k], pb[k], &da[k], &db[k]);
+  }
+  const featv g0 = de * v[1] * v[2], g1 = de * v[0] * v[2], g2 = de * v[0] * v[1];
+  const featv gk[3] = {g0, g1, g2};
+  const size_t row = (size_t)r * n + i;
+  for (int k = 0; k < 3; ++k) {
+    const uint4 m = meta[s * 6 + p0 + k];
+    float cfa, cfb;
+    const uint ia = kp_cell(pa[k], m.y, &cfa), ib = kp_cell(pb[k], m.z, &cfb);
+    const uint e = m.x + ia + ib * m.y;
+    const uint ce[4] = {e, e + 1u, e + m.y, e + m.y + 1u};
+    const float cw[4] = {(1.0f - cfa) * (1.0f - cfb), cfa * (1.0f - cfb), (1.0f - cfa) * cfb,
+                         cfa * cfb};
+    if (atomic) {
+      float gf[FEATURES];
+      STOREF(gk[k], gf);
+      for (int c = 0; c < 4; ++c)
+        for (int f = 0; f < FEATURES; ++f)
+          atomic_add_float(grad + grad_offset + (size_t)ce[c] * FEATURES + f, cw[c] * gf[f]);
+    } else {
+      STOREF(gk[k], vec + (row * 3 + k) * FEATURES);
+      for (int c = 0; c < 4; ++c) {
+        keys[row * 12 + k * 4 + c] = ce[c];
+        vals[row * 12 + k * 4 + c] = (uint)i * 12u + k * 4 + c;
+        coef[row * 12 + k * 4 + c] = cw[c];
+      }
+    }
+  }
+  if (with_dx) {
+    const float d0 = fa[0] * hg_sum(g0 * da[0]), d1 = fa[1] * hg_sum(g1 * da[1]);
+    const float d2 = fa[2] * hg_sum(g2 * da[2]);
+    float3 dp;
+    if (p0 == 0)  // xy, xz, yz: x from xy and xz, y from xy and yz, z from xz and yz
+      dp = (float3)(d0 + d1, fb[0] * hg_sum(g0 * db[0]) + d2,
+                    fb[1] * hg_sum(g1 * db[1]) + fb[2] * hg_sum(g2 * db[2]));
+    else  // xt, yt, zt: time is not differentiated
+      dp = (float3)(d0, d1, d2);
+    vstore3(dp, (size_t)(gi * SCALES + s) * n + i, part);
   }
 }
 

@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "apps/command.hpp"
+#include "apps/device_profile_option.hpp"
 #include "cl/runtime.hpp"
 #include "core/config.hpp"
 #include "core/log.hpp"
@@ -81,6 +82,7 @@ const Registrar reg("bench", "Run a table of the paper (every row on every seque
           ->delimiter(',');
   sub.add_option("--out", o->out_dir, "Output folder");
   sub.add_option("--device", o->device, "OpenCL device index or name (default $SGNLF_DEVICE)");
+  add_device_profile_option(sub, o->device_profile);
   sub.add_option("--rows", o->rows, "Only these rows (comma-separated methods; see --list)")
       ->delimiter(',');
   sub.add_option("--sequences", o->sequences, "Only these sequences of the scale (comma-separated)")
@@ -158,16 +160,18 @@ const Registrar reg("bench", "Run a table of the paper (every row on every seque
                  seed_flag + (cell_opt->count() ? " --cell " + std::to_string(*cell) : "") +
                  " --out " + o->out_dir +
                  (o->device.empty() ? "" : " --device " + o->device) +
+                 (o->device_profile.empty() ? "" : " --device-profile " + o->device_profile) +
                  (o->roofline ? "" : " --no-roofline") + join_list(" --rows ", o->rows) +
                  join_list(" --sequences ", o->sequences);
     o->validate();
     if (!harness::hooks_wired())
       log::warn("bench: built without the pipeline/datasets modules: every row is 'not implemented'");
     const auto dev = cl::select_device(o->device);
-    Json context = harness::context_block(&dev);
+    const cl::DeviceProfile profile = cl::resolve_profile(o->device_profile, dev);
+    Json context = harness::context_block(&dev, &profile);
     if (o->roofline) {
       log::info("bench: measuring the device roofline on ", dev.describe());
-      cl::Runtime rt(dev);
+      cl::Runtime rt(dev, o->device_profile);
       context["roofline"] = harness::measure_roofline(rt);
     } else {
       context["roofline"] = nullptr;

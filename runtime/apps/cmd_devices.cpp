@@ -1,10 +1,11 @@
-// `sgnlf devices [--json] [--device SPEC] [--smoke]`: lists every OpenCL platform and device;
-// --smoke builds and runs a small kernel on the selected device against a host reference.
+// `sgnlf devices [--json] [--device SPEC] [--device-profile cpu|gpu|auto|FILE] [--smoke]`: lists
+// every OpenCL platform and device and the selected one's device profile; --smoke builds and runs a small kernel on the selected device against a host reference.
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 
 #include "apps/command.hpp"
+#include "apps/device_profile_option.hpp"
 #include "cl/runtime.hpp"
 #include "core/config.hpp"
 #include "core/rng.hpp"
@@ -34,8 +35,8 @@ Json device_json(const cl::DeviceInfo& d) {
               {"fp64", d.fp64}};
 }
 
-int smoke(const std::string& spec) {
-  cl::Runtime rt(spec);
+int smoke(const std::string& spec, const std::string& profile) {
+  cl::Runtime rt(spec, profile);
   const int n = 1 << 16;
   std::vector<float> x(n), y(n);
   Rng rng(7);
@@ -66,15 +67,19 @@ const Registrar reg("devices", "List OpenCL platforms and devices", [](CLI::App&
   sub.add_flag("--json", *json, "Print JSON");
   sub.add_flag("--smoke", *run_smoke, "Run a small kernel on the selected device");
   sub.add_option("--device", *spec, "Device index or name substring (default: $SGNLF_DEVICE)");
+  auto profile = std::make_shared<std::string>();
+  add_device_profile_option(sub, *profile);
   return std::function<int()>([=] {
     const auto devices = cl::list_devices();
     // Resolve the selection so that a bad --device / SGNLF_DEVICE fails loudly here.
     const auto selected = cl::select_device(*spec);
+    const cl::DeviceProfile prof = cl::resolve_profile(*profile, selected);
     if (*json) {
       Json j = Json::array();
       for (const auto& d : devices) {
         auto e = device_json(d);
         e["selected"] = d.index == selected.index;
+        if (d.index == selected.index) e["device_profile"] = prof.to_json();
         j.push_back(e);
       }
       std::cout << j.dump(2) << "\n";
@@ -89,8 +94,9 @@ const Registrar reg("devices", "List OpenCL platforms and devices", [](CLI::App&
                     d.local_mem_bytes / 1024.0, d.local_mem_is_global ? " (emulated)" : "",
                     d.max_work_group_size, d.fp16 ? "yes" : "no", d.fp64 ? "yes" : "no");
       }
+      std::printf("device profile of the selected device: %s\n", prof.to_json().dump().c_str());
     }
-    return *run_smoke ? smoke(std::to_string(selected.index)) : 0;
+    return *run_smoke ? smoke(std::to_string(selected.index), *profile) : 0;
   });
 });
 

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "apps/command.hpp"
+#include "apps/device_profile_option.hpp"
 #include "apps/fast_render_options.hpp"
 #include "apps/sensor_rate_options.hpp"
 #include "core/config.hpp"
@@ -15,7 +16,7 @@ namespace sgnlf::app {
 namespace {
 
 struct EvalArgs {
-  std::string run, data, device;
+  std::string run, data, device, device_profile;
   pipeline::RenderSampling sampling;
   FastRenderOptions fast;
   SensorRateOptions sensor_rate;
@@ -34,6 +35,7 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
   sub.add_option("--run", a->run, "Run folder")->required();
   sub.add_option("--data", a->data, "Dataset folder (default: the one the run trained on)");
   sub.add_option("--device", a->device, "OpenCL device index or name substring");
+  add_device_profile_option(sub, a->device_profile);
   sub.add_option("--samples", a->sampling.n_samples,
                  "Uniform samples per ray when rendering (default: the config's render.eval_samples, else as trained)");
   sub.add_option("--importance", a->sampling.n_importance,
@@ -55,7 +57,7 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
               " (the tables'); fast writes <run>/metrics-fast.json, to compare with metrics.json");
   return std::function<int()>([a] {
     const render::FastRenderConfig fcfg = a->fast.config();
-    cl::Runtime rt(a->device);
+    cl::Runtime rt(a->device, a->device_profile);
     LoadOptions data_options = pipeline::read_manifest(a->run).data_options;
     a->sensor_rate.apply(data_options);
     data_options.validate();

@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "apps/command.hpp"
+#include "apps/device_profile_option.hpp"
 #include "apps/sensor_rate_options.hpp"
 #include "core/config.hpp"
 #include "core/log.hpp"
@@ -24,6 +25,7 @@ struct ReconstructArgs {
   workflow::ReconstructRequest req;
   SensorRateOptions sensor_rate;
   bool verbose = false;
+  std::string device_profile;
   bool json = false;
 };
 
@@ -89,6 +91,7 @@ const Registrar reg("reconstruct",
   sub.add_option("--seed", r.seed, "Seed")->capture_default_str();
   sub.add_option("--config", r.config, "JSON file of config keys overriding the preset");
   sub.add_option("--device", r.device, "OpenCL device index or name substring");
+  add_device_profile_option(sub, a->device_profile);
   sub.add_option("--start", r.load.start, "First scan (index in name order)");
   sub.add_option("--frames", r.load.frames, "Scans to use (default: all of a plain folder)");
   sub.add_option("--stride", r.load.stride, "Take every k-th scan");
@@ -103,7 +106,7 @@ const Registrar reg("reconstruct",
     // One progress line: the stages' info lines only on request (or SGNLF_LOG).
     if (!a->verbose && std::getenv("SGNLF_LOG") == nullptr && log::level() < log::Level::warn)
       log::set_level(log::Level::warn);
-    cl::Runtime rt(a->req.device);
+    cl::Runtime rt(a->req.device, a->device_profile);
     const Json j = workflow::reconstruct(rt, a->req);
     if (a->json)
       std::cout << j.dump(2) << "\n";

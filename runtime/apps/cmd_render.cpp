@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "apps/command.hpp"
+#include "apps/device_profile_option.hpp"
 #include "apps/fast_render_options.hpp"
 #include "core/config.hpp"
 #include "io/trajectory_io.hpp"
@@ -17,7 +18,7 @@ namespace sgnlf::app {
 namespace {
 
 struct RenderArgs {
-  std::string run, out, data, device, poses, sensor;
+  std::string run, out, data, device, poses, sensor, device_profile;
   std::vector<int> frames;
   FastRenderOptions fast;
   pipeline::RenderSampling sampling;
@@ -29,6 +30,7 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
   sub.add_option("--out", a->out, "Output folder (default <run>/renders)");
   sub.add_option("--data", a->data, "Dataset folder (default: the one the run trained on)");
   sub.add_option("--device", a->device, "OpenCL device index or name substring");
+  add_device_profile_option(sub, a->device_profile);
   auto* poses = sub.add_option("--poses", a->poses,
                  "Render these views instead of the test frames: KITTI trajectory file, one "
                  "T_world_lidar per line (12 numbers, the dataset's world frame, metres)");
@@ -64,7 +66,7 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
           a->sensor == "kitti360" || a->sensor == "nuscenes"
               ? sensor_preset(a->sensor)
               : sensor_from_json(load_config_file(a->sensor), a->sensor));
-    cl::Runtime rt(a->device);
+    cl::Runtime rt(a->device, a->device_profile);
     auto run = pipeline::load_run(rt, a->run, a->data, a->sampling);
     const std::string out =
         a->out.empty() ? (std::filesystem::path(a->run) / "renders").string() : a->out;

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "apps/command.hpp"
+#include "apps/device_profile_option.hpp"
 #include "cl/runtime.hpp"
 #include "core/config.hpp"
 #include "core/progress.hpp"
@@ -17,6 +18,7 @@ namespace {
 
 struct Options {
   std::string shape = "sphere", out, device, activation = "tanh", form = "ky_fan", config;
+  std::string device_profile;
   int k = 16, steps = -1, batch = -1;
   size_t eval_points = 400000;
   uint64_t seed = 1;
@@ -39,7 +41,7 @@ int run(const Options& o) {
   if (o.radius > 0) spec.radius = o.radius;
   std::filesystem::create_directories(o.out);
 
-  cl::Runtime rt(o.device);
+  cl::Runtime rt(o.device, o.device_profile);
   SpectralTrainer trainer(rt, cfg);
   Progress progress("spectral " + o.shape, long(cfg.steps));
   const auto r = run_shape_experiment(trainer, spec, o.eval_points, [&](int step, double loss) {
@@ -48,6 +50,7 @@ int run(const Options& o) {
   progress.finish();
   Json j = r.to_json();
   j["device"] = rt.device().describe();
+  j["device_profile"] = rt.device_profile().to_json();
   write_json_file(o.out + "/eigenvalues.json", j);
   char head[512];
   std::snprintf(head, sizeof head,
@@ -83,6 +86,7 @@ const Registrar reg("spectral", "Train the spectral embedding on an analytic sur
   sub.add_option("--seed", o->seed, "Seed");
   sub.add_option("--config", o->config, "JSON SpectralTrainConfig");
   sub.add_option("--device", o->device, "Device index or name substring");
+  add_device_profile_option(sub, o->device_profile);
   return std::function<int()>([o] { return run(*o); });
 });
 

@@ -1,5 +1,5 @@
 // `sgnlf train --method M (sgnlf train --help lists them) [--pose-init gt|noisy|identity|odometry] --preset <name> --data <dataset> --out <run dir> [--seed N]
-// [--config overrides.json] [--device SPEC] [--no-resume] [--stop-at STEP] [--sequence S]
+// [--config overrides.json] [--device SPEC] [--device-profile cpu|gpu|auto|FILE] [--no-resume] [--stop-at STEP] [--sequence S]
 // [--start ID] [--frames N] [--test-frames P,...] [--sensor NAME|FILE] [--frequency standard|low|HZ]`:
 // trains a run folder (resumes an interrupted
 // one by default) and writes run.json (with the dataset options, which eval and render reuse),
@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "apps/command.hpp"
+#include "apps/device_profile_option.hpp"
 #include "apps/sensor_rate_options.hpp"
 #include "core/config.hpp"
 #include "harness/context.hpp"
@@ -27,6 +28,7 @@ std::string trainable_methods() {
 
 struct TrainArgs {
   std::string method = "lidar-nerf", preset = "quick", data, out, config, device, pose_init;
+  std::string device_profile;
   uint64_t seed = 1;
   bool no_resume = false;
   long stop_at = -1;
@@ -47,6 +49,7 @@ const Registrar reg("train", "Train a method on a dataset into a run folder", []
   sub.add_option("--seed", a->seed, "Seed");
   sub.add_option("--config", a->config, "JSON file of config keys overriding the preset");
   sub.add_option("--device", a->device, "OpenCL device index or name substring");
+  add_device_profile_option(sub, a->device_profile);
   sub.add_flag("--no-resume", a->no_resume, "Start from scratch even if a checkpoint exists");
   sub.add_option("--stop-at", a->stop_at, "Stop after this step (checkpointed; resumable)");
   sub.add_option("--sequence", a->load.sequence, "Sequence / drive / scene of a real layout");
@@ -79,8 +82,8 @@ const Registrar reg("train", "Train a method on a dataset into a run folder", []
     req.run_dir = a->out;
     req.resume = !a->no_resume;
     req.stop_at = a->stop_at;
-    cl::Runtime rt(a->device);
-    req.context = harness::context_block(&rt.device());
+    cl::Runtime rt(a->device, a->device_profile);
+    req.context = harness::context_block(&rt.device(), &rt.device_profile());
     const Json s = pipeline::train_run(rt, req);
     std::cout << s.dump(2) << "\n";
     return 0;

@@ -117,6 +117,7 @@ class Kernel {
   Kernel(Runtime& rt, cl_program program, const std::string& name);
   const std::string& name() const { return name_; }
   cl_kernel get() const { return k_.get(); }
+  Runtime* runtime() const { return rt_; }
 
   template <typename... A>
   Kernel& set_args(const A&... args) {

@@ -13,8 +13,19 @@
 
 namespace sgnlf::cl {
 
-Runtime::Runtime(const std::string& spec) : device_(select_device(spec)) { open(); }
-Runtime::Runtime(const DeviceInfo& device) : device_(device) { open(); }
+Runtime::Runtime(const std::string& spec, const std::string& profile_spec)
+    : device_(select_device(spec)), device_profile_(resolve_profile(profile_spec, device_)) {
+  open();
+}
+Runtime::Runtime(const DeviceInfo& device, const std::string& profile_spec)
+    : device_(device), device_profile_(resolve_profile(profile_spec, device_)) {
+  open();
+}
+
+void Runtime::set_device_profile(const DeviceProfile& p) {
+  p.validate("Runtime::set_device_profile");
+  device_profile_ = p;
+}
 
 void Runtime::open() {
   cl_int rc = CL_SUCCESS;
@@ -27,7 +38,8 @@ void Runtime::open() {
   cl_command_queue q = clCreateCommandQueue(ctx, dev, CL_QUEUE_PROFILING_ENABLE, &rc);
   check(rc, "clCreateCommandQueue", device_.describe());
   queue_ = QueueHandle(q);
-  log::debug("opened OpenCL device ", device_.describe());
+  log::debug("opened OpenCL device ", device_.describe(), " with device profile '",
+             device_profile_.name, "'");
   const char* prof = std::getenv("SGNLF_PROFILE");
   profiling_ = prof != nullptr && std::string(prof) != "0" && std::string(prof) != "";
 }

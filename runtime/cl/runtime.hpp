@@ -4,6 +4,9 @@
 // build options). Programs live as long as the Runtime; lookups are serialised by a mutex, so
 // one Runtime may be shared by threads, but its queue is in-order and not meant to be fed from
 // several threads at once. Specialisation goes through -D defines in the options string.
+//
+// Device profile (cl/device_profile.hpp): chosen when the Runtime opens (`profile_spec`, "" =
+// SGNLF_DEVICE_PROFILE or automatic by device type); launchers read it when they are made.
 #pragma once
 #include <map>
 #include <memory>
@@ -11,21 +14,27 @@
 #include <string>
 
 #include "cl/device.hpp"
+#include "cl/device_profile.hpp"
 #include "cl/memory.hpp"
 
 namespace sgnlf::cl {
 
 class Runtime {
  public:
-  // Opens the device chosen by `spec` (see select_device()).
-  explicit Runtime(const std::string& spec = "");
-  explicit Runtime(const DeviceInfo& device);
+  // Opens the device chosen by `spec` (see select_device()) with the profile chosen by
+  // `profile_spec` (see resolve_profile()).
+  explicit Runtime(const std::string& spec = "", const std::string& profile_spec = "");
+  explicit Runtime(const DeviceInfo& device, const std::string& profile_spec = "");
   Runtime(const Runtime&) = delete;
   Runtime& operator=(const Runtime&) = delete;
 
   const DeviceInfo& device() const { return device_; }
   cl_context context() const { return context_.get(); }
   cl_command_queue queue() const { return queue_.get(); }
+  const DeviceProfile& device_profile() const { return device_profile_; }
+  // Replaces the profile (tests and benchmarks comparing variants); launchers made before keep
+  // what they read from the old one.
+  void set_device_profile(const DeviceProfile& p);
 
   // Builds (or returns the cached) program for a kernel file under kernels/.
   cl_program program(const std::string& file, const std::string& options = "");
@@ -58,6 +67,7 @@ class Runtime {
  private:
   void open();
   DeviceInfo device_;
+  DeviceProfile device_profile_;
   ContextHandle context_;
   QueueHandle queue_;
   std::mutex mutex_;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "cl/launch.hpp"
 #include "core/config.hpp"
 #include "core/error.hpp"
 
@@ -38,7 +39,7 @@ void Adam::update(cl::Buffer& params, const cl::Buffer& grad, size_t offset, siz
   const float c2 = float(1.0 / std::sqrt(1.0 - std::pow(double(cfg_.beta2), t)));
   kernel_.set_args(uint32_t(offset), uint32_t(count), lr, cfg_.beta1, cfg_.beta2, cfg_.eps, c1, c2,
                    cfg_.weight_decay, params, grad, m_, v_);
-  kernel_.launch({cl::round_up(count, 64)}, {64});
+  cl::launch_1d(kernel_, count);
 }
 
 }  // namespace sgnlf::field

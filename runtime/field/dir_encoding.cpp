@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "cl/launch.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf::field {
@@ -36,7 +37,7 @@ void DirEncoding::forward(const cl::Buffer& dir, int n_rays, cl::Buffer& enc) {
   check_bytes(dir, size_t(n_rays) * 3, "dir");
   check_bytes(enc, size_t(n_rays) * enc_dim(), "enc");
   fwd_.set_args(n_rays, dir, enc);
-  fwd_.launch({cl::round_up(size_t(n_rays), 64)}, {64});
+  cl::launch_1d(fwd_, size_t(n_rays));
 }
 
 void DirEncoding::backward(const cl::Buffer& dir, int n_rays, const cl::Buffer& d_enc,
@@ -46,7 +47,7 @@ void DirEncoding::backward(const cl::Buffer& dir, int n_rays, const cl::Buffer& 
   check_bytes(d_enc, size_t(n_rays) * enc_dim(), "d_enc");
   check_bytes(d_dir, size_t(n_rays) * 3, "d_dir");
   bwd_.set_args(n_rays, dir, d_enc, d_dir);
-  bwd_.launch({cl::round_up(size_t(n_rays), 64)}, {64});
+  cl::launch_1d(bwd_, size_t(n_rays));
 }
 
 void DirEncoding::head_input_forward(const cl::Buffer& dens, const cl::Buffer& enc, int n_rays,
@@ -57,7 +58,7 @@ void DirEncoding::head_input_forward(const cl::Buffer& dens, const cl::Buffer& e
   check_bytes(enc, size_t(n_rays) * enc_dim(), "enc");
   check_bytes(head_in, n * head_width(), "head_in");
   head_fwd_.set_args(int(n), samples, n_geo_, geo_start_, dens_stride_, dens, enc, head_in);
-  head_fwd_.launch({cl::round_up(n, 64)}, {64});
+  cl::launch_1d(head_fwd_, n);
 }
 
 void DirEncoding::head_input_backward(const cl::Buffer& d_head_in, int n_rays, int samples,
@@ -68,7 +69,7 @@ void DirEncoding::head_input_backward(const cl::Buffer& d_head_in, int n_rays, i
   check_bytes(d_dens, n * dens_stride_, "d_dens");
   check_bytes(d_enc, size_t(n_rays) * enc_dim(), "d_enc");
   head_bwd_geo_.set_args(int(n), n_geo_, geo_start_, dens_stride_, d_head_in, d_dens);
-  head_bwd_geo_.launch({cl::round_up(n, 64)}, {64});
+  cl::launch_1d(head_bwd_geo_, n);
   head_bwd_dir_.set_args(n_rays, samples, n_geo_, d_head_in, d_enc);
   const size_t groups = enc_dim() % 8 == 0 ? size_t(enc_dim() / 8) : size_t(enc_dim() / 2);
   head_bwd_dir_.launch({groups, cl::round_up(size_t(n_rays), 8)}, {groups, 8});

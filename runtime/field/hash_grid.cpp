@@ -6,12 +6,13 @@
 #include <cmath>
 #include <string>
 
+#include "cl/launch.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 
 namespace sgnlf::field {
 namespace {
-constexpr size_t kChunk = 256;  // = CHUNK in kernels/field/hashgrid.cl
+constexpr int kChunk = 256;  // points per work-item of schedule "chunked" on a per-point profile
 }  // namespace
 
 std::vector<HashGridLevel> hash_grid_levels(const HashGridConfig& cfg) {
@@ -60,14 +61,20 @@ HashGrid::HashGrid(cl::Runtime& rt, const HashGridConfig& cfg)
   set_level_weights(std::vector<float>(size_t(cfg_.levels), 1.0f));
   const std::string opt = "-DLEVELS=" + std::to_string(cfg_.levels) +
                           " -DFEATURES=" + std::to_string(cfg_.features);
+  // Schedule "auto" takes the device profile's chunk (256 on CPUs, 1 = per point on GPUs).
+  const int profile_chunk = rt_.device_profile().hash_grid_chunk;
+  chunked_ = cfg_.schedule == "chunked" || (cfg_.schedule == "auto" && profile_chunk > 1);
+  chunk_ = profile_chunk > 1 ? profile_chunk : kChunk;
   const std::string table_opt = opt + " -DHALF_TABLE=" + (cfg_.half_table ? "1" : "0") +
-                                " -DCHUNK=" + std::to_string(kChunk);
+                                " -DCHUNK=" + std::to_string(chunk_);
   const std::string file = "field/hashgrid.cl";
-  chunked_ = cfg_.schedule == "chunked" || (cfg_.schedule == "auto" && rt_.device().type == "CPU");
   const std::string sfx = chunked_ ? "_chunk" : "";
+  variant_ = cfg_.deterministic ? rt_.device_profile().encoder_backward
+                                : cl::EncoderBackward::Atomic;
   fwd_ = rt_.kernel(file, "field_hashgrid_fwd" + sfx, table_opt);
   bwd_ = rt_.kernel(file, "field_hashgrid_bwd", opt);
   bwd_atomic_ = rt_.kernel(file, "field_hashgrid_bwd_atomic", opt);
+  bwd_pairs_ = rt_.kernel(file, "field_hashgrid_bwd_pairs", opt);
   bwd_dx_ = rt_.kernel(file, "field_hashgrid_bwd_dx" + sfx, table_opt);
   dx_reduce_ = rt_.kernel(file, "field_hashgrid_dx_reduce", opt);
   zero_ = rt_.kernel(file, "field_hashgrid_zero", opt);
@@ -121,14 +128,27 @@ void HashGrid::backward(const cl::Buffer& params, size_t offset, const cl::Buffe
   check_bytes(grad, grad_offset + n_params_, "grad");
   check_bytes(x, size_t(std::max(n, 0)) * 3, "x");
   check_bytes(d_enc, size_t(std::max(n, 0)) * size_t(n_output()), "d_enc");
-  if (cfg_.deterministic || n <= 0) {
+  if (variant_ == cl::EncoderBackward::Serial || n <= 0) {
     bwd_.set_args(std::max(n, 0), x, scale_, meta_, weights_, d_enc, grad, uint32_t(grad_offset));
     bwd_.launch({size_t(cfg_.levels)}, {1});
-  } else {
+  } else if (variant_ == cl::EncoderBackward::Atomic) {
     zero_.set_args(grad, uint32_t(grad_offset), uint32_t(n_params_));
-    zero_.launch({cl::round_up(n_params_, 64)}, {64});
+    cl::launch_1d(zero_, n_params_);
     bwd_atomic_.set_args(n, x, scale_, meta_, weights_, d_enc, grad, uint32_t(grad_offset));
-    bwd_atomic_.launch({cl::round_up(size_t(n), 64), size_t(cfg_.levels)}, {64, 1});
+    cl::launch_rows(bwd_atomic_, size_t(n), size_t(cfg_.levels));
+  } else {
+    if (!reduction_) {
+      std::vector<EntryRange> ranges;
+      for (int l = 0; l < cfg_.levels; ++l)
+        ranges.push_back({uint32_t(l), levels_[size_t(l)].offset, levels_[size_t(l)].size});
+      reduction_ = std::make_unique<EntryReduction>(rt_, cfg_.features, cfg_.levels, 8, 8,
+                                                    std::move(ranges));
+    }
+    reduction_->reserve(n);
+    bwd_pairs_.set_args(n, x, scale_, meta_, weights_, d_enc, reduction_->keys(),
+                        reduction_->vals(), reduction_->coef(), reduction_->vec());
+    cl::launch_rows(bwd_pairs_, size_t(n), size_t(cfg_.levels));
+    reduction_->reduce(n, grad, grad_offset, false);
   }
   if (d_x && n > 0) {
     check_bytes(params, offset + n_params_, "params");
@@ -145,21 +165,21 @@ void HashGrid::backward(const cl::Buffer& params, size_t offset, const cl::Buffe
     }
     launch_levels(bwd_dx_, n);
     dx_reduce_.set_args(n, dx_part_, *d_x);
-    dx_reduce_.launch({cl::round_up(size_t(n), 64)}, {64});
+    cl::launch_1d(dx_reduce_, size_t(n));
   }
 }
 
 void HashGrid::launch_levels(cl::Kernel& k, int n) {
   if (chunked_)
-    k.launch({(size_t(n) + kChunk - 1) / kChunk, size_t(cfg_.levels)}, {1, 1});
+    k.launch({(size_t(n) + size_t(chunk_) - 1) / size_t(chunk_), size_t(cfg_.levels)}, {1, 1});
   else
-    k.launch({cl::round_up(size_t(n), 64), size_t(cfg_.levels)}, {64, 1});
+    cl::launch_rows(k, size_t(n), size_t(cfg_.levels));
 }
 
 void HashGrid::refresh_half(const cl::Buffer& params, size_t offset) {
   if (!half_dirty_ && half_src_ == params.get() && half_src_offset_ == offset) return;
   to_half_.set_args(params, uint32_t(offset), uint32_t(n_params_), half_);
-  to_half_.launch({cl::round_up(n_params_, 64)}, {64});
+  cl::launch_1d(to_half_, n_params_);
   half_dirty_ = false;
   half_src_ = params.get();
   half_src_offset_ = offset;

@@ -10,11 +10,13 @@
 // in [−1, 1]; pos = ((x + 1)/2)·scale_l + 0.5; trilinear over the 8 corners.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "cl/runtime.hpp"
 #include "core/config_fwd.hpp"
+#include "field/entry_reduction.hpp"
 #include "field/hash_grid_config.hpp"
 
 namespace sgnlf::field {
@@ -34,11 +36,18 @@ std::vector<HashGridLevel> hash_grid_levels(const HashGridConfig& cfg);
 // w_k = (1 − cos(π · clamp(a − k, 0, 1))) / 2.
 std::vector<float> barf_level_weights(double progress, int levels);
 
+// The parameter backward: with `deterministic` (every preset) the device profile's
+// encoder_backward (serial on CPUs, the deterministic parallel one on GPUs, bit-identical to
+// each other), else the atomic kernel; set_backward() overrides it (tests, benchmarks).
 class HashGrid {
  public:
   HashGrid(cl::Runtime& rt, const HashGridConfig& cfg);
 
   const HashGridConfig& config() const { return cfg_; }
+  cl::EncoderBackward backward_variant() const { return variant_; }
+  void set_backward(cl::EncoderBackward v) { variant_ = v; }
+  // Points per work-item of the forward and d_x (1 = the per-point kernels).
+  int chunk() const { return chunked_ ? chunk_ : 1; }
   const std::vector<HashGridLevel>& levels() const { return levels_; }
   size_t n_params() const { return n_params_; }
   int n_output() const { return cfg_.levels * cfg_.features; }
@@ -71,11 +80,14 @@ class HashGrid {
   size_t n_params_ = 0;
   std::vector<float> weights_host_;
   cl::Buffer scale_, meta_, weights_;
-  cl::Kernel fwd_, bwd_, bwd_atomic_, bwd_dx_, dx_reduce_, zero_, to_half_;
+  cl::Kernel fwd_, bwd_, bwd_atomic_, bwd_pairs_, bwd_dx_, dx_reduce_, zero_, to_half_;
+  cl::EncoderBackward variant_ = cl::EncoderBackward::Serial;
+  std::unique_ptr<EntryReduction> reduction_;  // made on the first deterministic parallel pass
   cl::Buffer dx_part_;  // L × N × 3 per-level d_x contributions
   size_t dx_part_points_ = 0;
   cl::Buffer half_;  // fp16 table when half_table
   bool chunked_ = false;
+  int chunk_ = 256;
   bool half_dirty_ = true;
   cl_mem half_src_ = nullptr;
   size_t half_src_offset_ = 0;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <string>
 
+#include "cl/launch.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 
@@ -45,7 +46,8 @@ KPlanes::KPlanes(cl::Runtime& rt, const KPlanesConfig& cfg)
   std::vector<uint32_t> meta;
   for (const auto& p : planes_) meta.insert(meta.end(), {p.offset, p.width, p.height, 0u});
   meta_ = cl::Buffer::from(rt_, meta);
-  chunk_ = cfg_.chunk > 0 ? cfg_.chunk : (rt_.device().type == "CPU" ? 64 : 1);
+  chunk_ = cfg_.chunk > 0 ? cfg_.chunk : rt_.device_profile().plane_chunk;
+  variant_ = rt_.device_profile().encoder_backward;
   const std::string opt = "-DSCALES=" + std::to_string(cfg_.scales) +
                           " -DFEATURES=" + std::to_string(cfg_.features) +
                           " -DCHUNK=" + std::to_string(chunk_);
@@ -53,6 +55,25 @@ KPlanes::KPlanes(cl::Runtime& rt, const KPlanesConfig& cfg)
   fwd_ = rt_.kernel(file, "field_kplanes_fwd", opt);
   bwd_ = rt_.kernel(file, "field_kplanes_bwd", opt);
   dx_reduce_ = rt_.kernel(file, "field_kplanes_dx_reduce", opt);
+  bwd_points_ = rt_.kernel(file, "field_kplanes_bwd_points", opt);
+}
+
+EntryReduction& KPlanes::reduction(PlaneGroups groups) {
+  auto& r = reductions_[groups == PlaneGroups::Both ? 0 : (groups == PlaneGroups::Static ? 1 : 2)];
+  if (r) return *r;
+  // Unit = row s + S·gi (the serial kernel's work-item): the three planes of group
+  // first_group + gi at scale s.
+  const int g0 = first_group(groups), rows = n_groups(groups) * cfg_.scales;
+  std::vector<EntryRange> ranges;
+  for (int row = 0; row < rows; ++row) {
+    const int s = row % cfg_.scales, gi = row / cfg_.scales;
+    for (int k = 0; k < 3; ++k) {
+      const KPlane& pl = planes_[size_t(s * 6 + 3 * (g0 + gi) + k)];
+      ranges.push_back({uint32_t(row), pl.offset, pl.width * pl.height});
+    }
+  }
+  r = std::make_unique<EntryReduction>(rt_, cfg_.features, rows, 12, 4, std::move(ranges));
+  return *r;
 }
 
 int KPlanes::n_output(PlaneGroups groups) const {
@@ -120,19 +141,39 @@ void KPlanes::backward(const cl::Buffer& params, size_t offset, const cl::Buffer
       dx_part_floats_ = part;
     }
   }
-  bwd_.set_args(n, params, uint32_t(offset), x, t, meta_, first_group(groups), d_enc, stride, col,
-                grad, uint32_t(grad_offset), accumulate ? 1 : 0, dx ? 1 : 0,
-                dx ? dx_part_ : meta_);  // without d_x the part argument is never written
-  bwd_.launch({size_t(rows)}, {1});
+  const cl::Buffer& part = dx ? dx_part_ : meta_;  // without d_x never written
+  const int g0 = first_group(groups);
+  if (variant_ == cl::EncoderBackward::Serial) {
+    bwd_.set_args(n, params, uint32_t(offset), x, t, meta_, g0, d_enc, stride, col, grad,
+                  uint32_t(grad_offset), accumulate ? 1 : 0, dx ? 1 : 0, part);
+    bwd_.launch({size_t(rows)}, {1});
+  } else if (variant_ == cl::EncoderBackward::Atomic) {
+    if (!accumulate) reduction(groups).zero(grad, grad_offset);
+    // The pair buffers are not written by the atomic form: any buffer stands in for them.
+    bwd_points_.set_args(n, params, uint32_t(offset), x, t, meta_, g0, d_enc, stride, col, 1,
+                         meta_, meta_, meta_, meta_, grad, uint32_t(grad_offset), dx ? 1 : 0,
+                         part);
+    cl::launch_rows(bwd_points_, size_t(n), size_t(rows));
+  } else {
+    EntryReduction& r = reduction(groups);
+    r.reserve(n);
+    if (n > 0) {
+      bwd_points_.set_args(n, params, uint32_t(offset), x, t, meta_, g0, d_enc, stride, col, 0,
+                           r.keys(), r.vals(), r.coef(), r.vec(), grad, uint32_t(grad_offset),
+                           dx ? 1 : 0, part);
+      cl::launch_rows(bwd_points_, size_t(n), size_t(rows));
+    }
+    r.reduce(n, grad, grad_offset, accumulate);
+  }
   if (!dx) return;
   dx_reduce_.set_args(n, rows, dx_part_, *d_x);
-  dx_reduce_.launch({cl::round_up(size_t(n), 64)}, {64});
+  cl::launch_1d(dx_reduce_, size_t(n));
 }
 
 void KPlanes::launch_points(cl::Kernel& k, int n, int rows) {
   const size_t items = (size_t(n) + size_t(chunk_) - 1) / size_t(chunk_);
   if (chunk_ == 1)
-    k.launch({cl::round_up(items, 64), size_t(rows)}, {64, 1});
+    cl::launch_rows(k, items, size_t(rows));
   else
     k.launch({items, size_t(rows)}, {1, 1});
 }

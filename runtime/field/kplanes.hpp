@@ -14,11 +14,13 @@
 // above, each W·H entries of F floats (entry (i, j) at i + j·W), no gaps.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "cl/runtime.hpp"
 #include "core/config_fwd.hpp"
+#include "field/entry_reduction.hpp"
 #include "field/kplanes_config.hpp"
 
 namespace sgnlf::field {
@@ -43,6 +45,10 @@ class KPlanes {
   KPlanes(cl::Runtime& rt, const KPlanesConfig& cfg);
 
   const KPlanesConfig& config() const { return cfg_; }
+  // The parameter backward: the device profile's encoder_backward (serial on CPUs, the
+  // deterministic parallel one, bit-identical to it, on GPUs); set_backward() overrides it.
+  cl::EncoderBackward backward_variant() const { return variant_; }
+  void set_backward(cl::EncoderBackward v) { variant_ = v; }
   const std::vector<KPlane>& planes() const { return planes_; }
   size_t n_params() const { return n_params_; }
   // Output columns of a pass over `groups` (S·F per group).
@@ -74,7 +80,11 @@ class KPlanes {
   size_t n_params_ = 0;
   int chunk_ = 1;
   cl::Buffer meta_;
-  cl::Kernel fwd_, bwd_, dx_reduce_;
+  cl::Kernel fwd_, bwd_, dx_reduce_, bwd_points_;
+  cl::EncoderBackward variant_ = cl::EncoderBackward::Serial;
+  // Per group selection (both, static, dynamic): the reduction over its planes, made on first use.
+  std::unique_ptr<EntryReduction> reductions_[3];
+  EntryReduction& reduction(PlaneGroups groups);
   cl::Buffer dx_part_;
   size_t dx_part_floats_ = 0;
   void check(const cl::Buffer& params, size_t offset, const cl::Buffer& x, const cl::Buffer& t,

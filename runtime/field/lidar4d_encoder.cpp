@@ -3,6 +3,7 @@
 // kernels/field/flow_blend.cl.
 #include "field/lidar4d_encoder.hpp"
 
+#include "cl/launch.hpp"
 #include "core/error.hpp"
 #include "field/frame_time.hpp"
 
@@ -84,12 +85,12 @@ void Lidar4DEncoder::ensure(int n) {
 
 void Lidar4DEncoder::fill(cl::Buffer& b, size_t offset, int n, float v) {
   fill_.set_args(n, v, uint32_t(offset), b);
-  fill_.launch({cl::round_up(size_t(n), 64)}, {64});
+  cl::launch_1d(fill_, size_t(n));
 }
 
 void Lidar4DEncoder::add(const cl::Buffer& src, cl::Buffer& dst, int n) {
   acc_.set_args(n, src, dst);
-  acc_.launch({cl::round_up(size_t(n), 64)}, {64});
+  cl::launch_1d(acc_, size_t(n));
 }
 
 void Lidar4DEncoder::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& x, int n,
@@ -108,7 +109,7 @@ void Lidar4DEncoder::forward(const cl::Buffer& params, size_t offset, const cl::
   planes_.forward(params, po, x, t0_, n, enc, PlaneGroups::Static, W, 0);
   shash_.forward(params, offset + off_.static_hash, x, n, hs_);
   cols_set_.set_args(n, W, P, H, hs_, enc);
-  cols_set_.launch({cl::round_up(size_t(n), 64)}, {64});
+  cl::launch_1d(cols_set_, size_t(n));
   planes_.forward(params, po, x, t0_, n, enc, PlaneGroups::Dynamic, W, S);
   thash_.forward_at(params, to, x, t_, n, enc, W, S + P);
   float w0, w1, w2;
@@ -117,7 +118,7 @@ void Lidar4DEncoder::forward(const cl::Buffer& params, size_t offset, const cl::
   flow_.forward(params, offset + off_.flow, x, t0_, n, flow_out_);
   auto neighbour = [&](int col, float t, cl::Buffer& xn, cl::Buffer& tn, cl::Buffer& nb) {
     offset_.set_args(n, col, x, flow_out_, xn);
-    offset_.launch({cl::round_up(size_t(n), 64)}, {64});
+    cl::launch_1d(offset_, size_t(n));
     fill(tn, 0, n, t);
     planes_.forward(params, po, xn, tn, n, nb, PlaneGroups::Dynamic, D, 0);
     thash_.forward_at(params, to, xn, t, n, nb, D, P);
@@ -125,7 +126,7 @@ void Lidar4DEncoder::forward(const cl::Buffer& params, size_t offset, const cl::
   if (w1 != 0.0f) neighbour(0, next_time(), x1_, t1_, nb1_);
   if (w2 != 0.0f) neighbour(3, prev_time(), x2_, t2_, nb2_);
   blend_fwd_.set_args(n, W, S, D, w0, w1, w2, enc, nb1_, nb2_);
-  blend_fwd_.launch({cl::round_up(size_t(n), 64)}, {64});
+  cl::launch_1d(blend_fwd_, size_t(n));
 }
 
 void Lidar4DEncoder::backward(const cl::Buffer& params, size_t offset, const cl::Buffer& x, int n,
@@ -147,13 +148,13 @@ void Lidar4DEncoder::backward(const cl::Buffer& params, size_t offset, const cl:
   // Static block, read from d_enc in place (the static hash needs its columns dense).
   planes_.backward(params, po, x, t0_, n, d_enc, grad, gp, d_x, PlaneGroups::Static, false, W, 0);
   cols_get_.set_args(n, W, P, H, d_enc, d_hs_);
-  cols_get_.launch({cl::round_up(size_t(n), 64)}, {64});
+  cl::launch_1d(cols_get_, size_t(n));
   shash_.backward(params, offset + off_.static_hash, x, n, d_hs_, grad,
                   grad_offset + off_.static_hash, tmp);
   if (d_x) add(dx_tmp_, *d_x, n * 3);
   // Dynamic block: split into the three weighted copies.
   blend_bwd_.set_args(n, W, S, D, w0, w1, w2, d_enc, d_own_, d_nb1_, d_nb2_);
-  blend_bwd_.launch({cl::round_up(size_t(n), 64)}, {64});
+  cl::launch_1d(blend_bwd_, size_t(n));
   planes_.backward(params, po, x, t0_, n, d_own_, grad, gp, tmp, PlaneGroups::Dynamic, false, D,
                    0);
   if (d_x) add(dx_tmp_, *d_x, n * 3);
@@ -176,7 +177,7 @@ void Lidar4DEncoder::backward(const cl::Buffer& params, size_t offset, const cl:
   if (w1 != 0.0f) neighbour(x1_, t1_, next_time(), d_nb1_, dx1_);
   if (w2 != 0.0f) neighbour(x2_, t2_, prev_time(), d_nb2_, dx2_);
   pack_.set_args(n, int(w1 != 0.0f), int(w2 != 0.0f), dx1_, dx2_, d_flow_);
-  pack_.launch({cl::round_up(size_t(n), 64)}, {64});
+  cl::launch_1d(pack_, size_t(n));
   flow_.backward(params, offset + off_.flow, x, t0_, n, flow_out_, d_flow_, grad, gf, tmp);
   if (d_x) add(dx_tmp_, *d_x, n * 3);
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cl/launch.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 
@@ -275,7 +276,7 @@ void Mlp::backward(const cl::Buffer& params, size_t offset, const MlpContext& ct
     Layer& L = layers_[size_t(last)];
     const cl::Buffer& y = L.store_pre ? ctx.pre[size_t(last)] : out;
     L.bwd_out.set_args(n, d_out, y, d_pre_[cur]);
-    L.bwd_out.launch({cl::round_up(size_t(n), 64)}, {64});
+    cl::launch_1d(L.bwd_out, size_t(n));
   }
   // Weight gradient of one layer (or layer 0's grouped part) from its input and d_pre.
   auto weight_grad = [&](Layer& L, const cl::Buffer& src, const cl::Buffer& d_pre, int rows,
@@ -288,7 +289,7 @@ void Mlp::backward(const cl::Buffer& params, size_t offset, const MlpContext& ct
     L.wgt.launch({ch, row_blocks, size_t(L.out_pad / 16)}, {1, row_blocks, size_t(L.out_pad / 16)});
     const size_t count = size_t(L.n_in + 1) * L.out_pad;
     L.reduce.set_args(int(ch), partial_, grad, uint32_t(w_off));
-    L.reduce.launch({cl::round_up(count, 64)}, {64});
+    cl::launch_1d(L.reduce, count);
   };
   for (int l = last; l >= 0; --l) {
     Layer& L = layers_[size_t(l)];
@@ -328,7 +329,7 @@ void Mlp::backward(const cl::Buffer& params, size_t offset, const MlpContext& ct
   if (tower_count_ > 0) {  // off-tower weights: exactly zero gradient
     tower_mask_.set_args(int(tower_count_), tower_keep_, grad,
                          uint32_t(grad_offset + layer_off_[1]));
-    tower_mask_.launch({cl::round_up(tower_count_, 64)}, {64});
+    cl::launch_1d(tower_mask_, tower_count_);
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "cl/launch.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 
@@ -64,7 +65,7 @@ void SceneFlow::forward(const cl::Buffer& params, size_t offset, const cl::Buffe
   ensure(n);
   grid_.forward(params, offset, x, n, grid_out_);
   time_fwd_.set_args(n, t, grid_out_, mlp_in_);
-  time_fwd_.launch({cl::round_up(size_t(n), 64)}, {64});
+  cl::launch_1d(time_fwd_, size_t(n));
   mlp_.forward(params, offset + mlp_offset(), mlp_in_, n, flow, ctx_);
 }
 
@@ -77,7 +78,7 @@ void SceneFlow::backward(const cl::Buffer& params, size_t offset, const cl::Buff
   mlp_.backward(params, offset + mlp_offset(), ctx_, flow, d_flow, grad,
                 grad_offset + mlp_offset(), &d_mlp_in_);
   time_bwd_.set_args(n, t, d_mlp_in_, d_grid_out_);
-  time_bwd_.launch({cl::round_up(size_t(n), 64)}, {64});
+  cl::launch_1d(time_bwd_, size_t(n));
   grid_.backward(params, offset, x, n, d_grid_out_, grad, grad_offset, d_x);
 }
 

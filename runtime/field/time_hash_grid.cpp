@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "cl/launch.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 
@@ -56,7 +57,8 @@ TimeHashGrid::TimeHashGrid(cl::Runtime& rt, const TimeHashGridConfig& cfg)
   scale_ = cl::Buffer::from(rt_, scale);
   meta_ = cl::Buffer::from(rt_, meta);
   pmeta_ = cl::Buffer::from(rt_, pmeta);
-  chunk_ = cfg_.chunk > 0 ? cfg_.chunk : (rt_.device().type == "CPU" ? 64 : 1);
+  chunk_ = cfg_.chunk > 0 ? cfg_.chunk : rt_.device_profile().plane_chunk;
+  variant_ = rt_.device_profile().encoder_backward;
   const std::string opt = "-DLEVELS=" + std::to_string(cfg_.levels) +
                           " -DFEATURES=" + std::to_string(cfg_.features) +
                           " -DSLICES=" + std::to_string(cfg_.time_slices) +
@@ -73,6 +75,8 @@ TimeHashGrid::TimeHashGrid(cl::Runtime& rt, const TimeHashGridConfig& cfg)
                            " -DSLICES=1 -DCHUNK=" + std::to_string(chunk_);
   fwd1_ = rt_.kernel(file, "field_hashgrid_time_fwd", opt1);
   bwd1_ = rt_.kernel(file, "field_hashgrid_time_bwd", opt1);
+  bwd_points_ = rt_.kernel(file, "field_hashgrid_time_bwd_points", opt);
+  bwd_points1_ = rt_.kernel(file, "field_hashgrid_time_bwd_points", opt1);
   std::vector<uint32_t> bmeta, pmeta1;
   uint32_t entries = 0;
   for (const auto& p : planes_) {
@@ -136,13 +140,61 @@ void TimeHashGrid::backward(const cl::Buffer& params, size_t offset, const cl::B
   const bool dx = d_x && n > 0;
   if (dx) ensure_dx_part(n);
   if (d_x) check_bytes(*d_x, size_t(n) * 3, "d_x");
-  bwd_.set_args(n, params, uint32_t(offset), x, t, scale_, meta_, pmeta_, d_enc, stride, col,
-                grad, uint32_t(grad_offset), accumulate ? 1 : 0, dx ? 1 : 0,
-                dx ? dx_part_ : scale_);  // without d_x the part argument is never written
-  bwd_.launch({size_t(cfg_.levels)}, {1});
+  const cl::Buffer& part = dx ? dx_part_ : scale_;  // without d_x never written
+  if (variant_ == cl::EncoderBackward::Serial) {
+    bwd_.set_args(n, params, uint32_t(offset), x, t, scale_, meta_, pmeta_, d_enc, stride, col,
+                  grad, uint32_t(grad_offset), accumulate ? 1 : 0, dx ? 1 : 0, part);
+    bwd_.launch({size_t(cfg_.levels)}, {1});
+  } else if (variant_ == cl::EncoderBackward::Atomic) {
+    if (!accumulate) {
+      zero_.set_args(uint32_t(n_params_), grad, uint32_t(grad_offset));
+      cl::launch_1d(zero_, n_params_);
+    }
+    // The pair buffers are not written by the atomic form: any buffer stands in for them.
+    bwd_points_.set_args(n, params, uint32_t(offset), x, t, scale_, meta_, pmeta_, d_enc, stride,
+                         col, 1, meta_, meta_, scale_, scale_, grad, uint32_t(grad_offset),
+                         dx ? 1 : 0, part);
+    cl::launch_rows(bwd_points_, size_t(n), size_t(cfg_.levels));
+  } else {
+    EntryReduction& r = reduction(false);
+    r.reserve(n);
+    if (n > 0) {
+      bwd_points_.set_args(n, params, uint32_t(offset), x, t, scale_, meta_, pmeta_, d_enc,
+                           stride, col, 0, r.keys(), r.vals(), r.coef(), r.vec(), grad,
+                           uint32_t(grad_offset), dx ? 1 : 0, part);
+      cl::launch_rows(bwd_points_, size_t(n), size_t(cfg_.levels));
+    }
+    r.reduce(n, grad, grad_offset, accumulate);
+  }
   if (!dx) return;
   dx_reduce_.set_args(n, dx_part_, *d_x);
-  dx_reduce_.launch({cl::round_up(size_t(n), 64)}, {64});
+  cl::launch_1d(dx_reduce_, size_t(n));
+}
+
+EntryReduction& TimeHashGrid::reduction(bool one_slice) {
+  auto& r = one_slice ? reduction1_ : reduction_;
+  if (r) return *r;
+  // Unit = level: level l of every plane and time slice (of the one-slice table: one slice).
+  std::vector<EntryRange> ranges;
+  uint32_t first1 = 0;
+  for (int p = 0; p < 3; ++p) {
+    const TimeHashPlane& pl = planes_[size_t(p)];
+    for (int l = 0; l < cfg_.levels; ++l) {
+      const HashGridLevel& lv = pl.levels[size_t(l)];
+      if (one_slice) {
+        ranges.push_back({uint32_t(l), first1 + lv.offset, lv.size});
+      } else {
+        for (int s = 0; s < cfg_.time_slices; ++s)
+          ranges.push_back({uint32_t(l), pl.offset + uint32_t(s) * pl.slice_entries + lv.offset,
+                            lv.size});
+      }
+    }
+    first1 += pl.slice_entries;
+  }
+  const int slots = one_slice || cfg_.time_slices == 1 ? 1 : 2;
+  r = std::make_unique<EntryReduction>(rt_, cfg_.features, cfg_.levels, 12 * slots, 4 * slots,
+                                       std::move(ranges));
+  return *r;
 }
 
 void TimeHashGrid::ensure_dx_part(int n) {
@@ -157,7 +209,7 @@ void TimeHashGrid::blend(const cl::Buffer& params, size_t offset, float t) {
   if (!std::isfinite(t))
     throw Error("TimeHashGrid: time " + std::to_string(t) + " is not a finite number");
   blend_.set_args(blend_entries_, t, params, uint32_t(offset), pmeta_, bmeta_, blended_);
-  blend_.launch({cl::round_up(size_t(blend_entries_), 64)}, {64});
+  cl::launch_1d(blend_, size_t(blend_entries_));
 }
 
 void TimeHashGrid::forward_at(const cl::Buffer& params, size_t offset, const cl::Buffer& x,
@@ -181,26 +233,44 @@ void TimeHashGrid::backward_at(const cl::Buffer& params, size_t offset, const cl
   if (d_x) check_bytes(*d_x, size_t(n) * 3, "d_x");
   if (!accumulate) {
     zero_.set_args(uint32_t(n_params_), grad, uint32_t(grad_offset));
-    zero_.launch({cl::round_up(n_params_, 64)}, {64});
+    cl::launch_1d(zero_, n_params_);
   }
   if (n == 0) return;
   const bool dx = d_x != nullptr;
   if (dx) ensure_dx_part(n);
   blend(params, offset, t);  // the table the forward read
-  bwd1_.set_args(n, blended_, 0u, x, x, scale_, meta_, pmeta1_, d_enc, stride, col, g_blended_,
-                 0u, 0, dx ? 1 : 0, dx ? dx_part_ : scale_);
-  bwd1_.launch({size_t(cfg_.levels)}, {1});
+  const cl::Buffer& part = dx ? dx_part_ : scale_;  // without d_x never written
+  if (variant_ == cl::EncoderBackward::Serial) {
+    bwd1_.set_args(n, blended_, 0u, x, x, scale_, meta_, pmeta1_, d_enc, stride, col,
+                   g_blended_, 0u, 0, dx ? 1 : 0, part);
+    bwd1_.launch({size_t(cfg_.levels)}, {1});
+  } else if (variant_ == cl::EncoderBackward::Atomic) {
+    const size_t floats = size_t(blend_entries_) * size_t(cfg_.features);
+    zero_.set_args(uint32_t(floats), g_blended_, 0u);
+    cl::launch_1d(zero_, floats);
+    bwd_points1_.set_args(n, blended_, 0u, x, x, scale_, meta_, pmeta1_, d_enc, stride, col, 1,
+                          meta_, meta_, scale_, scale_, g_blended_, 0u, dx ? 1 : 0, part);
+    cl::launch_rows(bwd_points1_, size_t(n), size_t(cfg_.levels));
+  } else {
+    EntryReduction& r = reduction(true);
+    r.reserve(n);
+    bwd_points1_.set_args(n, blended_, 0u, x, x, scale_, meta_, pmeta1_, d_enc, stride, col, 0,
+                          r.keys(), r.vals(), r.coef(), r.vec(), g_blended_, 0u, dx ? 1 : 0,
+                          part);
+    cl::launch_rows(bwd_points1_, size_t(n), size_t(cfg_.levels));
+    r.reduce(n, g_blended_, 0, false);
+  }
   spread_.set_args(blend_entries_, t, pmeta_, bmeta_, g_blended_, grad, uint32_t(grad_offset));
-  spread_.launch({cl::round_up(size_t(blend_entries_), 64)}, {64});
+  cl::launch_1d(spread_, size_t(blend_entries_));
   if (!dx) return;
   dx_reduce_.set_args(n, dx_part_, *d_x);
-  dx_reduce_.launch({cl::round_up(size_t(n), 64)}, {64});
+  cl::launch_1d(dx_reduce_, size_t(n));
 }
 
 void TimeHashGrid::launch_points(cl::Kernel& k, int n) {
   const size_t items = (size_t(n) + size_t(chunk_) - 1) / size_t(chunk_);
   if (chunk_ == 1)
-    k.launch({cl::round_up(items, 64), size_t(cfg_.levels)}, {64, 1});
+    cl::launch_rows(k, items, size_t(cfg_.levels));
   else
     k.launch({items, size_t(cfg_.levels)}, {1, 1});
 }

@@ -15,11 +15,13 @@
 // another (slice_entries each), in each slice the levels one after another, F floats per entry.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "cl/runtime.hpp"
 #include "core/config_fwd.hpp"
+#include "field/entry_reduction.hpp"
 #include "field/hash_grid.hpp"
 #include "field/time_hash_grid_config.hpp"
 
@@ -39,6 +41,10 @@ class TimeHashGrid {
   TimeHashGrid(cl::Runtime& rt, const TimeHashGridConfig& cfg);
 
   const TimeHashGridConfig& config() const { return cfg_; }
+  // The parameter backward: the device profile's encoder_backward (serial on CPUs, the
+  // deterministic parallel one, bit-identical to it, on GPUs); set_backward() overrides it.
+  cl::EncoderBackward backward_variant() const { return variant_; }
+  void set_backward(cl::EncoderBackward v) { variant_ = v; }
   const std::vector<TimeHashPlane>& planes() const { return planes_; }
   size_t n_params() const { return n_params_; }
   int n_output() const { return cfg_.levels * cfg_.features; }
@@ -76,6 +82,11 @@ class TimeHashGrid {
   int chunk_ = 1;
   cl::Buffer scale_, meta_, pmeta_;
   cl::Kernel fwd_, bwd_, dx_reduce_;
+  // The parallel backwards (device profile's encoder_backward): per (point, level), atomic or
+  // pairs for the EntryReduction, of the full table and of the one-slice table.
+  cl::EncoderBackward variant_ = cl::EncoderBackward::Serial;
+  cl::Kernel bwd_points_, bwd_points1_;
+  std::unique_ptr<EntryReduction> reduction_, reduction1_;  // made on first use
   // One time for all points: the blend and spread kernels, the one-slice build of the forward
   // and backward (-DSLICES=1), the planes' entries in the one-slice table (bmeta_: first entry
   // of each plane; pmeta1_: as pmeta_ for that table), the table and its gradient.
@@ -89,6 +100,7 @@ class TimeHashGrid {
   void ensure_dx_part(int n);
   void blend(const cl::Buffer& params, size_t offset, float t);
   void launch_points(cl::Kernel& k, int n);
+  EntryReduction& reduction(bool one_slice);
 };
 
 }  // namespace sgnlf::field

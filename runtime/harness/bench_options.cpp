@@ -77,6 +77,7 @@ Json BenchOptions::to_json() const {
   } else {
     j["seed"] = sl.front();
   }
+  if (!device_profile.empty()) j["device_profile"] = device_profile;
   if (!rows.empty()) j["rows"] = rows;
   if (!sequences.empty()) j["sequences"] = sequences;
   return j;

@@ -22,6 +22,10 @@ struct BenchOptions {
   std::string real_root;
   std::string out_dir;
   std::string device;     // OpenCL device spec ("" = default)
+  // Device profile spec (cl/device_profile.hpp; "" = SGNLF_DEVICE_PROFILE or automatic). In
+  // to_json() only when set, so a table's config_hash does not change; the profile in force is
+  // recorded in the context.
+  std::string device_profile;
   uint64_t seed = 1;
   // --seeds: every cell runs with each of these (results/schema.md "Several seeds"); empty =
   // the one `seed`. One element is the same as --seed (a single-seed result, unchanged).

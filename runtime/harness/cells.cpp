@@ -201,6 +201,7 @@ Json merge_cells(const std::vector<std::pair<std::string, Json>>& cells,
       {"build commit (context.build.git.sha)", {"context", "build", "git", "sha"}},
       {"OpenCL device (context.opencl.device)", {"context", "opencl", "device"}},
       {"OpenCL driver (context.opencl.driver_version)", {"context", "opencl", "driver_version"}},
+      {"device profile (context.device_profile)", {"context", "device_profile"}},
   };
   for (const auto& [path, j] : cells)
     for (const auto& [what, key] : same)

@@ -221,8 +221,13 @@ CompareReport compare_results(const Json& fresh, const Json& base, const Compare
 
   const Json& cn = at(at(fresh, "context"), "opencl");
   const Json& cb = at(at(base, "context"), "opencl");
+  // A device profile (launch shapes, kernel variants) is recorded since issue 54; a result
+  // without one ran the "cpu" profile's shapes on a CPU device.
+  const Json& pn = at(at(at(fresh, "context"), "device_profile"), "name");
+  const Json& pb = at(at(at(base, "context"), "device_profile"), "name");
+  const bool same_profile = pn.is_null() || pb.is_null() || pn == pb;
   const bool same_device = cn.is_object() && cb.is_object() && at(cn, "device") == at(cb, "device") &&
-                           at(cn, "driver_version") == at(cb, "driver_version");
+                           at(cn, "driver_version") == at(cb, "driver_version") && same_profile;
   const bool same_cfg = at(fresh, "config_hash") == at(base, "config_hash") &&
                         same_run_configs(fresh, base, opt.subset);
   // A smoke table is a few dozen iterations of an untrained model: its metrics say nothing
@@ -242,7 +247,8 @@ CompareReport compare_results(const Json& fresh, const Json& base, const Compare
                 "); regenerate the baseline with the new configs");
   } else if (opt.mode == "auto") {
     rep.mode = same_device && same_cfg ? "tight" : "loose";
-    rep.mode_reason = !same_device ? "different OpenCL device or driver"
+    rep.mode_reason = !same_profile  ? "different device profile"
+                      : !same_device ? "different OpenCL device or driver"
                       : !same_cfg  ? "different harness or run configs"
                                    : "same device, driver and configs: deterministic twins";
   } else {
@@ -342,7 +348,9 @@ CompareReport compare_results(const Json& fresh, const Json& base, const Compare
     c.add("missing", true, "rows", "subset comparison: the new result has no row and sequence "
                                    "in common with the baseline, nothing was compared");
   if (!same_device)
-    c.add("note", false, "timings", "not compared: different OpenCL device or driver");
+    c.add("note", false, "timings",
+          same_profile ? "not compared: different OpenCL device or driver"
+                       : "not compared: different device profile");
   if (smoke_other_device) {
     const std::string devices =
         "the baseline was made on device " + at(cb, "device").dump() + " (driver " +

@@ -119,7 +119,7 @@ long peak_rss_kib() {
   return r.ru_maxrss;  // KiB on Linux
 }
 
-Json context_block(const cl::DeviceInfo* device) {
+Json context_block(const cl::DeviceInfo* device, const cl::DeviceProfile* profile) {
   Json c;
   c["git"] = git_info();
   c["build"] = build_info();
@@ -129,6 +129,12 @@ Json context_block(const cl::DeviceInfo* device) {
   c["pocl_env"] = pocl_env();
   const char* sel = std::getenv("SGNLF_DEVICE");
   c["sgnlf_device_env"] = sel ? Json(sel) : Json(nullptr);
+  if (profile)
+    c["device_profile"] = profile->to_json();
+  else if (device)
+    c["device_profile"] = cl::resolve_profile("", *device).to_json();
+  else
+    c["device_profile"] = nullptr;
   return c;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cl/device.hpp"
+#include "cl/device_profile.hpp"
 #include "core/config_fwd.hpp"
 
 namespace sgnlf::harness {
@@ -29,8 +30,10 @@ Json opencl_info(const cl::DeviceInfo& device);
 Json pocl_env();
 // Peak resident set size of this process in KiB (getrusage).
 long peak_rss_kib();
-// The full block; `device` may be null (no OpenCL device in use).
-Json context_block(const cl::DeviceInfo* device);
+// The full block; `device` may be null (no OpenCL device in use). `profile`: the device profile
+// the runs use (cl::Runtime::device_profile()); null = the one a Runtime on `device` opens
+// without an explicit spec (SGNLF_DEVICE_PROFILE, else automatic).
+Json context_block(const cl::DeviceInfo* device, const cl::DeviceProfile* profile = nullptr);
 // Flattens a JSON object into ("a.b.c", "value") pairs (for Google Benchmark's context).
 std::vector<std::pair<std::string, std::string>> flatten(const Json& j,
                                                          const std::string& prefix = "");

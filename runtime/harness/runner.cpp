@@ -90,6 +90,7 @@ CellOutcome execute_cell(const BenchOptions& opt, const BenchHooks& hooks, const
   req.out_dir = run_dir.string();
   req.seed = cell.seed;
   req.device = opt.device;
+  req.device_profile = opt.device_profile;
   req.overrides = ps.overrides;
   req.context = context;
   try {

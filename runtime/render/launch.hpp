@@ -1,14 +1,14 @@
-// Small helpers shared by the render launchers: buffer size checks and the fixed launch shape
-// (1-D, local size 64, global rounded up; kernels guard their bounds).
+// Small helpers shared by the render launchers: buffer size checks and the element-wise launch
+// shape (cl::launch_1d: 1-D, the device profile's work-group size, global rounded up; kernels
+// guard their bounds).
 #pragma once
 #include <string>
 
+#include "cl/launch.hpp"
 #include "cl/runtime.hpp"
 #include "core/error.hpp"
 
 namespace sgnlf::render {
-
-inline constexpr size_t kLocalSize = 64;
 
 // Throws naming the launcher and argument when `b` holds fewer than `floats` floats.
 inline void check_floats(const cl::Buffer& b, size_t floats, const std::string& what) {
@@ -17,8 +17,6 @@ inline void check_floats(const cl::Buffer& b, size_t floats, const std::string& 
                 " floats, needs " + std::to_string(floats));
 }
 
-inline cl::Event launch_1d(cl::Kernel& k, size_t n) {
-  return k.launch({cl::round_up(n, kLocalSize)}, {kLocalSize});
-}
+using cl::launch_1d;
 
 }  // namespace sgnlf::render

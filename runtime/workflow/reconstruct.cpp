@@ -221,7 +221,7 @@ Json reconstruct(cl::Runtime& rt, const ReconstructRequest& req) {
         progress.estimate(kRender, r);
       }
     };
-    tr.context = harness::context_block(&rt.device());  // the report's build row
+    tr.context = harness::context_block(&rt.device(), &rt.device_profile());  // the report's build row
     const Json summary = pipeline::train_run(rt, tr);
     record.finish("train", summary);
     progress.end();

@@ -72,6 +72,19 @@ TEST_CASE("tight and loose tolerances", "[harness][compare]") {
   CHECK(rep.mode == "loose");
   CHECK_FALSE(rep.regression());
   CHECK(harness::metric_tolerance("cd", "loose", 0.1) == Approx(0.005 + 1.4 * 0.1));
+  // ... and when the device profile differs on the same device; a result without a profile
+  // (made before profiles were recorded) matches any.
+  Json gpu_drift = drift;
+  gpu_drift["scale"] = "quick";
+  gpu_drift["context"]["device_profile"] = {{"name", "gpu"}};
+  const auto rep_profile = compare_results(gpu_drift, quick_base);
+  CHECK(rep_profile.mode == "tight");
+  quick_base["context"]["device_profile"] = {{"name", "cpu"}};
+  const auto rep_profile2 = compare_results(gpu_drift, quick_base);
+  CHECK(rep_profile2.mode == "loose");
+  CHECK(rep_profile2.mode_reason == "different device profile");
+  gpu_drift["context"]["device_profile"]["name"] = "cpu";
+  CHECK(compare_results(gpu_drift, quick_base).mode == "tight");
 }
 
 TEST_CASE("every loose tolerance covers 3 sd of the measured seed spread", "[harness][compare]") {

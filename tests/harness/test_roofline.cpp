@@ -112,7 +112,7 @@ TEST_CASE("measure_roofline returns positive summaries", "[harness][device]") {
   CHECK(r["peak_gflops_best"].get<double>() >= r["peak_gflops"]["median"].get<double>());
 }
 
-TEST_CASE("context block: git, build, machine, OpenCL", "[harness]") {
+TEST_CASE("context block: git, build, machine, OpenCL, device profile", "[harness]") {
   const auto dev = test::runtime().device();
   const Json c = harness::context_block(&dev);
   const std::string sha = c["git"]["sha"];
@@ -127,6 +127,12 @@ TEST_CASE("context block: git, build, machine, OpenCL", "[harness]") {
   CHECK(c["machine"]["mem_total_kib"].get<long long>() > 0);
   CHECK(c["opencl"]["device"] == dev.name);
   CHECK(c["pocl_env"].is_object());
+  // The device profile: the one a Runtime on the device opens by default, or the one given.
+  CHECK(c["device_profile"] == cl::resolve_profile("", dev).to_json());
+  const cl::DeviceProfile gpu = cl::gpu_profile();
+  CHECK(harness::context_block(&dev, &gpu)["device_profile"]["encoder_backward"] ==
+        "deterministic_parallel");
+  CHECK(harness::context_block(nullptr)["device_profile"].is_null());
   CHECK(harness::peak_rss_kib() > 0);
   const auto flat = harness::flatten(Json{{"a", {{"b", 1}, {"c", "x"}}}});
   REQUIRE(flat.size() == 2);

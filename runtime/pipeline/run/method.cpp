@@ -38,7 +38,7 @@ MethodResult run_method(const MethodRequest& req) {
   m.device = req.device;
   m.seed = req.seed;
   m.config = resolve_config(req.method, req.scale, req.overrides);
-  cl::Runtime rt(req.device);
+  cl::Runtime rt(req.device, req.device_profile);
   TrainRequest tr;
   tr.manifest = m;
   tr.run_dir = req.out_dir;

@@ -17,6 +17,7 @@ struct MethodRequest {
   std::string out_dir;      // run folder (checkpoints, renders, resolved config)
   uint64_t seed = 1;
   std::string device;       // OpenCL device spec ("" = default)
+  std::string device_profile;  // cl/device_profile.hpp spec ("" = default)
   Json overrides = Json::object();  // config keys overriding the preset
   Json context = nullptr;  // where it runs (harness::context_block), into summary.json; or null
 };

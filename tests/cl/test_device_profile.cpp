@@ -1,0 +1,131 @@
+// Device profiles (cl/device_profile.hpp): the built-in table (cpu = the launch shapes and
+// kernels every run used before profiles), the choice by device type, the spec and
+// SGNLF_DEVICE_PROFILE, strict JSON files, and cl::launch_1d taking its work-group size from
+// the Runtime's profile.
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <fstream>
+
+#include "cl/device_profile.hpp"
+#include "cl/launch.hpp"
+#include "cl/runtime.hpp"
+#include "core/config.hpp"
+#include "support/test_device.hpp"
+
+SGNLF_DEVICE_TESTS;
+using namespace sgnlf;
+using Catch::Matchers::Contains;
+
+namespace {
+std::string write_profile(const std::string& name, const std::string& text) {
+  const std::string path = test::temp_dir("device_profile") + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+cl::DeviceInfo device_of_type(const std::string& type) {
+  cl::DeviceInfo d;
+  d.type = type;
+  return d;
+}
+}  // namespace
+
+TEST_CASE("built-in device profiles and the choice by device type", "[cl][device_profile]") {
+  const auto cpu = cl::cpu_profile();  // today's shapes: any change moves every CPU result
+  CHECK(cpu.name == "cpu");
+  CHECK(cpu.local_size == 64);
+  CHECK(cpu.encoder_backward == cl::EncoderBackward::Serial);
+  CHECK(cpu.hash_grid_chunk == 256);
+  CHECK(cpu.plane_chunk == 64);
+  const auto gpu = cl::gpu_profile();
+  CHECK(gpu.name == "gpu");
+  CHECK(gpu.local_size == 64);
+  CHECK(gpu.encoder_backward == cl::EncoderBackward::DeterministicParallel);
+  CHECK(gpu.hash_grid_chunk == 1);
+  CHECK(gpu.plane_chunk == 1);
+  CHECK(cl::automatic_profile(device_of_type("CPU")) == cpu);
+  CHECK(cl::automatic_profile(device_of_type("GPU")) == gpu);
+  CHECK(cl::automatic_profile(device_of_type("accelerator")) == gpu);
+  const auto cpu_dev = device_of_type("CPU");
+  CHECK(cl::resolve_profile("gpu", cpu_dev) == gpu);
+  CHECK(cl::resolve_profile("cpu", device_of_type("GPU")) == cpu);
+  CHECK(cl::resolve_profile("auto", device_of_type("GPU")) == gpu);
+  CHECK(gpu.to_json()["encoder_backward"] == "deterministic_parallel");
+  CHECK(cl::DeviceProfile::from_json(gpu.to_json(), "p", cpu) == gpu);
+}
+
+TEST_CASE("SGNLF_DEVICE_PROFILE is the default spec", "[cl][device_profile]") {
+  const char* old = std::getenv("SGNLF_DEVICE_PROFILE");
+  const std::string saved = old ? old : "";
+  ::setenv("SGNLF_DEVICE_PROFILE", "gpu", 1);
+  CHECK(cl::default_profile_spec() == "gpu");
+  CHECK(cl::resolve_profile("", device_of_type("CPU")).name == "gpu");
+  CHECK(cl::resolve_profile("cpu", device_of_type("CPU")).name == "cpu");  // explicit wins
+  ::unsetenv("SGNLF_DEVICE_PROFILE");
+  CHECK(cl::default_profile_spec() == "auto");
+  CHECK(cl::resolve_profile("", device_of_type("CPU")).name == "cpu");
+  if (old) ::setenv("SGNLF_DEVICE_PROFILE", saved.c_str(), 1);
+}
+
+TEST_CASE("device profile files: keys over a base, strictly read", "[cl][device_profile]") {
+  const auto cpu_dev = device_of_type("CPU");
+  const auto p = cl::resolve_profile(
+      write_profile("atomic.json",
+                    R"({"name": "h200-atomic", "base": "gpu", "encoder_backward": "atomic",
+                        "local_size": 128})"),
+      cpu_dev);
+  CHECK(p.name == "h200-atomic");
+  CHECK(p.encoder_backward == cl::EncoderBackward::Atomic);
+  CHECK(p.local_size == 128);
+  CHECK(p.plane_chunk == 1);  // from the base
+  // Without a base: the device's automatic profile.
+  CHECK(cl::resolve_profile(write_profile("wide.json", R"({"name": "wide", "local_size": 32})"),
+                            cpu_dev)
+            .hash_grid_chunk == 256);
+  CHECK_THROWS_WITH(
+      cl::resolve_profile(write_profile("typo.json", R"({"name": "t", "local_sise": 32})"),
+                          cpu_dev),
+      Contains("local_sise") && Contains("local_size"));
+  CHECK_THROWS_WITH(
+      cl::resolve_profile(write_profile("bad.json", R"({"name": "b", "encoder_backward": "fast"})"),
+                          cpu_dev),
+      Contains("encoder_backward") && Contains("deterministic_parallel"));
+  CHECK_THROWS_WITH(
+      cl::resolve_profile(write_profile("zero.json", R"({"name": "z", "local_size": 0})"), cpu_dev),
+      Contains("local_size") && Contains("0"));
+  CHECK_THROWS_WITH(
+      cl::resolve_profile(write_profile("base.json", R"({"name": "b", "base": "tpu"})"), cpu_dev),
+      Contains("'base' = 'tpu'"));
+  CHECK_THROWS_WITH(cl::resolve_profile(write_profile("anon.json", R"({"local_size": 32})"),
+                                        cpu_dev),
+                    Contains("needs a 'name'"));
+  CHECK_THROWS_WITH(cl::resolve_profile("/no/such/profile.json", cpu_dev),
+                    Contains("/no/such/profile.json") && Contains("auto, cpu, gpu"));
+  CHECK_THROWS_AS(cl::resolve_profile("fast", cpu_dev), ConfigError);
+}
+
+TEST_CASE("launch_1d takes the work-group size of the Runtime's profile", "[cl][device_profile]") {
+  auto& rt = test::runtime();
+  const cl::DeviceProfile saved = rt.device_profile();
+  const std::string src =
+      "__kernel void local_size(const int n, __global int* out) {\n"
+      "  const int i = get_global_id(0);\n"
+      "  if (i < n) out[i] = (int)get_local_size(0) * 1000 + (int)get_global_size(0);\n"
+      "}\n";
+  cl::Kernel k(rt, rt.program_from_source(src, "", "local_size.cl"), "local_size");
+  cl::Buffer out(rt, 100 * sizeof(int));
+  k.set_args(100, out);
+  cl::launch_1d(k, 100);
+  const int ls = saved.local_size;
+  CHECK(out.read_vec<int>(100)[99] == ls * 1000 + int(cl::round_up(100, size_t(ls))));
+  cl::DeviceProfile p = saved;
+  p.local_size = 32;
+  rt.set_device_profile(p);
+  cl::launch_1d(k, 100);
+  const auto v = out.read_vec<int>(100);
+  rt.set_device_profile(saved);
+  CHECK(v[0] == 32 * 1000 + 128);
+  p.local_size = 0;
+  CHECK_THROWS_AS(rt.set_device_profile(p), ConfigError);
+  CHECK(rt.device_profile() == saved);
+}
