@@ -38,9 +38,10 @@ struct FastRenderConfig {
   // the protocol's spacing outside the grid's box; no importance pass. Occupied cells are
   // walked at the protocol's spacing too until a sample there stops more than hit_alpha of the
   // light; the ray then rewinds one bin and walks the fine lattice until `refine` fine samples
-  // in a row stay below hit_alpha (0: every occupied cell at the fine lattice). In "march" the
-  // waves double up to wave·2^(max_waves−1) samples per ray and go on until every ray has
-  // stopped.
+  // in a row stay below hit_alpha (0: every occupied cell at the fine lattice). In "march"
+  // every wave takes `wave` samples per ray (max_waves is not read) until every ray has
+  // stopped: a hit drops the rest of its wave, so larger or doubling waves cost more rows
+  // (docs/studies/fast-render).
   std::string layout = "protocol";
   int refine = 4;
   float hit_alpha = 1e-3f;

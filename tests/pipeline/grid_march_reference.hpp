@@ -66,15 +66,13 @@ struct MarchResult {
 using MarchDensity = std::function<float(const float x[3])>;
 using MarchHead = std::function<void(const float x[3], int r, float& a, float& b)>;
 
-// Rays (o, d: n × 3) marched in waves: wave i takes K_i = min(cap, wave·2^min(i, max_waves − 1))
-// samples; a ray stops after the wave its transmittance fell below eps in. In coarse mode the
+// Rays (o, d: n × 3) marched in waves of min(cap, wave) samples; a ray stops after the wave its transmittance fell below eps in. In coarse mode the
 // first sample in an occupied cell with α ≥ hit is dropped with the rest of its wave and the ray
 // rewinds to k − (m − 1) (at least one past its last composited sample) in fine mode; m fine
 // samples in a row below hit turn it coarse after the wave.
 inline MarchResult march_reference(const std::vector<float>& o, const std::vector<float>& d,
                                    int n, const MarchLattice& L, const render::OccupancyGrid& g,
-                                   float eps, float thr, float hit, int wave, int max_waves,
-                                   int cap, bool median, const MarchDensity& density,
+                                   float eps, float thr, float hit, int wave, int cap, bool median, const MarchDensity& density,
                                    const MarchHead& head) {
   MarchResult res;
   res.out.assign(size_t(n) * 3, 0.0f);
@@ -84,8 +82,8 @@ inline MarchResult march_reference(const std::vector<float>& o, const std::vecto
     int k = 0, quiet = 0, last_k = -1;
     bool fine = L.m == 1 || hit <= 0.0f;
     float T = 1.0f, depth = 0.0f, prob = 0.0f, inten = 0.0f, med = -1.0f;
-    for (int i = 0; k < L.K; ++i) {
-      const int K_i = std::min(cap, wave << std::min(i, std::min(max_waves - 1, 16)));
+    while (k < L.K) {
+      const int K_i = std::min(cap, wave);
       std::vector<MarchSample> samples;
       MarchSample s{};
       while (k < L.K && int(samples.size()) < K_i)

@@ -48,7 +48,6 @@ render::FastRenderConfig march_config(float eps, float thr) {
   c.stop_transmittance = eps;
   c.head_weight_threshold = thr;
   c.wave = 3;
-  c.max_waves = 4;
   return c;
 }
 
@@ -136,8 +135,8 @@ TEST_CASE("grid march kernels match the host reference", "[pipeline][fast-render
         march.render(R, bo, bd, L, g, median, density, run_head, out);
         const auto got = out.read_vec<float>(size_t(R) * 3);
         const test::MarchResult ref =
-            test::march_reference(o, d, R, ref_L, g, eps, thr, k.hit, cfg.wave, cfg.max_waves,
-                                  cap, median, slab_logit, slab_head);
+            test::march_reference(o, d, R, ref_L, g, eps, thr, k.hit, cfg.wave, cap, median,
+                                  slab_logit, slab_head);
         CHECK(march.evaluated() == ref.evaluated);
         const GridMarch::Rows& kinds = march.rows();
         CHECK(kinds.coarse + kinds.fine + kinds.outside + kinds.dropped == march.evaluated());

@@ -64,7 +64,7 @@ void GridMarch::render(int n_rays, const cl::Buffer& o, const cl::Buffer& d,
   for (int r = 0; r < n_rays; ++r) alive[size_t(r)] = r;
   alive_.write(alive.data(), alive.size() * 4);
   // The first wave's counts.
-  int K_w = std::min(cfg_.wave, max_wave_);
+  const int K_w = std::min(cfg_.wave, max_wave_);
   count_k_.set_args(n_rays, K_w, L.near, h, m, K, L.bound, lo, inv, dims, grid.device(), alive_,
                     o, d, cursor_, mode_, 0, done_, count_)
       .launch({g64(size_t(n_rays))}, {64});
@@ -95,8 +95,6 @@ void GridMarch::render(int n_rays, const cl::Buffer& o, const cl::Buffer& d,
                           t_w_, dt_w_, k_w_, cell_w_, trans_, acc_, median_, cursor_, mode_,
                           quiet_, last_k_, w_w_, hcount_, done_, stats_)
         .launch({g64(A)}, {64});
-    // The next wave's size: doubling up to wave·2^(max_waves − 1) (and the capacity).
-    K_w = std::min(max_wave_, cfg_.wave << std::min(waves_, std::min(cfg_.max_waves - 1, 16)));
     count_k_.set_args(int(A), K_w, L.near, h, m, K, L.bound, lo, inv, dims, grid.device(),
                       alive_, o, d, cursor_, mode_, 1, done_, count_)
         .launch({g64(A)}, {64});

@@ -3,7 +3,7 @@
 // lattice m times finer than the protocol's bins: the protocol's spacing outside the grid's box
 // and in occupied cells until a sample there stops more than hit_alpha of the light, then the
 // fine step around it (rewinding one bin) until the ray is quiet again; free cells jumped over;
-// in waves (`wave` samples per ray, doubling up to wave·2^(max_waves − 1)) until its
+// in waves of `wave` samples per ray until its
 // transmittance falls below stop_transmittance or the lattice ends. Each wave is composited as
 // it comes (no full sample layout is kept) and the LiDAR head runs on its samples whose weight
 // exceeds head_weight_threshold. One host sync per wave.
