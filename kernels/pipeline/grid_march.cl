@@ -10,23 +10,24 @@
 //   - in a free cell: jump to the first lattice point past the cell's exit along the ray.
 // A sample stands for [t_k, t_k + δ), as in render_volume_fwd (δ = the distance to the next
 // lattice point visited; a free cell after it keeps zero density, as FastMarch's dead samples).
-// Occupied cells are walked at the coarse spacing too (δ = m·h, k += m) while the ray is in
-// coarse mode: the first coarse sample in an occupied cell whose α = 1 − exp(−σδ) reaches
-// hit_alpha is not composited; the ray rewinds to k_hit − (m − 1) (at least one past its last
-// composited sample) and walks the fine lattice (δ = h, k += 1) until m fine samples in a row
-// stay below hit_alpha, then coarse again. The coarse sample before the hit, composited with
-// δ = m·h, then overlaps the first m − 1 fine ones: optical depth of at most hit_alpha counted
-// twice. hit_alpha = 0 walks every occupied cell finely.
+// Occupied cells are walked coarsely too (δ = mc·h, k += mc, mc = `coarse` bins in fine steps)
+// while the ray is in coarse mode: the first coarse sample in an occupied cell whose
+// α = 1 − exp(−σδ) reaches hit_alpha is not composited; the ray rewinds to k_hit − (mc − 1) (at
+// least one past its last composited sample) and walks the fine lattice (δ = h, k += 1) until
+// mc fine samples in a row stay below hit_alpha, then coarse again. The coarse sample before the
+// hit, composited with δ = mc·h, then overlaps the first mc − 1 fine ones: optical depth of at
+// most hit_alpha counted twice. hit_alpha = 0 walks every occupied cell finely.
 // Rays march in waves of up to K_w samples; after each wave the rays whose transmittance fell
 // below eps stop (and the rows after a hit in its wave are dropped). Sequential sums in sample
 // order per ray: deterministic.
 
 #include "pipeline/occupancy.clh"
 
-// The walk's parameters: near, h, m, K (lattice size), bound (the scene box's clamp).
+// The walk's parameters: near, h, m, K (lattice size), bound (the scene box's clamp), mc (the
+// coarse mode's step in occupied cells, in fine steps: `coarse` bins, coarse·m).
 typedef struct {
   float near, h, bound;
-  int m, K;
+  int m, K, mc;
 } gm_lattice;
 
 // Whether |x| ≤ bound on every axis (else the clamp moves it: evaluated as outside the box).
@@ -60,7 +61,7 @@ inline int gm_step(int* k, const int fine, const float3 o, const float3 d, const
     *k = kf > (float)(*k) ? (kf < (float)L.K ? (int)kf : L.K) : *k + 1;
     return 0;
   }
-  const int step = c < 0 || !fine ? L.m : 1;
+  const int step = c < 0 ? L.m : fine ? 1 : L.mc;
   *in_cell = c >= 0;
   *t_out = t;
   *dt_out = (float)step * L.h;
@@ -70,7 +71,7 @@ inline int gm_step(int* k, const int fine, const float3 o, const float3 d, const
 }
 
 // Per ray: the cursor at the lattice's start, transmittance 1, sums 0, no median yet; `mode`
-// fine when start_fine (hit_alpha = 0 or m = 1), else coarse; no fine sample yet (quiet), no
+// fine when start_fine (hit_alpha = 0 or mc = 1), else coarse; no fine sample yet (quiet), no
 // composited sample (last_k = −1).
 __kernel void pipeline_gm_init(const int n_rays, const int start_fine, __global int* cursor,
                                __global float* trans, __global float* acc,
@@ -97,7 +98,8 @@ __kernel void pipeline_gm_init(const int n_rays, const int start_fine, __global 
 // K_w, fewer at the lattice's end), without moving the cursor; 0 for a done ray (done given:
 // use_done = 1) or at the end.
 __kernel void pipeline_gm_count(const int n_alive, const int K_w, const float near, const float h,
-                                const int m, const int K, const float bound, const float4 lo,
+                                const int m, const int K, const int mc, const float bound,
+                                const float4 lo,
                                 const float4 inv_cell, const int4 dims, __global const uchar* grid,
                                 __global const int* alive, __global const float* o,
                                 __global const float* d, __global const int* cursor,
@@ -108,7 +110,7 @@ __kernel void pipeline_gm_count(const int n_alive, const int K_w, const float ne
   const int r = alive[a];
   int c = 0;
   if (!(use_done && done[a])) {
-    const gm_lattice L = {near, h, bound, m, K};
+    const gm_lattice L = {near, h, bound, m, K, mc};
     const float3 o3 = vload3(r, o), d3 = vload3(r, d);
     const int fine = mode[r];
     int k = cursor[r], in_cell;
@@ -124,7 +126,7 @@ __kernel void pipeline_gm_count(const int n_alive, const int K_w, const float ne
 // pipeline_gm_count counted) at rows offset[a] ..: position x_w (clamped), t_w, dt_w, lattice
 // index k_w, whether in an occupied cell (cell_w); and moves its cursor past them.
 __kernel void pipeline_gm_emit(const int n_alive, const float near, const float h, const int m,
-                               const int K, const float bound, const float4 lo,
+                               const int K, const int mc, const float bound, const float4 lo,
                                const float4 inv_cell, const int4 dims, __global const uchar* grid,
                                __global const int* alive, __global const float* o,
                                __global const float* d, __global int* cursor,
@@ -134,7 +136,7 @@ __kernel void pipeline_gm_emit(const int n_alive, const float near, const float 
   const int a = get_global_id(0);
   if (a >= n_alive) return;
   const int r = alive[a];
-  const gm_lattice L = {near, h, bound, m, K};
+  const gm_lattice L = {near, h, bound, m, K, mc};
   const float3 o3 = vload3(r, o), d3 = vload3(r, d);
   const int fine = mode[r];
   int k = cursor[r], row = offset[a], in_cell;
@@ -160,13 +162,13 @@ __kernel void pipeline_gm_emit(const int n_alive, const float near, const float 
 // arithmetic of render_volume_fwd); acc[3 r] += w·t; the median (render_median_depth's
 // crossing) where the accumulated weight first reaches 1/2; w_w[row] = w; hcount[a] = rows with
 // w > thr; done[a] = T < eps (eps = 0: never). In coarse mode a row in an occupied cell with
-// 1 − e ≥ hit_alpha (m > 1) is a hit: it and the wave's later rows get w = 0 (not composited,
+// 1 − e ≥ hit_alpha (mc > 1) is a hit: it and the wave's later rows get w = 0 (not composited,
 // no head), the cursor rewinds and the mode turns fine (see the top of this file); in fine
-// mode m rows in a row below hit_alpha turn it coarse again after the wave. stats[4 r ..]
+// mode mc rows in a row below hit_alpha turn it coarse again after the wave. stats[4 r ..]
 // counts the ray's composited rows in occupied cells at the coarse and at the fine spacing,
 // outside the box, and its dropped rows.
 __kernel void pipeline_gm_composite(const int n_alive, const int stride, const float eps,
-                                    const float thr, const float hit_alpha, const int m,
+                                    const float thr, const float hit_alpha, const int mc,
                                     __global const int* alive, __global const int* offset,
                                     __global const float* dens, __global const float* t_w,
                                     __global const float* dt_w, __global const int* k_w,
@@ -185,9 +187,9 @@ __kernel void pipeline_gm_composite(const int n_alive, const int stride, const f
   __global int* st = stats + 4 * r;
   for (int row = offset[a]; row < end; ++row) {
     const float e = exp(-exp(fmin(dens[(size_t)row * stride], 80.0f)) * dt_w[row]);
-    if (!fine && m > 1 && cell_w[row] && 1.0f - e >= hit_alpha) {
+    if (!fine && mc > 1 && cell_w[row] && 1.0f - e >= hit_alpha) {
       // A hit: rewind to the fine lattice just behind it; this row and the later ones drop.
-      cursor[r] = max(k_w[row] - (m - 1), lk + 1);
+      cursor[r] = max(k_w[row] - (mc - 1), lk + 1);
       fine = 1;
       q = 0;
       for (int z = row; z < end; ++z) w_w[z] = 0.0f;
@@ -208,7 +210,7 @@ __kernel void pipeline_gm_composite(const int n_alive, const int stride, const f
     hc += w > thr ? 1 : 0;
     T *= e;
   }
-  if (fine && m > 1 && hit_alpha > 0.0f && q >= m) fine = 0, q = 0;
+  if (fine && mc > 1 && hit_alpha > 0.0f && q >= mc) fine = 0, q = 0;
   trans[r] = T;
   acc[3 * r] = depth;
   median[r] = med;

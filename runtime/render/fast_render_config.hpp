@@ -42,9 +42,11 @@ struct FastRenderConfig {
   // every wave takes `wave` samples per ray (max_waves is not read) until every ray has
   // stopped: a hit drops the rest of its wave, so larger or doubling waves cost more rows
   // (docs/studies/fast-render).
+  // `coarse`: bins per step in occupied cells before a hit (the protocol's spacing at 1).
   std::string layout = "protocol";
   int refine = 4;
   float hit_alpha = 1e-3f;
+  int coarse = 1;
 
   template <class Self, class V>
   static void fields(Self& s, V& v) {
@@ -61,6 +63,7 @@ struct FastRenderConfig {
     v("layout", s.layout);
     v("refine", s.refine, 1, 64);
     v("hit_alpha", s.hit_alpha, 0.0f, 0.5f);
+    v("coarse", s.coarse, 1, 16);
   }
   void validate(const std::string& where = "fast_render") const;
   // All keys optional, unknown keys rejected, validated.

@@ -19,7 +19,7 @@ struct MarchSample {
 
 struct MarchLattice {
   float near, h, bound;
-  int m, K;
+  int m, K, mc;  // mc: the coarse step in occupied cells, in fine steps
 };
 
 // One step of the walk at lattice point k (the kernel's gm_step): true with the sample when k is
@@ -47,7 +47,7 @@ inline bool march_step(int& k, bool fine, const float o[3], const float d[3],
     k = kf > float(k) ? (kf < float(L.K) ? int(kf) : L.K) : k + 1;
     return false;
   }
-  const int step = c < 0 || !fine ? L.m : 1;
+  const int step = c < 0 ? L.m : fine ? 1 : L.mc;
   s.k = k;
   s.in_cell = c >= 0;
   s.t = t;
@@ -80,7 +80,7 @@ inline MarchResult march_reference(const std::vector<float>& o, const std::vecto
     const float* o3 = &o[3 * size_t(r)];
     const float* d3 = &d[3 * size_t(r)];
     int k = 0, quiet = 0, last_k = -1;
-    bool fine = L.m == 1 || hit <= 0.0f;
+    bool fine = L.mc == 1 || hit <= 0.0f;
     float T = 1.0f, depth = 0.0f, prob = 0.0f, inten = 0.0f, med = -1.0f;
     while (k < L.K) {
       const int K_i = std::min(cap, wave);
@@ -91,8 +91,8 @@ inline MarchResult march_reference(const std::vector<float>& o, const std::vecto
       res.evaluated += long(samples.size());
       for (const MarchSample& q : samples) {
         const float e = std::exp(-std::exp(std::min(density(q.x), 80.0f)) * q.dt);
-        if (!fine && L.m > 1 && q.in_cell && 1.0f - e >= hit) {
-          k = std::max(q.k - (L.m - 1), last_k + 1);
+        if (!fine && L.mc > 1 && q.in_cell && 1.0f - e >= hit) {
+          k = std::max(q.k - (L.mc - 1), last_k + 1);
           fine = true;
           quiet = 0;
           break;
@@ -115,7 +115,7 @@ inline MarchResult march_reference(const std::vector<float>& o, const std::vecto
         }
         T *= e;
       }
-      if (fine && L.m > 1 && hit > 0.0f && quiet >= L.m) fine = false, quiet = 0;
+      if (fine && L.mc > 1 && hit > 0.0f && quiet >= L.mc) fine = false, quiet = 0;
       if (eps > 0.0f && T < eps) break;
     }
     const float t_last = L.near + (float(L.K) - 0.5f) * L.h;

@@ -45,18 +45,18 @@ void GridMarch::render(int n_rays, const cl::Buffer& o, const cl::Buffer& d,
   require(n_rays > 0 && n_rays <= max_rays_,
           "GridMarch::render: " + std::to_string(n_rays) + " rays, capacity " +
               std::to_string(max_rays_));
-  require(L.samples > 0 && L.refine >= 1 && L.bin > 0.0f,
-          "GridMarch::render: the lattice needs samples, a positive bin and refine >= 1");
+  require(L.samples > 0 && L.refine >= 1 && L.coarse >= 1 && L.bin > 0.0f,
+          "GridMarch::render: the lattice needs samples, a positive bin, refine and coarse >= 1");
   const float h = L.bin / float(L.refine);
   const long K_long = long(L.samples) * long(L.refine);
   require(K_long < (1L << 30), "GridMarch::render: a lattice of " + std::to_string(K_long) +
                                    " points per ray is too fine");
-  const int K = int(K_long), m = L.refine;
+  const int K = int(K_long), m = L.refine, mc = L.refine * L.coarse;
   const cl_float4 lo = grid.lo4(), inv = grid.inv_cell4();
   const cl_int4 dims = grid.dims4();
   evaluated_ = 0, head_rows_ = 0, waves_ = 0;
 
-  const int start_fine = m == 1 || cfg_.hit_alpha <= 0.0f ? 1 : 0;
+  const int start_fine = mc == 1 || cfg_.hit_alpha <= 0.0f ? 1 : 0;
   init_k_.set_args(n_rays, start_fine, cursor_, trans_, acc_, median_, mode_, quiet_, last_k_,
                    stats_)
       .launch({g64(size_t(n_rays))}, {64});
@@ -65,7 +65,7 @@ void GridMarch::render(int n_rays, const cl::Buffer& o, const cl::Buffer& d,
   alive_.write(alive.data(), alive.size() * 4);
   // The first wave's counts.
   const int K_w = std::min(cfg_.wave, max_wave_);
-  count_k_.set_args(n_rays, K_w, L.near, h, m, K, L.bound, lo, inv, dims, grid.device(), alive_,
+  count_k_.set_args(n_rays, K_w, L.near, h, m, K, mc, L.bound, lo, inv, dims, grid.device(), alive_,
                     o, d, cursor_, mode_, 0, done_, count_)
       .launch({g64(size_t(n_rays))}, {64});
   std::vector<int32_t> count = count_.read_vec<int32_t>(size_t(n_rays)), hcount, off, hoff, next;
@@ -84,18 +84,18 @@ void GridMarch::render(int n_rays, const cl::Buffer& o, const cl::Buffer& d,
     const int rows = off.back();
     alive_.write(alive.data(), A * 4);
     offset_.write(off.data(), (A + 1) * 4);
-    emit_k_.set_args(int(A), L.near, h, m, K, L.bound, lo, inv, dims, grid.device(), alive_, o, d,
+    emit_k_.set_args(int(A), L.near, h, m, K, mc, L.bound, lo, inv, dims, grid.device(), alive_, o, d,
                      cursor_, mode_, offset_, x_w_, t_w_, dt_w_, k_w_, cell_w_)
         .launch({g64(A)}, {64});
     const cl::Buffer& dens = density(x_w_, rows);
     evaluated_ += rows;
     ++waves_;
     composite_k_.set_args(int(A), kDensStride, cfg_.stop_transmittance,
-                          cfg_.head_weight_threshold, cfg_.hit_alpha, m, alive_, offset_, dens,
+                          cfg_.head_weight_threshold, cfg_.hit_alpha, mc, alive_, offset_, dens,
                           t_w_, dt_w_, k_w_, cell_w_, trans_, acc_, median_, cursor_, mode_,
                           quiet_, last_k_, w_w_, hcount_, done_, stats_)
         .launch({g64(A)}, {64});
-    count_k_.set_args(int(A), K_w, L.near, h, m, K, L.bound, lo, inv, dims, grid.device(),
+    count_k_.set_args(int(A), K_w, L.near, h, m, K, mc, L.bound, lo, inv, dims, grid.device(),
                       alive_, o, d, cursor_, mode_, 1, done_, count_)
         .launch({g64(A)}, {64});
     // One host sync per wave: the head rows of this wave and the next wave's counts.

@@ -23,10 +23,11 @@ class GridMarch {
   GridMarch(cl::Runtime& rt, int max_rays, int max_wave, const render::FastRenderConfig& cfg);
 
   // The lattice of one render: the protocol's near and bin width (normalised), its S samples,
-  // m fine steps per bin, the scene's clamp bound.
+  // m = refine fine steps per bin, `coarse` bins per coarse step in occupied cells, the scene's
+  // clamp bound.
   struct Lattice {
     float near = 0.0f, bin = 0.0f, bound = 1.0f;
-    int samples = 0, refine = 1;
+    int samples = 0, refine = 1, coarse = 1;
   };
   // The density MLP's output (kDensStride floats per row) at `rows` positions x (rows × 3).
   using Density = std::function<const cl::Buffer&(const cl::Buffer& x, int rows)>;

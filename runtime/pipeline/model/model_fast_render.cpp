@@ -68,6 +68,7 @@ std::vector<float> LidarNerfModel::render_rays_fast(const std::vector<float>& or
     L.bound = kSceneBound;
     L.samples = S;
     L.refine = cfg.refine;
+    L.coarse = cfg.coarse;
     march_->render(n, o_, d_, L, grid, cfg_.render.eval_depth == "median", density, head, out_);
     fast_evaluated_ = march_->evaluated();
     fast_head_ = march_->head_rows();
