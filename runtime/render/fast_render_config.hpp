@@ -66,8 +66,14 @@ struct FastRenderConfig {
     v("coarse", s.coarse, 1, 16);
   }
   void validate(const std::string& where = "fast_render") const;
-  // All keys optional, unknown keys rejected, validated.
+  // All keys optional (the others as in `base`), unknown keys rejected, validated.
+  static FastRenderConfig from_json(const Json& j, const std::string& where,
+                                    const FastRenderConfig& base);
   static FastRenderConfig from_json(const Json& j, const std::string& where = "fast_render");
+  // The grid-placed layout with the settings measured on SG-NLF's and LiDAR-NeRF's quick
+  // fields (docs/studies/fast-render, "Samples placed by the grid"): refine 4, hit_alpha 1e-2,
+  // coarse steps of 2 bins, termination and head thresholds 1e-3, waves of 8.
+  static FastRenderConfig march();
   Json to_json() const;
 };
 

@@ -61,6 +61,15 @@ TEST_CASE("fast render config: the layout and refine keys", "[pipeline][fast-ren
   CHECK_THROWS_WITH(render::FastRenderConfig::from_json(Json{{"layout", "grid"}}),
                     Catch::Contains("'layout' = 'grid'"));
   CHECK_THROWS_AS(render::FastRenderConfig::from_json(Json{{"refine", 0}}), ConfigError);
+  // The march settings, and a file's keys over them.
+  const auto m = render::FastRenderConfig::march();
+  CHECK(m.layout == "march");
+  CHECK(m.coarse == 2);
+  const auto over = render::FastRenderConfig::from_json(Json{{"refine", 8}}, "f.json", m);
+  CHECK(over.layout == "march");
+  CHECK(over.refine == 8);
+  CHECK(over.coarse == 2);
+  CHECK(render::FastRenderConfig::from_json(Json{{"refine", 8}}).layout == "protocol");
 }
 
 TEST_CASE("grid march kernels match the host reference", "[pipeline][fast-render][device]") {
