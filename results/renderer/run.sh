@@ -13,9 +13,12 @@ for R in LN SG; do
   RUN=${!R}
   nice "$B" eval --run "$RUN" --json > "$OUT/$R-protocol.json"
   nice "$B" eval --run "$RUN" --json --renderer fast > "$OUT/$R-F1.json"
+  nice "$B" eval --run "$RUN" --json --renderer fast --fast-layout march > "$OUT/$R-march.json"
 done
 # A stream of 16 novel views along the LiDAR-NeRF scene's trajectory, both renderers.
 P=$(dirname "$0")/stream16.txt
 nice "$B" render --run "$LN" --poses "$P" --out "$OUT/stream-fast" > "$OUT/stream-fast.json"
+nice "$B" render --run "$LN" --poses "$P" --out "$OUT/stream-march" --fast-layout march \
+  > "$OUT/stream-march.json"
 nice "$B" render --run "$LN" --poses "$P" --out "$OUT/stream-protocol" --renderer protocol \
   > "$OUT/stream-protocol.json"
