@@ -10,13 +10,12 @@
 //   - in a free cell: jump to the first lattice point past the cell's exit along the ray.
 // A sample stands for [t_k, t_k + δ), as in render_volume_fwd (δ = the distance to the next
 // lattice point visited; a free cell after it keeps zero density, as FastMarch's dead samples).
-// Occupied cells are walked at three levels: coarse (δ = mc·h, k += mc, mc = `coarse` bins in
-// fine steps), the protocol's bins (δ = m·h; only when mc > m > 1) and fine (δ = h, k += 1). A
-// sample in an occupied cell whose α = 1 − exp(−σδ) reaches hit_alpha at a level above fine is
-// not composited: the ray rewinds to k_hit − (step − 1) (at least one past its last composited
-// sample) and walks the next finer level from there. Once the samples composited since the last
-// hit stay below hit_alpha over mc lattice points, the ray is coarse again. The sample before a
-// hit, composited with its level's δ, then overlaps the first finer ones: optical depth of at
+// Occupied cells are walked coarsely too (δ = mc·h, k += mc, mc = `coarse` bins in fine steps)
+// while the ray is in coarse mode: the first coarse sample in an occupied cell whose
+// α = 1 − exp(−σδ) reaches hit_alpha is not composited; the ray rewinds to k_hit − (mc − 1) (at
+// least one past its last composited sample) and walks the fine lattice (δ = h, k += 1) until
+// mc fine samples in a row stay below hit_alpha, then coarse again. The coarse sample before the
+// hit, composited with δ = mc·h, then overlaps the first mc − 1 fine ones: optical depth of at
 // most hit_alpha counted twice. hit_alpha = 0 walks every occupied cell finely.
 // Rays march in waves of up to K_w samples; after each wave the rays whose transmittance fell
 // below eps stop (and the rows after a hit in its wave are dropped). Sequential sums in sample
@@ -39,9 +38,9 @@ inline int gm_inside_bound(const float3 x, const float bound) {
 // One step of the walk at lattice point *k of ray (o, d): returns 1 with the sample's t, δ and
 // clamped position when k is evaluated (then *k moves past it), 0 when k lies in a free cell
 // (then *k jumps past that cell).
-// `level`: the ray's level in occupied cells (0 coarse, 1 the protocol's bins, 2 fine);
-// *in_cell = whether the sample lies in an occupied cell (not outside the box).
-inline int gm_step(int* k, const int level, const float3 o, const float3 d, const gm_lattice L,
+// `fine`: the ray's mode (occupied cells at the fine spacing); *in_cell = whether the sample
+// lies in an occupied cell (not outside the box).
+inline int gm_step(int* k, const int fine, const float3 o, const float3 d, const gm_lattice L,
                    const float4 lo, const float4 inv_cell, const int4 dims,
                    __global const uchar* grid, float* t_out, float* dt_out, float3* x_out,
                    int* in_cell) {
@@ -62,7 +61,7 @@ inline int gm_step(int* k, const int level, const float3 o, const float3 d, cons
     *k = kf > (float)(*k) ? (kf < (float)L.K ? (int)kf : L.K) : *k + 1;
     return 0;
   }
-  const int step = c < 0 ? L.m : level == 0 ? L.mc : level == 1 ? L.m : 1;
+  const int step = c < 0 ? L.m : fine ? 1 : L.mc;
   *in_cell = c >= 0;
   *t_out = t;
   *dt_out = (float)step * L.h;
@@ -72,7 +71,7 @@ inline int gm_step(int* k, const int level, const float3 o, const float3 d, cons
 }
 
 // Per ray: the cursor at the lattice's start, transmittance 1, sums 0, no median yet; `mode`
-// fine (2) when start_fine (hit_alpha = 0 or mc = 1), else coarse (0); no fine sample yet (quiet), no
+// fine when start_fine (hit_alpha = 0 or mc = 1), else coarse; no fine sample yet (quiet), no
 // composited sample (last_k = −1).
 __kernel void pipeline_gm_init(const int n_rays, const int start_fine, __global int* cursor,
                                __global float* trans, __global float* acc,
@@ -81,7 +80,7 @@ __kernel void pipeline_gm_init(const int n_rays, const int start_fine, __global 
   const int r = get_global_id(0);
   if (r >= n_rays) return;
   cursor[r] = 0;
-  mode[r] = start_fine ? 2 : 0;
+  mode[r] = start_fine;
   quiet[r] = 0;
   stats[4 * r + 0] = 0;
   stats[4 * r + 1] = 0;
@@ -113,12 +112,12 @@ __kernel void pipeline_gm_count(const int n_alive, const int K_w, const float ne
   if (!(use_done && done[a])) {
     const gm_lattice L = {near, h, bound, m, K, mc};
     const float3 o3 = vload3(r, o), d3 = vload3(r, d);
-    const int level = mode[r];
+    const int fine = mode[r];
     int k = cursor[r], in_cell;
     float t, dt;
     float3 x;
     while (k < K && c < K_w)
-      if (gm_step(&k, level, o3, d3, L, lo, inv_cell, dims, grid, &t, &dt, &x, &in_cell)) ++c;
+      if (gm_step(&k, fine, o3, d3, L, lo, inv_cell, dims, grid, &t, &dt, &x, &in_cell)) ++c;
   }
   count[a] = c;
 }
@@ -139,14 +138,14 @@ __kernel void pipeline_gm_emit(const int n_alive, const float near, const float 
   const int r = alive[a];
   const gm_lattice L = {near, h, bound, m, K, mc};
   const float3 o3 = vload3(r, o), d3 = vload3(r, d);
-  const int level = mode[r];
+  const int fine = mode[r];
   int k = cursor[r], row = offset[a], in_cell;
   const int end = offset[a + 1];
   float t, dt;
   float3 x;
   while (row < end && k < K) {
     const int k0 = k;
-    if (gm_step(&k, level, o3, d3, L, lo, inv_cell, dims, grid, &t, &dt, &x, &in_cell)) {
+    if (gm_step(&k, fine, o3, d3, L, lo, inv_cell, dims, grid, &t, &dt, &x, &in_cell)) {
       vstore3(x, row, x_w);
       t_w[row] = t;
       dt_w[row] = dt;
@@ -163,15 +162,13 @@ __kernel void pipeline_gm_emit(const int n_alive, const float near, const float 
 // arithmetic of render_volume_fwd); acc[3 r] += w·t; the median (render_median_depth's
 // crossing) where the accumulated weight first reaches 1/2; w_w[row] = w; hcount[a] = rows with
 // w > thr; done[a] = T < eps (eps = 0: never). In coarse mode a row in an occupied cell with
-// 1 − e ≥ hit_alpha (mc > 1) above the fine level is a hit: it and the wave's later rows get
-// w = 0 (not composited, no head), the cursor rewinds and the level turns finer (see the top of
-// this file); quiet rows over mc lattice points since the last hit turn it coarse again after
-// the wave. stats[4 r ..]
+// 1 − e ≥ hit_alpha (mc > 1) is a hit: it and the wave's later rows get w = 0 (not composited,
+// no head), the cursor rewinds and the mode turns fine (see the top of this file); in fine
+// mode mc rows in a row below hit_alpha turn it coarse again after the wave. stats[4 r ..]
 // counts the ray's composited rows in occupied cells at the coarse and at the fine spacing,
 // outside the box, and its dropped rows.
 __kernel void pipeline_gm_composite(const int n_alive, const int stride, const float eps,
-                                    const float thr, const float hit_alpha, const int m,
-                                    const int mc,
+                                    const float thr, const float hit_alpha, const int mc,
                                     __global const int* alive, __global const int* offset,
                                     __global const float* dens, __global const float* t_w,
                                     __global const float* dt_w, __global const int* k_w,
@@ -185,24 +182,23 @@ __kernel void pipeline_gm_composite(const int n_alive, const int stride, const f
   if (a >= n_alive) return;
   const int r = alive[a];
   float T = trans[r], depth = acc[3 * r], med = median[r];
-  int hc = 0, level = mode[r], q = quiet[r], lk = last_k[r];
-  const int end = offset[a + 1], emitted = level;
-  const int step = emitted == 0 ? mc : emitted == 1 ? m : 1;  // in occupied cells
+  int hc = 0, fine = mode[r], q = quiet[r], lk = last_k[r];
+  const int end = offset[a + 1], emitted_fine = fine;
   __global int* st = stats + 4 * r;
   for (int row = offset[a]; row < end; ++row) {
     const float e = exp(-exp(fmin(dens[(size_t)row * stride], 80.0f)) * dt_w[row]);
-    if (level < 2 && mc > 1 && cell_w[row] && 1.0f - e >= hit_alpha) {
-      // A hit: rewind to the finer level just behind it; this row and the later ones drop.
-      cursor[r] = max(k_w[row] - (step - 1), lk + 1);
-      level = level == 0 && m > 1 && mc > m ? 1 : 2;
+    if (!fine && mc > 1 && cell_w[row] && 1.0f - e >= hit_alpha) {
+      // A hit: rewind to the fine lattice just behind it; this row and the later ones drop.
+      cursor[r] = max(k_w[row] - (mc - 1), lk + 1);
+      fine = 1;
       q = 0;
       for (int z = row; z < end; ++z) w_w[z] = 0.0f;
       st[3] += end - row;
       break;
     }
-    if (level > 0) q = 1.0f - e < hit_alpha ? q + (cell_w[row] ? step : m) : 0;
+    if (fine) q = 1.0f - e < hit_alpha ? q + 1 : 0;
     lk = k_w[row];
-    st[!cell_w[row] ? 2 : emitted > 0 ? 1 : 0] += 1;
+    st[!cell_w[row] ? 2 : emitted_fine ? 1 : 0] += 1;
     const float w = T * (1.0f - e);
     if (med < 0.0f && (1.0f - T) + w >= 0.5f) {
       const float alpha = fmin(w / fmax(T, 1e-30f), 1.0f);
@@ -214,11 +210,11 @@ __kernel void pipeline_gm_composite(const int n_alive, const int stride, const f
     hc += w > thr ? 1 : 0;
     T *= e;
   }
-  if (level > 0 && mc > 1 && hit_alpha > 0.0f && q >= mc) level = 0, q = 0;
+  if (fine && mc > 1 && hit_alpha > 0.0f && q >= mc) fine = 0, q = 0;
   trans[r] = T;
   acc[3 * r] = depth;
   median[r] = med;
-  mode[r] = level;
+  mode[r] = fine;
   quiet[r] = q;
   last_k[r] = lk;
   hcount[a] = hc;

@@ -24,8 +24,8 @@ struct MarchLattice {
 
 // One step of the walk at lattice point k (the kernel's gm_step): true with the sample when k is
 // evaluated, false when it lies in a free cell (k then jumps past that cell). Occupied cells
-// step by mc at level 0, by m at level 1, by 1 at level 2; outside the box by m.
-inline bool march_step(int& k, int level, const float o[3], const float d[3],
+// step by 1 in fine mode, by m in coarse mode, as outside the box.
+inline bool march_step(int& k, bool fine, const float o[3], const float d[3],
                        const MarchLattice& L, const render::OccupancyGrid& g, MarchSample& s) {
   const float t = L.near + (float(k) + 0.5f) * L.h;
   const float x[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]};
@@ -47,7 +47,7 @@ inline bool march_step(int& k, int level, const float o[3], const float d[3],
     k = kf > float(k) ? (kf < float(L.K) ? int(kf) : L.K) : k + 1;
     return false;
   }
-  const int step = c < 0 ? L.m : level == 0 ? L.mc : level == 1 ? L.m : 1;
+  const int step = c < 0 ? L.m : fine ? 1 : L.mc;
   s.k = k;
   s.in_cell = c >= 0;
   s.t = t;
@@ -66,11 +66,10 @@ struct MarchResult {
 using MarchDensity = std::function<float(const float x[3])>;
 using MarchHead = std::function<void(const float x[3], int r, float& a, float& b)>;
 
-// Rays (o, d: n × 3) marched in waves of min(cap, wave) samples; a ray stops after the wave its
-// transmittance fell below eps in. Above the fine level, the first sample in an occupied cell
-// with α ≥ hit is dropped with the rest of its wave and the ray rewinds to k − (step − 1) (at
-// least one past its last composited sample) at the next finer level (coarse → the bins when
-// mc > m > 1, → fine); quiet samples over mc lattice points turn it coarse after the wave.
+// Rays (o, d: n × 3) marched in waves of min(cap, wave) samples; a ray stops after the wave its transmittance fell below eps in. In coarse mode the
+// first sample in an occupied cell with α ≥ hit is dropped with the rest of its wave and the ray
+// rewinds to k − (m − 1) (at least one past its last composited sample) in fine mode; m fine
+// samples in a row below hit turn it coarse after the wave.
 inline MarchResult march_reference(const std::vector<float>& o, const std::vector<float>& d,
                                    int n, const MarchLattice& L, const render::OccupancyGrid& g,
                                    float eps, float thr, float hit, int wave, int cap, bool median, const MarchDensity& density,
@@ -81,26 +80,24 @@ inline MarchResult march_reference(const std::vector<float>& o, const std::vecto
     const float* o3 = &o[3 * size_t(r)];
     const float* d3 = &d[3 * size_t(r)];
     int k = 0, quiet = 0, last_k = -1;
-    int level = L.mc == 1 || hit <= 0.0f ? 2 : 0;
+    bool fine = L.mc == 1 || hit <= 0.0f;
     float T = 1.0f, depth = 0.0f, prob = 0.0f, inten = 0.0f, med = -1.0f;
     while (k < L.K) {
       const int K_i = std::min(cap, wave);
       std::vector<MarchSample> samples;
       MarchSample s{};
       while (k < L.K && int(samples.size()) < K_i)
-        if (march_step(k, level, o3, d3, L, g, s)) samples.push_back(s);
+        if (march_step(k, fine, o3, d3, L, g, s)) samples.push_back(s);
       res.evaluated += long(samples.size());
-      const int emitted = level;
-      const int step = emitted == 0 ? L.mc : emitted == 1 ? L.m : 1;
       for (const MarchSample& q : samples) {
         const float e = std::exp(-std::exp(std::min(density(q.x), 80.0f)) * q.dt);
-        if (level < 2 && L.mc > 1 && q.in_cell && 1.0f - e >= hit) {
-          k = std::max(q.k - (step - 1), last_k + 1);
-          level = level == 0 && L.m > 1 && L.mc > L.m ? 1 : 2;
+        if (!fine && L.mc > 1 && q.in_cell && 1.0f - e >= hit) {
+          k = std::max(q.k - (L.mc - 1), last_k + 1);
+          fine = true;
           quiet = 0;
           break;
         }
-        if (level > 0) quiet = 1.0f - e < hit ? quiet + (q.in_cell ? step : L.m) : 0;
+        if (fine) quiet = 1.0f - e < hit ? quiet + 1 : 0;
         last_k = q.k;
         const float w = T * (1.0f - e);
         if (med < 0.0f && (1.0f - T) + w >= 0.5f) {
@@ -118,7 +115,7 @@ inline MarchResult march_reference(const std::vector<float>& o, const std::vecto
         }
         T *= e;
       }
-      if (level > 0 && L.mc > 1 && hit > 0.0f && quiet >= L.mc) level = 0, quiet = 0;
+      if (fine && L.mc > 1 && hit > 0.0f && quiet >= L.mc) fine = false, quiet = 0;
       if (eps > 0.0f && T < eps) break;
     }
     const float t_last = L.near + (float(L.K) - 0.5f) * L.h;

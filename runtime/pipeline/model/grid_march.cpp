@@ -91,7 +91,7 @@ void GridMarch::render(int n_rays, const cl::Buffer& o, const cl::Buffer& d,
     evaluated_ += rows;
     ++waves_;
     composite_k_.set_args(int(A), kDensStride, cfg_.stop_transmittance,
-                          cfg_.head_weight_threshold, cfg_.hit_alpha, m, mc, alive_, offset_, dens,
+                          cfg_.head_weight_threshold, cfg_.hit_alpha, mc, alive_, offset_, dens,
                           t_w_, dt_w_, k_w_, cell_w_, trans_, acc_, median_, cursor_, mode_,
                           quiet_, last_k_, w_w_, hcount_, done_, stats_)
         .launch({g64(A)}, {64});
