@@ -18,7 +18,7 @@ struct FastView {
   const render::OccupancyGrid* grid = nullptr;
   const render::FastRenderConfig* cfg = nullptr;
   long evaluated = 0, head_rows = 0;  // density and head rows, added up over the chunks
-  GridMarch::Rows march;              // layout "march": the density rows by kind, added up
+  GridMarch::Rows march{};            // layout "march": the density rows by kind, added up
 };
 // With `stats` (protocol renderer only), per pixel the median depth (metres), the opacity Σ w
 // and the weight-normalised depth variance (m²) of the same render (model.depth_stats()).
