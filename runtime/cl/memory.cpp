@@ -1,5 +1,9 @@
 #include "cl/memory.hpp"
 
+#include <algorithm>
+#include <functional>
+#include <numeric>
+
 #include "cl/runtime.hpp"
 
 namespace sgnlf::cl {
@@ -33,6 +37,7 @@ void Buffer::write(const void* src, size_t bytes, size_t offset) {
     throw Error("cl::Buffer::write: " + std::to_string(offset + bytes) + " bytes past a " +
                 std::to_string(bytes_) + "-byte buffer");
   if (bytes == 0) return;
+  if (rt_->trace()) rt_->trace()->add_transfer(false, bytes);
   check(clEnqueueWriteBuffer(rt_->queue(), mem_.get(), CL_TRUE, offset, bytes, src, 0, nullptr,
                              nullptr),
         "clEnqueueWriteBuffer");
@@ -43,6 +48,7 @@ void Buffer::read(void* dst, size_t bytes, size_t offset) const {
     throw Error("cl::Buffer::read: " + std::to_string(offset + bytes) + " bytes past a " +
                 std::to_string(bytes_) + "-byte buffer");
   if (bytes == 0) return;
+  if (rt_->trace()) rt_->trace()->add_transfer(true, bytes);
   check(clEnqueueReadBuffer(rt_->queue(), mem_.get(), CL_TRUE, offset, bytes, dst, 0, nullptr,
                             nullptr),
         "clEnqueueReadBuffer");
@@ -72,14 +78,18 @@ Kernel::Kernel(Runtime& rt, cl_program program, const std::string& name) : rt_(&
 void Kernel::set_arg(cl_uint i, const Buffer& b) {
   cl_mem m = b.get();
   set_raw(i, sizeof(cl_mem), &m);
+  if (buffer_bytes_.size() <= i) buffer_bytes_.resize(i + 1, 0);
+  buffer_bytes_[i] = b.bytes();
 }
 
 void Kernel::set_arg(cl_uint i, const LocalMem& m) {
+  if (i < buffer_bytes_.size()) buffer_bytes_[i] = 0;
   check(clSetKernelArg(k_.get(), i, m.bytes, nullptr), "clSetKernelArg",
         name_ + " argument " + std::to_string(i) + " (local memory)");
 }
 
 void Kernel::set_raw(cl_uint i, size_t size, const void* value) {
+  if (i < buffer_bytes_.size()) buffer_bytes_[i] = 0;  // set_arg(Buffer) sets it after
   check(clSetKernelArg(k_.get(), i, size, value), "clSetKernelArg",
         name_ + " argument " + std::to_string(i));
 }
@@ -96,6 +106,10 @@ Event Kernel::launch(std::vector<size_t> global, std::vector<size_t> local) {
                                &e),
         "clEnqueueNDRangeKernel", name_);
   Event ev(e);
+  if (LaunchTrace* t = rt_->trace())
+    t->launches.push_back(
+        {name_, std::accumulate(global.begin(), global.end(), size_t(1), std::multiplies<>()),
+         buffer_bytes_.empty() ? 0 : *std::max_element(buffer_bytes_.begin(), buffer_bytes_.end())});
   if (rt_->profiling()) {
     ev.wait();
     rt_->record(name_, ev.elapsed_ms());

@@ -140,6 +140,8 @@ class Kernel {
   Runtime* rt_ = nullptr;
   KernelHandle k_;
   std::string name_;
+  // Bytes of the buffer bound at each argument index (0: not a buffer), for the launch trace.
+  std::vector<size_t> buffer_bytes_;
 };
 
 inline size_t round_up(size_t n, size_t m) { return (n + m - 1) / m * m; }

@@ -124,6 +124,9 @@ Kernel Runtime::kernel(const std::string& file, const std::string& name,
 }
 
 void Runtime::flush() { check(clFlush(queue_.get()), "clFlush"); }
-void Runtime::finish() { check(clFinish(queue_.get()), "clFinish"); }
+void Runtime::finish() {
+  if (trace_) ++trace_->finishes;
+  check(clFinish(queue_.get()), "clFinish");
+}
 
 }  // namespace sgnlf::cl

@@ -15,6 +15,7 @@
 
 #include "cl/device.hpp"
 #include "cl/device_profile.hpp"
+#include "cl/launch_trace.hpp"
 #include "cl/memory.hpp"
 
 namespace sgnlf::cl {
@@ -62,6 +63,10 @@ class Runtime {
   void record(const std::string& kernel, double ms);
   const std::map<std::string, ProfileRow>& profile() const { return profile_; }
   std::string profile_report() const;
+  // Launch trace (cl/launch_trace.hpp): while set, every launch, blocking transfer and finish
+  // on this Runtime is appended to `t` (not owned; nullptr stops). Not thread-safe.
+  void set_trace(LaunchTrace* t) { trace_ = t; }
+  LaunchTrace* trace() const { return trace_; }
   ~Runtime();
 
  private:
@@ -75,6 +80,7 @@ class Runtime {
   size_t builds_ = 0;
   bool profiling_ = false;
   std::map<std::string, ProfileRow> profile_;
+  LaunchTrace* trace_ = nullptr;
 };
 
 }  // namespace sgnlf::cl
