@@ -332,7 +332,7 @@ TEST_CASE("the field lists describe, read, write and range-check each section",
       CAPTURE(key);
       // Every described key is written (keys added later: only when not their old value), but
       // the optional sections no smoke preset has (on when present).
-      const bool absent_optional = section == "geometric" && key == "reseed";
+      const bool absent_optional = section == "geometric" && (key == "reseed" || key == "refine");
       if (absent_optional) CHECK_FALSE(in[section].contains(key));
       else if (!d.contains("written")) CHECK(in[section].contains(key));
       if (!d.contains("max")) continue;
@@ -431,6 +431,44 @@ TEST_CASE("config: edge re-seeding is an optional section of the geometric stage
     resolve_config("sg-nlf", "quick", Json{{"geometric", {{"reseed", {{"judge", "icp"}}}}}});
   });
   CHECK_THAT(j, Catch::Contains("judge") && Catch::Contains("icp"));
+}
+
+TEST_CASE("config: the fine geometric registration is an optional section of the geometric stage",
+          "[config][refine]") {
+  const TrainConfig plain = resolve_config("geonlf", "quick");
+  REQUIRE(plain.pose_free->geometric);
+  CHECK_FALSE(plain.pose_free->geometric->refine);
+  CHECK_FALSE(train_config_to_json(plain)["geometric"].contains("refine"));
+  const TrainConfig c =
+      resolve_config("geonlf", "quick", Json{{"geometric", {{"refine", {{"steps", 50}}}}}});
+  REQUIRE(c.pose_free->geometric->refine);
+  const GeometricRefineConfig& f = *c.pose_free->geometric->refine;
+  CHECK(f.steps == 50);
+  CHECK(f.lr_final == 1.0);
+  // The defaults are the from_odometry start's measured optimiser, not posegraph's.
+  CHECK(f.optimizer.residual == "point_to_plane");
+  CHECK(f.optimizer.edge_offsets == std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8});
+  CHECK(f.optimizer.points_per_frame == 16000);
+  CHECK(f.optimizer.tau_scale == 4.0);
+  CHECK(f.optimizer.threads == 2);
+  CHECK(c.hash() != plain.hash());
+  const Json w = train_config_to_json(c)["geometric"]["refine"];
+  CHECK(w["steps"] == 50);
+  CHECK(w["optimizer"]["residual"] == "point_to_plane");
+  CHECK(resolve_config("geonlf", "quick", Json{{"geometric", {{"refine", w}}}}).hash() == c.hash());
+  const std::string e = error_of([&] {
+    resolve_config("geonlf", "quick", Json{{"geometric", {{"refine", {{"stesp", 50}}}}}});
+  });
+  CHECK_THAT(e, Catch::Contains("geometric.refine") && Catch::Contains("stesp"));
+  const std::string r = error_of([&] {
+    resolve_config("geonlf", "quick",
+                   Json{{"geometric", {{"refine", {{"optimizer", {{"residual", "icp"}}}}}}}});
+  });
+  CHECK_THAT(r, Catch::Contains("geometric.refine.optimizer") && Catch::Contains("icp"));
+  const std::string z = error_of([&] {
+    resolve_config("geonlf", "quick", Json{{"geometric", {{"refine", {{"steps", 0}}}}}});
+  });
+  CHECK_THAT(z, Catch::Contains("'steps'"));
 }
 
 TEST_CASE("config: the annealed runs' steps per call and the discriminator's weight decay are keys",

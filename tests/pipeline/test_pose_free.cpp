@@ -212,3 +212,34 @@ TEST_CASE("geometric.reseed runs after the coarse alignment and is logged",
   }
   CHECK(on["reseed"]["kept"].get<int>() == kept);
 }
+
+TEST_CASE("geometric.refine runs after the coarse alignment, lowers its own loss and is logged",
+          "[pipeline][posefree][session][device]") {
+  const std::string data = test::temp_dir("posefree_refine_data") + "/seq";
+  test::write_tiny_dataset(data);
+  auto run = [&](const Json& extra, const std::string& name) {
+    const std::string dir = test::temp_dir(name);
+    Json o = merge_config_json(Json{{"schedule", {{"iterations", 7}}}}, extra);
+    train_run(test::runtime(),
+              test::tiny_request("geonlf", data, tiny_pose_free("geonlf", o), dir, 3, -1, false));
+    std::ifstream f(dir + "/geometric_log.jsonl");
+    std::string line;
+    REQUIRE(std::getline(f, line));
+    return Json::parse(line);
+  };
+  const Json off = run(Json::object(), "posefree_refine_off");
+  CHECK_FALSE(off.contains("refine"));
+  const Json on = run(Json{{"geometric", {{"refine", {{"steps", 20},
+                                                      {"optimizer", {{"points_per_frame", 400},
+                                                                     {"edge_offsets", {1, 2, 3}}}}}}}}},
+                      "posefree_refine_on");
+  REQUIRE(on.contains("refine"));
+  const Json& r = on["refine"];
+  CHECK(r["steps"] == 20);
+  CHECK(r["residual"] == "point_to_plane");
+  CHECK(r["loss_after"].get<double>() < r["loss_before"].get<double>());
+  CHECK(r["max_frame_move_m"].get<double>() > 0.0);
+  // The coarse alignment before it is the same run; the stage's own loss is re-evaluated after.
+  CHECK(on["loss_before"] == off["loss_before"]);
+  CHECK(on["loss_after"] != off["loss_after"]);
+}

@@ -26,6 +26,7 @@ void PoseFreeConfig::validate(const std::string& w) const {
                         "pose_optim.optimize is false; remove the section (\"geometric\": null)");
     geometric->optimizer.validate(w + ".geometric.optimizer");
     if (geometric->reseed) geometric->reseed->validate(w + ".geometric.reseed");
+    if (geometric->refine) geometric->refine->optimizer.validate(w + ".geometric.refine.optimizer");
   }
 }
 
@@ -35,6 +36,18 @@ posegraph::GeometricConfig GeometricScheduleConfig::default_optimizer() {
   g.lr_translation = 1e-1;
   g.points_per_frame = 12000;
   g.threads = 2;
+  return g;
+}
+
+posegraph::GeometricConfig GeometricRefineConfig::default_optimizer() {
+  posegraph::GeometricConfig g;
+  g.edge_offsets = {1, 2, 3, 4, 5, 6, 7, 8};
+  g.lr_rotation = 5e-4;
+  g.lr_translation = 5e-3;
+  g.tau_scale = 4.0;
+  g.points_per_frame = 16000;
+  g.threads = 2;
+  g.residual = "point_to_plane";
   return g;
 }
 

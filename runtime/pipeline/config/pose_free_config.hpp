@@ -77,6 +77,32 @@ struct ReweightConfig {
 // term, the normals of point_to_plane, the worker threads). The presets' τ scale is 1.5,
 // measured (README, "GeoNLF"); GeoNLF published 0.5 (nuScenes) / 0.3 (KITTI). On when the
 // "geometric" section is present (and then the poses must be optimised).
+// A fine registration after the coarse alignment (and its re-seeding), before the first
+// training step: `steps` more annealed steps (τ ramping to optimizer.tau_scale, the learning
+// rates decaying to lr·lr_final, a fresh Adam every per_call steps) with an optimiser of its
+// own, e.g. point-to-plane residuals over more points and edges i+1 … i+8, the estimator that
+// takes the odometry's poses to centimetres (docs/studies/odometry/pose_free_from_odometry.md).
+// The coarse stage's point-to-point Chamfer is what converges from metres away; near the
+// minimum its matches between scans 0.5 s apart are biased along the surfaces, which a
+// point-to-plane residual is not. Later epochs keep the schedule's own optimiser. Not in GeoNLF
+// or the paper; on when present.
+struct GeometricRefineConfig {
+  int steps = 100;
+  double lr_final = 1.0;
+  int per_call = 10;
+  posegraph::GeometricConfig optimizer = default_optimizer();
+  // Point-to-plane over 16000 points a frame, edges i+1 … i+8, τ scale 4, 5e-4 rad / 5e-3 m
+  // steps, two threads: the from_odometry start's measured settings.
+  static posegraph::GeometricConfig default_optimizer();
+  template <class Self, class V>
+  static void fields(Self& s, V& v) {
+    v("steps", s.steps, 1, 1 << 20);
+    v("lr_final", s.lr_final, 1e-6, 1.0);
+    v("per_call", s.per_call, 1, 1 << 20, config::omit_when(10));
+    v.section("optimizer", s.optimizer);
+  }
+};
+
 struct GeometricScheduleConfig {
   int first_steps = 100;
   double steps_per_epoch = 10.0;
@@ -89,6 +115,7 @@ struct GeometricScheduleConfig {
   // Edge re-seeding after the coarse alignment (posegraph/edge_reseeding.hpp; not in GeoNLF or
   // the paper): on when present.
   std::optional<posegraph::ReseedConfig> reseed;
+  std::optional<GeometricRefineConfig> refine;  // after the coarse alignment: on when present
   int steps_at(long epoch, double progress) const;
   // The pipeline's defaults for the optimiser (the module's, with GeoNLF's learning rates
   // 1e-2 rad / 1e-1 m, 12000 points a frame and two threads).
@@ -103,6 +130,7 @@ struct GeometricScheduleConfig {
     v("per_call", s.per_call, 1, 1 << 20, config::omit_when(10));
     v.section("optimizer", s.optimizer);
     v.optional("reseed", s.reseed);
+    v.optional("refine", s.refine);
   }
 };
 

@@ -83,6 +83,17 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
       gc.threads, gc.direction());
   // The re-seeding's judge, when it differs from the stage's residual (edge_reseeding.hpp).
   const auto judge = g.reseed ? posegraph::make_judge_loss(*loss, scans, gc, *g.reseed) : nullptr;
+  // The fine registration after the coarse alignment (pose_free_config.hpp), its own clouds
+  // and edges; released once it has run.
+  std::shared_ptr<std::shared_ptr<const posegraph::GraphLoss>> refine_loss;
+  if (g.refine) {
+    const posegraph::GeometricConfig& rc = g.refine->optimizer;
+    auto rclouds = std::make_shared<const std::vector<posegraph::FrameCloud>>(rc.clouds(scans));
+    refine_loss = std::make_shared<std::shared_ptr<const posegraph::GraphLoss>>(
+        std::make_shared<const posegraph::GraphLoss>(
+            rclouds, posegraph::sequential_edges(int(d.frames.size()), rc.edge_offsets),
+            rc.min_distance, rc.threads, rc.direction()));
+  }
   const SceneNormalization norm = scene.norm;
   const bool confidence = c.confidence_graph();
   if (confidence && !features.eval)
@@ -91,7 +102,7 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
   auto graph = std::make_shared<GraphState>();
 
   GeometricStage stage;
-  stage.run = [g, gc, loss, judge, norm, clouds, confidence, pg, graph, features,
+  stage.run = [g, gc, loss, judge, refine_loss, norm, clouds, confidence, pg, graph, features,
                run_dir](PoseSet& poses, long epoch, double progress, const GeometricProgress& report) -> Json {
     const int steps = g.steps_at(epoch, progress);
     if (steps <= 0) return nullptr;
@@ -107,7 +118,7 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
     std::vector<Pose> T(poses.size());
     for (size_t i = 0; i < poses.size(); ++i) T[i] = denormalize_pose(poses.pose(i), norm);
     posegraph::GeometricResult r;
-    Json graph_line, reseed_line;
+    Json graph_line, reseed_line, refine_line;
     if (epoch == 0) {  // the coarse alignment (sequential graph)
       log::info("coarse geometric alignment: ", steps, " steps over ", poses.size(),
                 " scans before the first training step");
@@ -124,6 +135,32 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
         const auto rs = posegraph::reseed_edges(loss, gc, g.lr_final, *g.reseed, T, judge);
         log::info("edge re-seeding: ", rs.trials.size(), " hypotheses tried, ", rs.kept, " kept");
         reseed_line = posegraph::reseed_json(rs);
+        std::vector<posegraph::PoseGrad> grad;
+        r.loss_after = (*loss)(T, gc.tau_scale, grad);
+      }
+      if (g.refine && refine_loss && *refine_loss) {
+        const GeometricRefineConfig& f = *g.refine;
+        log::info("fine geometric registration: ", f.steps, " steps, ", f.optimizer.residual,
+                  " over ", f.optimizer.edge_offsets.size(), " edge offsets");
+        posegraph::AnnealConfig a;
+        a.steps = f.steps;
+        a.per_call = f.per_call;
+        a.lr_final = f.lr_final;
+        const std::vector<Pose> T_before = T;
+        const auto calls = posegraph::run_annealed(*refine_loss, f.optimizer, a, T);
+        double moved_m = 0.0, turned_rad = 0.0;  // the largest move of a frame
+        for (size_t i = 0; i < T.size(); ++i) {
+          const Pose d = T_before[i].inverse() * T[i];
+          moved_m = std::max(moved_m, double(d.translation().norm()));
+          turned_rad = std::max(turned_rad, double(Eigen::AngleAxisd(d.rotation()).angle()));
+        }
+        refine_line = Json{{"steps", f.steps},
+                           {"residual", f.optimizer.residual},
+                           {"loss_before", calls.front().loss_before},
+                           {"loss_after", calls.back().loss_after},
+                           {"max_frame_move_m", moved_m},
+                           {"max_frame_turn_rad", turned_rad}};
+        refine_loss->reset();
         std::vector<posegraph::PoseGrad> grad;
         r.loss_after = (*loss)(T, gc.tau_scale, grad);
       }
@@ -185,6 +222,7 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
         log::warn("the coarse geometric alignment did not converge: ", chk.reason);
     }
     if (!reseed_line.is_null()) line["reseed"] = reseed_line;
+    if (!refine_line.is_null()) line["refine"] = refine_line;
     if (!graph_line.is_null()) {
       graph_line["edges_in_use"] = graph->edges.size();
       graph_line["graph_epoch"] = graph->built_epoch;
