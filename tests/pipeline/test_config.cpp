@@ -451,7 +451,12 @@ TEST_CASE("config: the fine geometric registration is an optional section of the
   CHECK(f.optimizer.points_per_frame == 16000);
   CHECK(f.optimizer.tau_scale == 4.0);
   CHECK(f.optimizer.threads == 2);
+  CHECK(f.later_epochs);  // the later epochs keep its estimator unless told otherwise
   CHECK(c.hash() != plain.hash());
+  const TrainConfig first = resolve_config(
+      "geonlf", "quick", Json{{"geometric", {{"refine", {{"steps", 50}, {"later_epochs", false}}}}}});
+  CHECK_FALSE(first.pose_free->geometric->refine->later_epochs);
+  CHECK(first.hash() != c.hash());
   const Json w = train_config_to_json(c)["geometric"]["refine"];
   CHECK(w["steps"] == 50);
   CHECK(w["optimizer"]["residual"] == "point_to_plane");

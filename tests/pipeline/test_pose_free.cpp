@@ -223,23 +223,34 @@ TEST_CASE("geometric.refine runs after the coarse alignment, lowers its own loss
     train_run(test::runtime(),
               test::tiny_request("geonlf", data, tiny_pose_free("geonlf", o), dir, 3, -1, false));
     std::ifstream f(dir + "/geometric_log.jsonl");
-    std::string line;
-    REQUIRE(std::getline(f, line));
-    return Json::parse(line);
+    std::vector<Json> lines;
+    for (std::string line; std::getline(f, line);) lines.push_back(Json::parse(line));
+    REQUIRE(lines.size() >= 2);  // the coarse alignment and at least one later epoch
+    return lines;
   };
-  const Json off = run(Json::object(), "posefree_refine_off");
-  CHECK_FALSE(off.contains("refine"));
-  const Json on = run(Json{{"geometric", {{"refine", {{"steps", 20},
-                                                      {"optimizer", {{"points_per_frame", 400},
-                                                                     {"edge_offsets", {1, 2, 3}}}}}}}}},
-                      "posefree_refine_on");
-  REQUIRE(on.contains("refine"));
-  const Json& r = on["refine"];
+  auto refine = [](bool later) {
+    return Json{{"geometric", {{"refine", {{"steps", 20},
+                                           {"later_epochs", later},
+                                           {"optimizer", {{"points_per_frame", 400},
+                                                          {"edge_offsets", {1, 2, 3}}}}}}}}};
+  };
+  const auto off = run(Json::object(), "posefree_refine_off");
+  CHECK_FALSE(off[0].contains("refine"));
+  const auto on = run(refine(true), "posefree_refine_on");
+  REQUIRE(on[0].contains("refine"));
+  const Json& r = on[0]["refine"];
   CHECK(r["steps"] == 20);
   CHECK(r["residual"] == "point_to_plane");
   CHECK(r["loss_after"].get<double>() < r["loss_before"].get<double>());
   CHECK(r["max_frame_move_m"].get<double>() > 0.0);
   // The coarse alignment before it is the same run; the stage's own loss is re-evaluated after.
-  CHECK(on["loss_before"] == off["loss_before"]);
-  CHECK(on["loss_after"] != off["loss_after"]);
+  CHECK(on[0]["loss_before"] == off[0]["loss_before"]);
+  CHECK(on[0]["loss_after"] != off[0]["loss_after"]);
+  // later_epochs: the later epochs' steps take the refine's estimator (its loss, not the
+  // stage's point-to-point one); without it they keep the stage's, from the same refined start.
+  const auto only_first = run(refine(false), "posefree_refine_first");
+  CHECK(only_first[0]["loss_after"] == on[0]["loss_after"]);
+  CHECK(on[1].value("estimator", "") == "refine");
+  CHECK_FALSE(only_first[1].contains("estimator"));
+  CHECK(on[1]["loss_before"] != only_first[1]["loss_before"]);
 }

@@ -84,12 +84,17 @@ struct ReweightConfig {
 // takes the odometry's poses to centimetres (docs/studies/odometry/pose_free_from_odometry.md).
 // The coarse stage's point-to-point Chamfer is what converges from metres away; near the
 // minimum its matches between scans 0.5 s apart are biased along the surfaces, which a
-// point-to-plane residual is not. Later epochs keep the schedule's own optimiser. Not in GeoNLF
-// or the paper; on when present.
+// point-to-plane residual is not. With later_epochs (the default) every later geometric step
+// keeps this estimator too: the shrinking refinement before each epoch and the settling runs on
+// each new confidence graph take its residual, points and learning rates (lr·lr_final), and the
+// graph's loss is built over its clouds; without it they fall back to the schedule's own
+// optimiser, whose biased point-to-point steps measurably walk the refined poses back
+// (docs/studies/fine-registration). Not in GeoNLF or the paper; on when present.
 struct GeometricRefineConfig {
   int steps = 100;
   double lr_final = 1.0;
   int per_call = 10;
+  bool later_epochs = true;
   posegraph::GeometricConfig optimizer = default_optimizer();
   // Point-to-plane over 16000 points a frame, edges i+1 … i+8, τ scale 4, 5e-4 rad / 5e-3 m
   // steps, two threads: the from_odometry start's measured settings.
@@ -99,6 +104,7 @@ struct GeometricRefineConfig {
     v("steps", s.steps, 1, 1 << 20);
     v("lr_final", s.lr_final, 1e-6, 1.0);
     v("per_call", s.per_call, 1, 1 << 20, config::omit_when(10));
+    v("later_epochs", s.later_epochs);
     v.section("optimizer", s.optimizer);
   }
 };

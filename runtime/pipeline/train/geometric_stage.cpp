@@ -84,16 +84,23 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
   // The re-seeding's judge, when it differs from the stage's residual (edge_reseeding.hpp).
   const auto judge = g.reseed ? posegraph::make_judge_loss(*loss, scans, gc, *g.reseed) : nullptr;
   // The fine registration after the coarse alignment (pose_free_config.hpp), its own clouds
-  // and edges; released once it has run.
+  // and edges; released once it has run unless the later epochs keep its estimator.
   std::shared_ptr<std::shared_ptr<const posegraph::GraphLoss>> refine_loss;
+  std::shared_ptr<const std::vector<posegraph::FrameCloud>> rclouds;
+  const bool fine_later = g.refine && g.refine->later_epochs;
   if (g.refine) {
     const posegraph::GeometricConfig& rc = g.refine->optimizer;
-    auto rclouds = std::make_shared<const std::vector<posegraph::FrameCloud>>(rc.clouds(scans));
+    rclouds = std::make_shared<const std::vector<posegraph::FrameCloud>>(rc.clouds(scans));
     refine_loss = std::make_shared<std::shared_ptr<const posegraph::GraphLoss>>(
         std::make_shared<const posegraph::GraphLoss>(
             rclouds, posegraph::sequential_edges(int(d.frames.size()), rc.edge_offsets),
             rc.min_distance, rc.threads, rc.direction()));
   }
+  // The later epochs' estimator: the refine's (residual, points, learning rates at lr·lr_final)
+  // with later_epochs, else the schedule's own at lr·lr_final.
+  const posegraph::GeometricConfig& later_cfg = fine_later ? g.refine->optimizer : gc;
+  const double later_lr = fine_later ? g.refine->lr_final : g.lr_final;
+  const auto later_clouds = fine_later ? rclouds : clouds;
   const SceneNormalization norm = scene.norm;
   const bool confidence = c.confidence_graph();
   if (confidence && !features.eval)
@@ -103,7 +110,7 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
 
   GeometricStage stage;
   stage.run = [g, gc, loss, judge, refine_loss, norm, clouds, confidence, pg, graph, features,
-               run_dir](PoseSet& poses, long epoch, double progress, const GeometricProgress& report) -> Json {
+               run_dir, fine_later, later_cfg, later_lr, later_clouds](PoseSet& poses, long epoch, double progress, const GeometricProgress& report) -> Json {
     const int steps = g.steps_at(epoch, progress);
     if (steps <= 0) return nullptr;
     auto tell = [&](long done, long total) {
@@ -160,7 +167,7 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
                            {"loss_after", calls.back().loss_after},
                            {"max_frame_move_m", moved_m},
                            {"max_frame_turn_rad", turned_rad}};
-        refine_loss->reset();
+        if (!fine_later) refine_loss->reset();
         std::vector<posegraph::PoseGrad> grad;
         r.loss_after = (*loss)(T, gc.tau_scale, grad);
       }
@@ -172,8 +179,8 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
         const auto cg = posegraph::build_confidence_graph(*clouds, T, features, pg.graph);
         graph->edges = cg.edges;
         graph->loss = std::make_shared<const posegraph::GraphLoss>(
-            clouds, cg.edges, gc.min_distance, gc.threads, gc.direction(),
-            pg.graph.edge_max_distance_m);
+            later_clouds, cg.edges, later_cfg.min_distance, later_cfg.threads,
+            later_cfg.direction(), pg.graph.edge_max_distance_m);
         graph->built_epoch = epoch;
         if (!run_dir.empty()) write_graph_files(run_dir, epoch, cg, T);
         graph_line = Json{{"built", true},
@@ -186,22 +193,24 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
           posegraph::AnnealConfig a;
           a.steps = build_steps;
           a.per_call = g.per_call;
-          a.lr_start = pg.lr_on_build;
-          a.lr_final = g.lr_final;
+          // The fine estimator settles at its own final rates: its steps are already small.
+          a.lr_start = fine_later ? later_lr : pg.lr_on_build;
+          a.lr_final = later_lr;
           a.hold_clock = true;
           tell(0, build_steps + steps);
-          const auto calls = posegraph::run_annealed(graph->loss, gc, a, T, after_call(0, build_steps + steps, a));
+          const auto calls = posegraph::run_annealed(graph->loss, later_cfg, a, T,
+                                                     after_call(0, build_steps + steps, a));
           build_done = build_steps;
           graph_line["build_run"] = Json{{"steps", build_steps},
                                          {"loss_before", calls.front().loss_before},
                                          {"loss_after", calls.back().loss_after}};
         }
       }
-      posegraph::GeometricConfig run_cfg = gc;
+      posegraph::GeometricConfig run_cfg = later_cfg;
       run_cfg.steps = steps;
-      run_cfg.lr_rotation *= g.lr_final;
-      run_cfg.lr_translation *= g.lr_final;
-      const auto& use = graph->loss ? graph->loss : loss;
+      run_cfg.lr_rotation *= later_lr;
+      run_cfg.lr_translation *= later_lr;
+      const auto& use = graph->loss ? graph->loss : fine_later ? *refine_loss : loss;
       const posegraph::GeometricOptimizer opt(posegraph::GraphLoss::as_pose_loss(use),
                                               poses.size(), run_cfg);
       tell(build_done, build_done + steps);
@@ -221,6 +230,7 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
       if (!chk.converged)
         log::warn("the coarse geometric alignment did not converge: ", chk.reason);
     }
+    if (epoch > 0 && fine_later) line["estimator"] = "refine";  // later_epochs (see above)
     if (!reseed_line.is_null()) line["reseed"] = reseed_line;
     if (!refine_line.is_null()) line["refine"] = refine_line;
     if (!graph_line.is_null()) {
@@ -238,7 +248,7 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
                          {"pose_graph.edge_count", pack_doubles({double(graph->edges.size())})},
                          {"pose_graph.edges", pack_doubles(e)}};
     };
-    stage.load_state = [graph, clouds, gc, pg](const Checkpoint& ck) {
+    stage.load_state = [graph, later_clouds, later_cfg, pg](const Checkpoint& ck) {
       graph->built_epoch = long(unpack_doubles(ck.array("pose_graph.built_epoch", 2)).at(0));
       const size_t n = size_t(unpack_doubles(ck.array("pose_graph.edge_count", 2)).at(0));
       const auto e = unpack_doubles(ck.array("pose_graph.edges", n == 0 ? 0 : 6 * n));
@@ -248,8 +258,8 @@ GeometricStage make_geometric_stage(const Dataset& d, const Scene& scene, const 
       graph->loss.reset();
       if (!graph->edges.empty())
         graph->loss = std::make_shared<const posegraph::GraphLoss>(
-            clouds, graph->edges, gc.min_distance, gc.threads, gc.direction(),
-            pg.graph.edge_max_distance_m);
+            later_clouds, graph->edges, later_cfg.min_distance, later_cfg.threads,
+            later_cfg.direction(), pg.graph.edge_max_distance_m);
     };
   }
   return stage;
