@@ -219,7 +219,9 @@ TEST_CASE("geometric.refine runs after the coarse alignment, lowers its own loss
   test::write_tiny_dataset(data);
   auto run = [&](const Json& extra, const std::string& name) {
     const std::string dir = test::temp_dir(name);
-    Json o = merge_config_json(Json{{"schedule", {{"iterations", 7}}}}, extra);
+    // 28 steps (tiny_pose_free's): an epoch is the 13 training frames, so epoch 1 starts at
+    // progress 0.46, before stop_progress 0.6, and takes lround(10 · (1 − 0.46 / 0.6)) = 2 steps.
+    const Json o = merge_config_json(Json{{"geometric", {{"steps_per_epoch", 10.0}}}}, extra);
     train_run(test::runtime(),
               test::tiny_request("geonlf", data, tiny_pose_free("geonlf", o), dir, 3, -1, false));
     std::ifstream f(dir + "/geometric_log.jsonl");
