@@ -234,9 +234,14 @@ TEST_CASE("overrides merge into the preset and round-trip through JSON", "[pipel
 }
 
 namespace {
-// Every leaf of `part` has the same value in `whole` (nested objects compared key by key).
+// Every leaf of `part` has the same value in `whole` (nested objects compared key by key); a
+// null leaf (a key the section removes) is absent from `whole`.
 bool contains_leaves(const Json& whole, const Json& part) {
   for (auto it = part.begin(); it != part.end(); ++it) {
+    if (it.value().is_null()) {
+      if (whole.contains(it.key())) return false;
+      continue;
+    }
     if (!whole.contains(it.key())) return false;
     if (it.value().is_object()) {
       if (!contains_leaves(whole.at(it.key()), it.value())) return false;
@@ -439,6 +444,13 @@ TEST_CASE("config: the fine geometric registration is an optional section of the
   REQUIRE(plain.pose_free->geometric);
   CHECK_FALSE(plain.pose_free->geometric->refine);
   CHECK_FALSE(train_config_to_json(plain)["geometric"].contains("refine"));
+  // On in SG-NLF's quick and paper presets and so in its ablations; not from the odometry,
+  // whose start is this estimator already (docs/studies/fine-registration).
+  CHECK(resolve_config("sg-nlf", "quick").pose_free->geometric->refine);
+  CHECK(resolve_config("sg-nlf", "paper").pose_free->geometric->refine);
+  CHECK(resolve_config("sg-nlf-no-graph", "quick").pose_free->geometric->refine);
+  CHECK_FALSE(resolve_config("sg-nlf", "quick", Json{{"poses", {{"init", "odometry"}}}})
+                  .pose_free->geometric->refine);
   const TrainConfig c =
       resolve_config("geonlf", "quick", Json{{"geometric", {{"refine", {{"steps", 50}}}}}});
   REQUIRE(c.pose_free->geometric->refine);
