@@ -118,9 +118,13 @@ const std::vector<KnownTransfers> kBlockingTransfers = {
 // the tiny scene (it runs on the host before the first epoch, outside the recorded step).
 TrainConfig audit_config(const std::string& method) {
   Json o{{"schedule", {{"rays_per_batch", 4096}, {"render_chunk_rays", 4096}}}};
-  if (resolve_config(method, "quick").geometric_stage())
+  const TrainConfig preset = resolve_config(method, "quick");
+  if (preset.geometric_stage()) {
     o["geometric"] = Json{{"first_steps", 2}, {"steps_per_epoch", 0.0},
                           {"optimizer", {{"points_per_frame", 400}}}};
+    if (preset.pose_free->geometric->refine)  // SG-NLF's fine registration, shrunk alike
+      o["geometric"]["refine"] = Json{{"steps", 2}, {"optimizer", {{"points_per_frame", 400}}}};
+  }
   return resolve_config(method, "quick", o);
 }
 
