@@ -14,9 +14,25 @@ const char* encoder_backward_name(EncoderBackward b) {
   return config::choices(kEncoderBackwardNames).name_of(b);
 }
 
+const char* gemm_name(GemmVariant g) { return config::choices(kGemmNames).name_of(g); }
+
 void DeviceProfile::validate(const std::string& where) const {
   if (name.empty()) throw ConfigError(where + ": 'name' must not be empty");
   config::check_fields(*this, where);
+  if (gemm_tile % 16 != 0)
+    throw ConfigError(where + ": 'gemm_tile' = " + std::to_string(gemm_tile) +
+                      " must be a multiple of 16");
+  if (16 % gemm_block_cols != 0)
+    throw ConfigError(where + ": 'gemm_block_cols' = " + std::to_string(gemm_block_cols) +
+                      " must divide 16 (1, 2, 4, 8 or 16)");
+  if (gemm_block_rows * gemm_block_cols > 32)
+    throw ConfigError(where + ": 'gemm_block_rows' x 'gemm_block_cols' = " +
+                      std::to_string(gemm_block_rows * gemm_block_cols) +
+                      " floats of registers per work-item, more than 32");
+  if (gemm_work_group < gemm_tile / gemm_block_cols)
+    throw ConfigError(where + ": 'gemm_work_group' = " + std::to_string(gemm_work_group) +
+                      " is below a tile row of gemm_tile / gemm_block_cols = " +
+                      std::to_string(gemm_tile / gemm_block_cols) + " work-items");
 }
 
 Json DeviceProfile::to_json() const { return config::write_fields(*this); }
@@ -32,6 +48,7 @@ DeviceProfile gpu_profile() {
   p.encoder_backward = EncoderBackward::DeterministicParallel;
   p.hash_grid_chunk = 1;
   p.plane_chunk = 1;
+  p.gemm = GemmVariant::LocalTiles;
   return p;
 }
 

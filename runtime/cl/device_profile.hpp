@@ -1,12 +1,14 @@
 // Device profiles: the launch shapes and kernel variants a device runs, as one table.
 //
 // A profile names the work-group size of the element-wise kernels (cl::launch_1d), the
-// variant of the encoders' parameter backward (hash grid, time hash grid, K-Planes) and the
-// points per work-item of the encoders' forward on CPUs. The built-in "cpu" profile is exactly
-// what every run did before profiles existed (local size 64, the serial per-level backward,
-// hash-grid chunks of 256 points, plane chunks of 64); "gpu" keeps local size 64, runs one point
-// per work-item and the deterministic parallel backward (sorted by entry, summed in point order,
-// bit-identical to the serial one: docs/architecture.md). A device of type CPU gets "cpu", any
+// variant of the encoders' parameter backward (hash grid, time hash grid, K-Planes), the
+// points per work-item of the encoders' forward on CPUs and the variant and tiles of the MLP
+// layers' GEMMs. The built-in "cpu" profile is exactly what every run did before profiles
+// existed (local size 64, the serial per-level backward, hash-grid chunks of 256 points, plane
+// chunks of 64, the float16 register-tiled GEMMs of kernels/field/mlp.cl); "gpu" keeps local
+// size 64, runs one point per work-item, the deterministic parallel backward (sorted by entry,
+// summed in point order, bit-identical to the serial one: docs/architecture.md) and the
+// local-memory tiled GEMMs of kernels/field/mlp_tiles.cl. A device of type CPU gets "cpu", any
 // other device (GPU, accelerator) "gpu"; the vendor is recorded in the result's context but
 // chooses nothing yet. `--device-profile cpu|gpu|auto|FILE` (or SGNLF_DEVICE_PROFILE) overrides
 // the choice; FILE is JSON whose keys are read over the built-in profile named by its "base"
@@ -34,6 +36,17 @@ inline constexpr std::pair<EncoderBackward, const char*> kEncoderBackwardNames[]
 
 const char* encoder_backward_name(EncoderBackward b);
 
+// The MLP layers' GEMMs (field::Mlp): cpu_tiles = kernels/field/mlp.cl, each work-item 8 points
+// x 16 outputs in float16 registers with no local memory (shaped for AVX-512 cores through
+// PoCL); local_tiles = kernels/field/mlp_tiles.cl, work-groups that stage tiles of the inputs
+// and weights in local memory and give each work-item a small register block (the gemm_* keys).
+enum class GemmVariant { CpuTiles, LocalTiles };
+
+inline constexpr std::pair<GemmVariant, const char*> kGemmNames[] = {
+    {GemmVariant::CpuTiles, "cpu_tiles"}, {GemmVariant::LocalTiles, "local_tiles"}};
+
+const char* gemm_name(GemmVariant g);
+
 struct DeviceProfile {
   std::string name = "cpu";
   // Work-group size of the 1-D element-wise kernels (global size rounded up to it).
@@ -45,6 +58,29 @@ struct DeviceProfile {
   // Points per work-item of the time hash grid's and K-Planes' forward when their config's
   // chunk is 0 (1 = one point per work-item, work-groups of 64).
   int plane_chunk = 64;
+  // The MLP GEMMs' variant; the gemm_* keys below shape local_tiles only (kernels/field/
+  // mlp_tiles.cl, runtime/field/mlp.cpp; cpu_tiles' shapes are fixed in mlp.cpp).
+  GemmVariant gemm = GemmVariant::CpuTiles;
+  // Work-items per work-group at most (a layer narrower than a tile gets fewer).
+  int gemm_work_group = 256;
+  // Columns of a work-group's output tile (the layer's outputs, d_in's inputs or the weight
+  // gradient's columns), a multiple of 16; a narrower layer's tile is its padded width.
+  int gemm_tile = 64;
+  // Depth of a local-memory tile: inputs (forward), outputs (d_in) or points (weight gradient).
+  int gemm_tile_k = 16;
+  // Register block of a work-item: rows (points; weight rows in the weight gradient) x columns,
+  // at most 32 floats; columns divide 16.
+  int gemm_block_rows = 4;
+  int gemm_block_cols = 4;
+  // A launch that the block above would give fewer work-items than this runs with a 1 x 1 block
+  // and 16-column tiles instead (small batches: the flow MLP, per-ray inputs). Every sum keeps
+  // its order, so the results are the same.
+  int gemm_min_work_items = 16384;
+  // Weight gradient: chunks of at least gemm_chunk_points points, at most gemm_max_chunks of
+  // them, each summed in point order, then the chunks summed in a fixed tree: for a given N the
+  // chunking, and so the rounding, is fixed.
+  int gemm_chunk_points = 64;
+  int gemm_max_chunks = 1024;
 
   template <class Self, class V>
   static void fields(Self& s, V& v) {
@@ -53,6 +89,15 @@ struct DeviceProfile {
     v("encoder_backward", s.encoder_backward, config::choices(kEncoderBackwardNames));
     v("hash_grid_chunk", s.hash_grid_chunk, 1, 65536);
     v("plane_chunk", s.plane_chunk, 1, 65536);
+    v("gemm", s.gemm, config::choices(kGemmNames));
+    v("gemm_work_group", s.gemm_work_group, 16, 1024);
+    v("gemm_tile", s.gemm_tile, 16, 128);
+    v("gemm_tile_k", s.gemm_tile_k, 1, 64);
+    v("gemm_block_rows", s.gemm_block_rows, 1, 32);
+    v("gemm_block_cols", s.gemm_block_cols, 1, 16);
+    v("gemm_min_work_items", s.gemm_min_work_items, 0, 1 << 30);
+    v("gemm_chunk_points", s.gemm_chunk_points, 1, 1 << 20);
+    v("gemm_max_chunks", s.gemm_max_chunks, 1, 65536);
   }
   // Throws ConfigError naming `where` and the key.
   void validate(const std::string& where = "device_profile") const;

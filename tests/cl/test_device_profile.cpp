@@ -1,7 +1,7 @@
 // Device profiles (cl/device_profile.hpp): the built-in table (cpu = the launch shapes and
 // kernels every run used before profiles), the choice by device type, the spec and
-// SGNLF_DEVICE_PROFILE, strict JSON files, and cl::launch_1d taking its work-group size from
-// the Runtime's profile.
+// SGNLF_DEVICE_PROFILE, strict JSON files (the MLP GEMM tiles' checks among them), and
+// cl::launch_1d taking its work-group size from the Runtime's profile.
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
@@ -37,12 +37,15 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(cpu.encoder_backward == cl::EncoderBackward::Serial);
   CHECK(cpu.hash_grid_chunk == 256);
   CHECK(cpu.plane_chunk == 64);
+  CHECK(cpu.gemm == cl::GemmVariant::CpuTiles);
   const auto gpu = cl::gpu_profile();
   CHECK(gpu.name == "gpu");
   CHECK(gpu.local_size == 64);
   CHECK(gpu.encoder_backward == cl::EncoderBackward::DeterministicParallel);
   CHECK(gpu.hash_grid_chunk == 1);
   CHECK(gpu.plane_chunk == 1);
+  CHECK(gpu.gemm == cl::GemmVariant::LocalTiles);
+  CHECK(gpu.gemm_block_rows * gpu.gemm_block_cols <= 32);
   CHECK(cl::automatic_profile(device_of_type("CPU")) == cpu);
   CHECK(cl::automatic_profile(device_of_type("GPU")) == gpu);
   CHECK(cl::automatic_profile(device_of_type("accelerator")) == gpu);
@@ -51,6 +54,8 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(cl::resolve_profile("cpu", device_of_type("GPU")) == cpu);
   CHECK(cl::resolve_profile("auto", device_of_type("GPU")) == gpu);
   CHECK(gpu.to_json()["encoder_backward"] == "deterministic_parallel");
+  CHECK(gpu.to_json()["gemm"] == "local_tiles");
+  CHECK(cpu.to_json()["gemm"] == "cpu_tiles");
   CHECK(cl::DeviceProfile::from_json(gpu.to_json(), "p", cpu) == gpu);
 }
 
@@ -102,6 +107,39 @@ TEST_CASE("device profile files: keys over a base, strictly read", "[cl][device_
   CHECK_THROWS_WITH(cl::resolve_profile("/no/such/profile.json", cpu_dev),
                     Contains("/no/such/profile.json") && Contains("auto, cpu, gpu"));
   CHECK_THROWS_AS(cl::resolve_profile("fast", cpu_dev), ConfigError);
+  // The GEMM tiles: a GPU's file may retune them; shapes the kernels cannot take are refused.
+  const auto tuned = cl::resolve_profile(
+      write_profile("tiles.json", R"({"name": "t", "base": "gpu", "gemm_tile": 32,
+                                      "gemm_block_rows": 8, "gemm_block_cols": 4})"),
+      cpu_dev);
+  CHECK(tuned.gemm == cl::GemmVariant::LocalTiles);
+  CHECK(tuned.gemm_tile == 32);
+  CHECK(tuned.gemm_block_rows == 8);
+  CHECK(cl::resolve_profile(write_profile("cpu_gemm.json",
+                                          R"({"name": "g", "base": "gpu", "gemm": "cpu_tiles"})"),
+                            cpu_dev)
+            .gemm == cl::GemmVariant::CpuTiles);
+  CHECK_THROWS_WITH(
+      cl::resolve_profile(write_profile("gemm.json", R"({"name": "g", "gemm": "tensor_cores"})"),
+                          cpu_dev),
+      Contains("gemm") && Contains("local_tiles"));
+  CHECK_THROWS_WITH(
+      cl::resolve_profile(write_profile("tile.json", R"({"name": "t", "gemm_tile": 40})"), cpu_dev),
+      Contains("gemm_tile") && Contains("multiple of 16"));
+  CHECK_THROWS_WITH(
+      cl::resolve_profile(write_profile("block.json",
+                                        R"({"name": "b", "gemm_block_rows": 8, "gemm_block_cols": 8})"),
+                          cpu_dev),
+      Contains("64 floats") && Contains("more than 32"));
+  CHECK_THROWS_WITH(
+      cl::resolve_profile(write_profile("cols.json", R"({"name": "c", "gemm_block_cols": 3})"),
+                          cpu_dev),
+      Contains("gemm_block_cols") && Contains("divide 16"));
+  CHECK_THROWS_WITH(
+      cl::resolve_profile(write_profile("wg.json",
+                                        R"({"name": "w", "gemm_work_group": 16, "gemm_block_cols": 1})"),
+                          cpu_dev),
+      Contains("gemm_work_group"));
 }
 
 TEST_CASE("launch_1d takes the work-group size of the Runtime's profile", "[cl][device_profile]") {
