@@ -1,5 +1,6 @@
-// Mlp host launcher: layer programs specialised by -D defines, parameter init, and the
-// enqueueing of forward and backward passes (kernels/field/mlp.cl).
+// Mlp host code: spec checks, the parameter layout and init, and the forward and backward
+// passes layer by layer; the kernels of each layer and their launches (both GEMM variants of
+// the device profile) are in mlp_gemm.cpp.
 #include "field/mlp.hpp"
 
 #include <algorithm>
@@ -11,18 +12,11 @@
 
 namespace sgnlf::field {
 namespace {
-constexpr int kPts = 8;          // points per work-item in the GEMM kernels
-constexpr int kRows = 16;        // weight rows per work-item in the weight gradient
-constexpr int kMaxChunks = 256;  // weight-gradient partial sums (fixed for a given N)
-constexpr int kMinChunk = 512;   // points per chunk at least (a chunk's rows stay in L2)
-constexpr size_t kLocal = 16;    // work-group size along the point dimension
-
 void check_bytes(const cl::Buffer& b, size_t floats, const char* what) {
   if (b.bytes() < floats * sizeof(float))
     throw Error(std::string("Mlp: buffer '") + what + "' has " + std::to_string(b.bytes()) +
                 " bytes, needs " + std::to_string(floats * sizeof(float)));
 }
-size_t ceil_div(size_t a, size_t b) { return (a + b - 1) / b; }
 }  // namespace
 
 void MlpSpec::validate() const {
@@ -65,36 +59,13 @@ MlpSpec make_mlp_spec(int n_in, int width, int hidden, int n_out, Activation act
   return s;
 }
 
-Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec) : rt_(rt), spec_(spec) {
+Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec)
+    : rt_(rt), profile_(rt.device_profile()), spec_(spec) {
   spec_.validate();
   const int n_layers = int(spec_.layers.size());
   const int n_group = spec_.n_in_group;
-  // Compiles a layer's kernels, specialised by -D defines (kernels/field/mlp.cl).
-  std::string last_opt;
-  auto build = [&](Layer& L, int in_off, int prev_act, bool prev_pre, bool group_bias,
-                   bool towered) {
-    auto d = [](const char* k, int v) { return std::string(" -D") + k + "=" + std::to_string(v); };
-    const std::string opt = d("N_IN", L.n_in) + d("IN_STRIDE", L.in_stride) +
-                            d("IN_OFFSET", in_off) + d("IN_PAD", pad16(L.n_in)) + d("OUT", L.out) +
-                            d("OUT_PAD", L.out_pad) + d("OUT_STRIDE", L.out_stride) +
-                            d("ACT", int(L.act)) + d("STORE_PRE", L.store_pre) +
-                            d("PREV_ACT", prev_act) + d("PREV_PRE", prev_pre) +
-                            d("DIN_STRIDE", L.in_stride) + d("DIN_OFFSET", in_off) +
-                            d("GROUP_BIAS", group_bias) + d("PTS", kPts) + d("ROWS", kRows) +
-                            d("HAS_BIAS", spec_.bias) +
-                            (towered ? d("TOWER_IN", L.n_in / spec_.towers) +
-                                           d("TOWER_OUT", L.out / spec_.towers)
-                                     : std::string());
-    const std::string f = "field/mlp.cl";
-    L.fwd = rt_.kernel(f, "field_mlp_fwd", opt);
-    L.bwd_out = rt_.kernel(f, "field_mlp_bwd_out", opt);
-    L.wgt = rt_.kernel(f, "field_mlp_bwd_wgt", opt);
-    L.reduce = rt_.kernel(f, "field_mlp_bwd_reduce", opt);
-    L.transpose = rt_.kernel(f, "field_mlp_transpose", opt);
-    L.bwd_in = rt_.kernel(f, "field_mlp_bwd_in", opt);
-    if (group_bias) L.group_sum = rt_.kernel(f, "field_mlp_group_sum", opt);
-    last_opt = opt;
-  };
+  // The program of the last layer built (file, options): the tower mask's kernel reuses it.
+  std::pair<std::string, std::string> last;
   int n_in = spec_.n_in;
   for (int l = 0; l < n_layers; ++l) {
     const auto& ls = spec_.layers[size_t(l)];
@@ -112,8 +83,8 @@ Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec) : rt_(rt), spec_(spec) {
     n_params_ += size_t(L.n_rows + 1) * size_t(L.out_pad);
     const bool prev_pre = l > 0 && layers_.back().store_pre;
     const int prev_act = l > 0 ? int(layers_.back().act) : -1;
-    build(L, l == 0 ? spec_.in_offset : 0, prev_act, prev_pre, l == 0 && n_group > 0,
-          l > 0 && spec_.towers > 1);
+    last = build_layer(L, l == 0 ? spec_.in_offset : 0, prev_act, prev_pre,
+                       l == 0 && n_group > 0, l > 0 && spec_.towers > 1);
     if (l == 0 && n_group > 0) {
       // The grouped part: a linear layer of n_group inputs whose weights are rows n_in .. of
       // layer 0 and whose bias is layer 0's bias (both follow at n_in · out_pad).
@@ -122,7 +93,7 @@ Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec) : rt_(rt), spec_(spec) {
       group_.out_pad = group_.out_stride = L.out_pad;
       group_.act = Activation::None;
       group_.store_pre = false;
-      build(group_, 0, -1, false, false, false);
+      last = build_layer(group_, 0, -1, false, false, false);
     }
     layers_.push_back(std::move(L));
     n_in = ls.width;
@@ -136,7 +107,7 @@ Mlp::Mlp(cl::Runtime& rt, const MlpSpec& spec) : rt_(rt), spec_(spec) {
         for (int o = 0; o < layers_[l].out_pad; ++o) keep.push_back(off_tower(l, i, o) ? 0 : 1);
     tower_count_ = keep.size();
     tower_keep_ = cl::Buffer::from(rt_, keep);
-    tower_mask_ = rt_.kernel("field/mlp.cl", "field_mlp_tower_mask", last_opt);
+    tower_mask_ = rt_.kernel(last.first, "field_mlp_tower_mask", last.second);
   }
 }
 
@@ -208,15 +179,12 @@ void Mlp::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& in,
   ctx.index = indexed ? *index : GroupIndex{};
   if (n <= 0) return;
   ensure(ctx, n);
-  const size_t groups = cl::round_up(ceil_div(size_t(n), kPts), kLocal);
   if (grouped) {
     const int ng = indexed ? index->n_groups : n / group;
     const size_t need = size_t(ng) * group_.out_pad * sizeof(float);
     if (ctx.group_pre.bytes() < need) ctx.group_pre = cl::Buffer(rt_, need);
-    group_.fwd.set_args(ng, params, uint32_t(offset + layer_off_[0] + size_t(spec_.n_in) * group_.out_pad),
-                        *group_in, ctx.group_pre, ctx.group_pre, ctx.group_pre, 1, ctx.group_pre, 0);
-    group_.fwd.launch({cl::round_up(ceil_div(size_t(ng), kPts), kLocal), size_t(group_.out_pad / 16)},
-                      {kLocal, size_t(group_.out_pad / 16)});
+    launch_fwd(group_, ng, params, uint32_t(offset + layer_off_[0] + size_t(spec_.n_in) * group_.out_pad),
+               *group_in, ctx.group_pre, ctx.group_pre, ctx.group_pre, 1, ctx.group_pre, 0);
   }
   for (size_t l = 0; l < layers_.size(); ++l) {
     Layer& L = layers_[l];
@@ -225,23 +193,21 @@ void Mlp::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& in,
     cl::Buffer& pre = L.store_pre ? ctx.pre[l] : dst;
     const cl::Buffer& gbias = l == 0 && grouped ? ctx.group_pre : dst;  // unused without groups
     const cl::Buffer& gidx = indexed && l == 0 ? *index->point_group : dst;  // unused otherwise
-    L.fwd.set_args(n, params, uint32_t(offset + layer_off_[l]), src, dst, pre, gbias,
-                   std::max(ctx.group, 1), gidx, int(indexed && l == 0));
-    // One work-group covers all output tiles of its points: input rows are read once.
-    L.fwd.launch({groups, size_t(L.out_pad / 16)}, {kLocal, size_t(L.out_pad / 16)});
+    launch_fwd(L, n, params, uint32_t(offset + layer_off_[l]), src, dst, pre, gbias,
+               std::max(ctx.group, 1), gidx, int(indexed && l == 0));
   }
 }
 
 void Mlp::ensure_scratch(int n) {
   int max_pad = 16;
   size_t partial = 0;
-  const size_t chunks = std::min<size_t>(kMaxChunks, ceil_div(size_t(n), kMinChunk));
+  const size_t ch = chunks(size_t(n));
   for (const Layer& L : layers_) {
     max_pad = std::max({max_pad, L.out_pad, pad16(L.n_in)});
-    partial = std::max(partial, chunks * size_t(L.n_in + 1) * L.out_pad);
+    partial = std::max(partial, ch * size_t(L.n_in + 1) * L.out_pad);
   }
   if (spec_.n_in_group > 0)  // the grouped pass has at most as many chunks as the per-point one
-    partial = std::max(partial, chunks * size_t(group_.n_in + 1) * group_.out_pad);
+    partial = std::max(partial, ch * size_t(group_.n_in + 1) * group_.out_pad);
   if (scratch_points_ < size_t(n)) {
     for (auto& b : d_pre_) b = cl::Buffer(rt_, size_t(n) * max_pad * sizeof(float));
     scratch_points_ = size_t(n);
@@ -250,7 +216,7 @@ void Mlp::ensure_scratch(int n) {
     partial_ = cl::Buffer(rt_, partial * sizeof(float));
     partial_floats_ = partial;
   }
-  if (!wt_) wt_ = cl::Buffer(rt_, size_t(128) * 128 * sizeof(float));
+  if (!wt_ && !local_tiles()) wt_ = cl::Buffer(rt_, size_t(128) * 128 * sizeof(float));
 }
 
 void Mlp::backward(const cl::Buffer& params, size_t offset, const MlpContext& ctx,
@@ -269,61 +235,36 @@ void Mlp::backward(const cl::Buffer& params, size_t offset, const MlpContext& ct
   const int ng = grouped ? (indexed ? ctx.index.n_groups : n / ctx.group) : 0;
   if (d_group_in) check_bytes(*d_group_in, size_t(ng) * spec_.n_in_group, "d_group_in");
   ensure_scratch(n);
-  const size_t groups = cl::round_up(ceil_div(size_t(n), kPts), kLocal);
   const int last = int(layers_.size()) - 1;
   int cur = 0;
   {
     Layer& L = layers_[size_t(last)];
     const cl::Buffer& y = L.store_pre ? ctx.pre[size_t(last)] : out;
-    L.bwd_out.set_args(n, d_out, y, d_pre_[cur]);
-    cl::launch_1d(L.bwd_out, size_t(n));
+    launch_bwd_out(L, n, d_out, y, d_pre_[cur]);
   }
-  // Weight gradient of one layer (or layer 0's grouped part) from its input and d_pre.
-  auto weight_grad = [&](Layer& L, const cl::Buffer& src, const cl::Buffer& d_pre, int rows,
-                         size_t w_off) {
-    const size_t ch = std::min<size_t>(kMaxChunks, ceil_div(size_t(rows), kMinChunk));
-    const int per = int(ceil_div(size_t(rows), ch));
-    L.wgt.set_args(rows, per, src, d_pre, partial_);
-    // One work-group per chunk: all row blocks and output tiles reuse the chunk from cache.
-    const size_t row_blocks = ceil_div(size_t(L.n_in), kRows) + 1;
-    L.wgt.launch({ch, row_blocks, size_t(L.out_pad / 16)}, {1, row_blocks, size_t(L.out_pad / 16)});
-    const size_t count = size_t(L.n_in + 1) * L.out_pad;
-    L.reduce.set_args(int(ch), partial_, grad, uint32_t(w_off));
-    cl::launch_1d(L.reduce, count);
-  };
   for (int l = last; l >= 0; --l) {
     Layer& L = layers_[size_t(l)];
     const cl::Buffer& src = l == 0 ? *ctx.in : ctx.post[size_t(l - 1)];
     // Layer 0 with groups: this pass writes the x rows and a provisional bias row, which the
     // grouped pass below overwrites with the y rows and the true bias (in-order queue).
-    weight_grad(L, src, d_pre_[cur], n, grad_offset + layer_off_[size_t(l)]);
+    weight_grad(L, src, d_pre_[cur], n, grad, grad_offset + layer_off_[size_t(l)]);
     if (l == 0 && grouped) {
       const size_t need = size_t(ng) * group_.out_pad * sizeof(float);
       if (d_group_.bytes() < need) d_group_ = cl::Buffer(rt_, need);
-      L.group_sum.set_args(ng, ctx.group, d_pre_[cur], d_group_,
-                           indexed ? *ctx.index.offsets : d_group_, int(indexed));
-      L.group_sum.launch({cl::round_up(size_t(ng), 16), size_t(L.out_pad / 16)},
-                         {16, size_t(L.out_pad / 16)});
+      launch_group_sum(L, ng, ctx.group, d_pre_[cur], d_group_,
+                       indexed ? *ctx.index.offsets : d_group_, int(indexed));
       const size_t y_rows = size_t(spec_.n_in) * group_.out_pad;
-      weight_grad(group_, *ctx.group_in, d_group_, ng, grad_offset + layer_off_[0] + y_rows);
-      if (d_group_in) {
-        group_.transpose.set_args(params, uint32_t(offset + layer_off_[0] + y_rows), wt_);
-        group_.transpose.launch({size_t(pad16(group_.n_in)), size_t(group_.out_pad)});
-        group_.bwd_in.set_args(ng, wt_, d_group_, d_group_, *d_group_in);
-        group_.bwd_in.launch({cl::round_up(ceil_div(size_t(ng), kPts), kLocal),
-                              size_t(pad16(group_.n_in) / 16)},
-                             {kLocal, size_t(pad16(group_.n_in) / 16)});
-      }
+      weight_grad(group_, *ctx.group_in, d_group_, ng, grad, grad_offset + layer_off_[0] + y_rows);
+      if (d_group_in)
+        launch_bwd_in(group_, ng, params, uint32_t(offset + layer_off_[0] + y_rows), d_group_,
+                      d_group_, *d_group_in);
     }
     if (l == 0 && !d_in) break;
-    L.transpose.set_args(params, uint32_t(offset + layer_off_[size_t(l)]), wt_);
-    L.transpose.launch({size_t(pad16(L.n_in)), size_t(L.out_pad)});
     cl::Buffer& dst = l == 0 ? *d_in : d_pre_[1 - cur];
     const cl::Buffer& prev =
         l == 0 ? d_out
                : (layers_[size_t(l - 1)].store_pre ? ctx.pre[size_t(l - 1)] : ctx.post[size_t(l - 1)]);
-    L.bwd_in.set_args(n, wt_, d_pre_[cur], prev, dst);
-    L.bwd_in.launch({groups, size_t(pad16(L.n_in) / 16)}, {kLocal, size_t(pad16(L.n_in) / 16)});
+    launch_bwd_in(L, n, params, uint32_t(offset + layer_off_[size_t(l)]), d_pre_[cur], prev, dst);
     cur = 1 - cur;
   }
   if (tower_count_ > 0) {  // off-tower weights: exactly zero gradient

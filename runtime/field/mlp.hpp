@@ -31,9 +31,20 @@
 // kernels skip the zero blocks where a 16-wide tile lies within one tower (kernels/field/
 // mlp.cl, TOWER_IN / TOWER_OUT), with the same results. macs_per_point() counts the products
 // of the T networks (not the structural zeros).
+//
+// Kernels: the Runtime's device profile, read when the Mlp is made, chooses them
+// (cl::DeviceProfile::gemm). cpu_tiles: kernels/field/mlp.cl, float16 register tiles (8 points
+// x 16 outputs per work-item, the weight gradient in at most 256 chunks of at least 512 points
+// summed in chunk order): what every run used before profiles. local_tiles: kernels/field/
+// mlp_tiles.cl, local-memory tiles and a register block of gemm_block_rows x gemm_block_cols
+// floats per work-item, no transpose kernel, the weight gradient in the profile's chunks summed
+// in a fixed tree; a launch that would have fewer than gemm_min_work_items work-items takes a
+// 1 x 1 block (built on first use; every sum keeps its order, so the results are the same).
+// Both keep every feature above; they agree to float rounding and each is deterministic.
 #pragma once
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cl/runtime.hpp"
@@ -122,19 +133,62 @@ class Mlp {
                 cl::Buffer* d_group_in = nullptr);
 
  private:
+  // A local_tiles kernel's work-group (kernels/field/mlp_tiles.cl): lc x lr work-items, the
+  // tile tr = lr x block rows by tc = lc x block columns.
+  struct TileShape {
+    int tc = 16, lc = 16, lr = 1, tr = 1;
+    size_t work_items(size_t rows, size_t cols) const;  // of a launch over rows x cols
+  };
+  // A layer's GEMM kernels with one register block (local_tiles): forward, d_in, weights.
+  struct Tiled {
+    bool built = false;
+    int block_rows = 1, block_cols = 1;
+    cl::Kernel fwd, bwd_in, wgt;
+    TileShape f, b, w;  // forward (over out_pad), d_in (over pad16(n_in)), weights (out_pad)
+  };
   struct Layer {
     int n_in, in_stride, out, out_pad, out_stride;
     int n_rows;  // parameter rows before the bias: n_in, + n_in_group for layer 0
     Activation act;
     bool store_pre;
     cl::Kernel fwd, bwd_out, wgt, reduce, transpose, bwd_in, group_sum;
+    // local_tiles: the feature defines, and the GEMM kernels of the profile's block [0] and
+    // of the 1 x 1 block [1] (in place of fwd, bwd_in, wgt and transpose above).
+    std::string opt;
+    Tiled tiled[2];
   };
+  bool local_tiles() const { return profile_.gemm == cl::GemmVariant::LocalTiles; }
+  // local_tiles: the kernels for a launch of `work_items` with the profile's block, built on
+  // first use (small: the 1 x 1 block).
+  Tiled& tiled(Layer& L, bool small);
+  TileShape tile_shape(int width, int tile, int block_rows, int block_cols) const;
+  std::string tile_defines(const Tiled& t) const;
+  Tiled& pick(Layer& L, size_t work_items_main);
+  size_t chunks(size_t rows) const;  // weight-gradient chunks for `rows` points
   // Whether W_t[i][o] of layer l is a structurally zero off-tower weight (never the bias row).
   bool off_tower(size_t l, int i, int o) const;
   void ensure(MlpContext& ctx, int n) const;
   void ensure_scratch(int n);
+  // The GEMM variant's kernels and launches (mlp_gemm.cpp). build_layer compiles a layer's
+  // kernels, specialised by -D defines, and returns its program's (file, options).
+  std::pair<std::string, std::string> build_layer(Layer& L, int in_off, int prev_act,
+                                                  bool prev_pre, bool group_bias, bool towered);
+  // One layer's forward, output-layer d_pre, input backward, weight gradient (from its input
+  // and d_pre, into grad at w_off) and grouped sums, enqueued with the profile's variant.
+  void launch_fwd(Layer& L, int n, const cl::Buffer& params, uint32_t w_off,
+                  const cl::Buffer& src, cl::Buffer& dst, cl::Buffer& pre,
+                  const cl::Buffer& gbias, int group, const cl::Buffer& gidx, int indexed);
+  void launch_bwd_in(Layer& L, int n, const cl::Buffer& params, uint32_t w_off,
+                     const cl::Buffer& d_pre, const cl::Buffer& prev, cl::Buffer& d_in);
+  void weight_grad(Layer& L, const cl::Buffer& src, const cl::Buffer& d_pre, int rows,
+                   cl::Buffer& grad, size_t w_off);
+  void launch_bwd_out(Layer& L, int n, const cl::Buffer& d_out, const cl::Buffer& y,
+                      cl::Buffer& d_pre);
+  void launch_group_sum(Layer& L, int ng, int group, const cl::Buffer& d_pre,
+                        cl::Buffer& d_group, const cl::Buffer& offsets, int indexed);
 
   cl::Runtime& rt_;
+  cl::DeviceProfile profile_;  // the Runtime's when the Mlp was made
   MlpSpec spec_;
   size_t n_params_ = 0;
   std::vector<size_t> layer_off_;
