@@ -12,7 +12,10 @@
 // kernel entry no method needs any more and on a method making fewer transfers than listed
 // (so the lists shrink as item 4 lands). Measured at its landing (PoCL): lidar-nerf 89
 // launches, 36 narrow, 5 blocking transfers; lidar4d 340, 111, 12; geonlf 76, 34, 9; sg-nlf 79,
-// 36, 10; none outside the lists.
+// 36, 10; none outside the lists. With the MLP's local_tiles GEMMs in the gpu profile (issue 54,
+// item 3: no transpose kernel, every MLP launch 16 384 work-items or more) their entries left
+// the list: lidar-nerf 82 launches, 13 narrow; lidar4d 327, 70; geonlf 70, 13 (after 0f1ddf6's
+// surface sampling); sg-nlf 72, 13.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -61,16 +64,6 @@ const std::map<std::string, std::string> kNarrowKernels = {
     {"pipeline_live_count", "per ray: the live samples of each ray (early termination)"},
     {"field_direnc_fwd", "per ray: the direction encoding, once per ray, over its 72 features"},
     {"field_direnc_bwd", "per ray: its backward (pose-free methods)"},
-    {"field_mlp_fwd", "CPU tiles: register-tiled layer GEMM, 16 points x 16 outputs per work-item; "
-                      "the small layers (flow MLP, per-ray inputs) get 1152-4096 work-items"},
-    {"field_mlp_bwd_in", "CPU tiles: the input gradient's GEMM, same tiles (288-1152 work-items)"},
-    {"field_mlp_bwd_out", "CPU tiles: the output layer's backward (LiDAR4D's flow MLP)"},
-    {"field_mlp_bwd_wgt", "CPU tiles: weight gradient phase 1, one work-item per (chunk of points, row "
-                          "block, 16 outputs) with chunks sized for CPU cores (100-8192 work-items)"},
-    {"field_mlp_bwd_reduce", "CPU tiles: phase 2, one work-item per weight summing the chunks' partials in "
-                             "order; and measure: it writes one layer's slice of the flat gradient"},
-    {"field_mlp_transpose", "measure: reads one layer's <= 64x64 weights out of the flat parameters "
-                            "(one work-item per padded weight)"},
     {"entry_radix_scan", "one work-group of SCAN_WG per unit (level) scans that unit's 16 x tiles histogram "
                          "words (192-896 work-items); measure: the sort's key buffer is counted"},
     {"entry_radix_hist", "CPU tiles: one work-item per RADIX_TILE pairs (LiDAR4D's time hash grid and "
