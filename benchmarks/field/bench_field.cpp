@@ -147,6 +147,43 @@ BENCHMARK(BM_MlpDensityBwd)->Arg(1 << 16)->Arg(1 << 18)->UseManualTime()->Unit(b
 BENCHMARK(BM_MlpHeadFwd)->Arg(1 << 16)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MlpHeadBwd)->Arg(1 << 16)->Arg(1 << 18)->UseManualTime()->Unit(benchmark::kMillisecond);
 
+// The two GEMM variants of the device profiles on the same shapes (cl::GemmVariant, set over the
+// Runtime's profile while the Mlp is made): args {points, 0 = cpu_tiles (kernels/field/mlp.cl,
+// the "cpu" profile's), 1 = local_tiles (kernels/field/mlp_tiles.cl, the "gpu" profile's)}.
+// The plain BM_Mlp* cases run whichever the device's profile chooses.
+static void mlp_gemm_bench(benchmark::State& state, const field::MlpSpec& spec, bool backward) {
+  auto& rt = bench::runtime();
+  const cl::DeviceProfile saved = rt.device_profile();
+  cl::DeviceProfile p = saved;
+  p.gemm = state.range(1) == 0 ? cl::GemmVariant::CpuTiles : cl::GemmVariant::LocalTiles;
+  rt.set_device_profile(p);
+  field::Mlp mlp(rt, spec);  // reads the profile here
+  rt.set_device_profile(saved);
+  state.SetLabel(cl::gemm_name(p.gemm));
+  const int n = int(state.range(0));
+  std::vector<float> params(mlp.n_params());
+  mlp.init_params(params, 0, 1);
+  auto b_p = cl::Buffer::from(rt, params);
+  auto b_in = cl::Buffer::from(rt, uniform(size_t(n) * spec.n_in, -1, 1, 2));
+  auto b_dout = cl::Buffer::from(rt, uniform(size_t(n) * spec.n_out(), -1, 1, 3));
+  cl::Buffer b_out(rt, size_t(n) * spec.n_out() * 4), b_g(rt, params.size() * 4),
+      b_din(rt, size_t(n) * spec.n_in * 4);
+  field::MlpContext ctx;
+  mlp.forward(b_p, 0, b_in, n, b_out, ctx);
+  const double secs =
+      backward ? run_timed(state, [&] { mlp.backward(b_p, 0, ctx, b_out, b_dout, b_g, 0, &b_din); })
+               : run_timed(state, [&] { mlp.forward(b_p, 0, b_in, n, b_out, ctx); });
+  set_counters(state, secs, n, double(n) * spec.macs_per_point() * (backward ? 4 : 2), 0);
+}
+static void BM_MlpGemmDensityFwd(benchmark::State& s) { mlp_gemm_bench(s, density_spec(), false); }
+static void BM_MlpGemmDensityBwd(benchmark::State& s) { mlp_gemm_bench(s, density_spec(), true); }
+static void BM_MlpGemmHeadFwd(benchmark::State& s) { mlp_gemm_bench(s, head_spec(), false); }
+static void BM_MlpGemmHeadBwd(benchmark::State& s) { mlp_gemm_bench(s, head_spec(), true); }
+BENCHMARK(BM_MlpGemmDensityFwd)->Args({1 << 18, 0})->Args({1 << 18, 1})->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MlpGemmDensityBwd)->Args({1 << 18, 0})->Args({1 << 18, 1})->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MlpGemmHeadFwd)->Args({1 << 18, 0})->Args({1 << 18, 1})->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MlpGemmHeadBwd)->Args({1 << 18, 0})->Args({1 << 18, 1})->UseManualTime()->Unit(benchmark::kMillisecond);
+
 // The head as the model runs it: 15 geometric features read in place from the density output
 // (stride 16) and the 72-dim direction encoding as a grouped input, one group per ray of 64
 // samples. Same function as BM_MlpHead*; compare points/s. FLOPs counted as performed.
