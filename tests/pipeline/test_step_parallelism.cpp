@@ -57,8 +57,8 @@ const std::map<std::string, std::string> kNarrowKernels = {
     {"render_volume_bwd", "per ray: its backward, the reverse sums"},
     {"render_volume_weights", "per ray: the coarse pass's weights for importance sampling"},
     {"render_sample_importance", "per ray: inverse-CDF sampling of its coarse weights"},
-    {"render_sample_surface", "per ray: SG-NLF's surface samples"},
-    {"render_weight_carve", "per ray: SG-NLF's weight-carving term"},
+    {"render_sample_surface", "per ray: the pose-free quick presets' surface samples"},
+    {"render_weight_carve", "per ray: their weight-carving term"},
     {"render_raygrad_reduce_rows", "per ray: the ray gradients (pose-free methods) summed over the ray's samples"},
     {"pipeline_row_ray", "per ray: the sample rows of each ray (early termination's compaction)"},
     {"pipeline_live_count", "per ray: the live samples of each ray (early termination)"},
@@ -97,7 +97,7 @@ const std::vector<KnownTransfers> kBlockingTransfers = {
     {"ray gradients", {"geonlf", "sg-nlf"}, 3,
      "LidarNerfModel::read_ray_grads: dL/d(origin, direction, direction encoding) to the host, "
      "where the SE(3) pose gradients and the pose Adam run; item 4: pose gradients on the device"},
-    {"weight-carving terms", {"sg-nlf"}, 1,
+    {"weight-carving terms", {"geonlf", "sg-nlf"}, 1,
      "WeightCarving reads its per-ray terms to the host (weight_carving.cpp)"},
     {"flow supervision", {"lidar4d"}, 4,
      "model_four_d.cpp: flow points and times written, the flow read, its gradient written "
