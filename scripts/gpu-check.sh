@@ -227,6 +227,10 @@ if want tests; then
     fi
   done
   [ "$found" = 1 ] || { say "tests: no case lists in $BUILD/tests/oclgrind/device_cases (configure a build that has them)"; record tests 1 0 "" "no case lists"; }
+  # The MLP GEMMs in full under the gpu profile's local tiles: Oclgrind's list keeps only their
+  # small case (the simulator is slow), a GPU runs every one.
+  [ -x "$BUILD/tests/field/test_field" ] &&
+    part test_field_mlp "$T_TEST" env SGNLF_DEVICE_PROFILE=gpu "$BUILD/tests/field/test_field" --warn NoTests "[mlp],[mlp_tiles]"
 fi
 
 if want bench; then
