@@ -2,22 +2,13 @@
 // preset resolves, overrides merge key by key, the learning-rate schedule decays to 0.1×.
 #include <catch2/catch.hpp>
 
+#include "config_error.hpp"
 #include "core/config.hpp"
 #include "pipeline/config/presets.hpp"
 
 using namespace sgnlf;
 using namespace sgnlf::pipeline;
-
-namespace {
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
-}  // namespace
+using sgnlf::test::error_of;
 
 TEST_CASE("every embedded preset resolves and validates", "[pipeline][config]") {
   const auto names = preset_names();

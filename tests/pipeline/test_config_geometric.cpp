@@ -2,22 +2,13 @@
 // registration (which presets turn them on, their keys, defaults, hashes and named errors).
 #include <catch2/catch.hpp>
 
+#include "config_error.hpp"
 #include "core/config.hpp"
 #include "pipeline/config/presets.hpp"
 
 using namespace sgnlf;
 using namespace sgnlf::pipeline;
-
-namespace {
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
-}  // namespace
+using sgnlf::test::error_of;
 
 TEST_CASE("config: edge re-seeding is an optional section of the geometric stage",
           "[config][reseed]") {

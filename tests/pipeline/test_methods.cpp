@@ -5,6 +5,7 @@
 
 #include <set>
 
+#include "config_error.hpp"
 #include "core/config.hpp"
 #include "pipeline/methods/registry.hpp"
 #include "pipeline/config/presets.hpp"
@@ -12,6 +13,7 @@
 
 using namespace sgnlf;
 using namespace sgnlf::pipeline;
+using sgnlf::test::error_of;
 
 namespace {
 
@@ -36,14 +38,6 @@ class RecordingParts : public StepParts {
   Policy policy_;
 };
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 }  // namespace
 
