@@ -24,24 +24,7 @@
 //   tiles: TOWER_IN % 16 == 0). A skipped term is an exact zero (x · 0), so the results are
 //   those of the dense products; the off-tower weight gradient is zeroed by
 //   field_mlp_tower_mask in any case.
-#ifndef HAS_BIAS
-#define HAS_BIAS 1
-#endif
-#ifndef IN_OFFSET
-#define IN_OFFSET 0
-#endif
-#ifndef DIN_OFFSET
-#define DIN_OFFSET 0
-#endif
-#ifndef GROUP_BIAS
-#define GROUP_BIAS 0
-#endif
-#ifndef TOWER_IN
-#define TOWER_IN 0
-#endif
-#ifndef TOWER_OUT
-#define TOWER_OUT 0
-#endif
+#include "field/mlp_layer.clh"
 // Output tiles within one tower (forward, weight gradient) / input tiles (input backward).
 #define TOWER_OUT_TILES (TOWER_IN > 0 && TOWER_OUT > 0 && TOWER_OUT % 16 == 0)
 #define TOWER_IN_TILES (TOWER_IN > 0 && TOWER_OUT > 0 && TOWER_IN % 16 == 0)
@@ -51,11 +34,6 @@
 #else
 #define DIN_DENSE 0
 #endif
-#define ACT_NONE 0
-#define ACT_RELU 1
-#define ACT_TANH 2
-#define ACT_SOFTPLUS 3
-#define ACT_SINE 4
 
 inline float16 act_fwd(float16 z, int a) {
   if (a == ACT_RELU) return fmax(z, (float16)(0.0f));

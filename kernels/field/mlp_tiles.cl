@@ -25,29 +25,7 @@
 // tower skips the other towers' inputs as mlp.cl does (TOWER_OUT, resp. TOWER_IN for d_in, a
 // multiple of the tile's TC); a tile across towers computes the dense product (the off-tower
 // weights are zero, so the results are the same, only the work is not saved).
-#ifndef HAS_BIAS
-#define HAS_BIAS 1
-#endif
-#ifndef IN_OFFSET
-#define IN_OFFSET 0
-#endif
-#ifndef DIN_OFFSET
-#define DIN_OFFSET 0
-#endif
-#ifndef GROUP_BIAS
-#define GROUP_BIAS 0
-#endif
-#ifndef TOWER_IN
-#define TOWER_IN 0
-#endif
-#ifndef TOWER_OUT
-#define TOWER_OUT 0
-#endif
-#define ACT_NONE 0
-#define ACT_RELU 1
-#define ACT_TANH 2
-#define ACT_SOFTPLUS 3
-#define ACT_SINE 4
+#include "field/mlp_layer.clh"
 
 // mlp.cl's activations, per float.
 inline float act_fwd(float z, int a) {
