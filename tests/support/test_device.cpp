@@ -36,35 +36,11 @@ std::string temp_dir(const std::string& name) {
   return p.string();
 }
 
-double max_sym_rel_err(const std::vector<float>& a, const std::vector<float>& b, double floor) {
-  REQUIRE(a.size() == b.size());
-  double m = 0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    const double d = std::fabs(double(a[i]) - b[i]);
-    const double s = std::max(std::fabs(double(a[i])) + std::fabs(double(b[i])), floor);
-    m = std::max(m, d / s);
-  }
-  return m;
-}
-
-double max_abs_err(const std::vector<float>& a, const std::vector<float>& b) {
-  REQUIRE(a.size() == b.size());
-  double m = 0;
-  for (size_t i = 0; i < a.size(); ++i) m = std::max(m, std::fabs(double(a[i]) - b[i]));
-  return m;
-}
-
 std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed) {
   Rng r(seed);
   std::vector<float> v(n);
   for (auto& x : v) x = r.uniform(lo, hi);
   return v;
-}
-
-double norm_err(const std::vector<float>& a, const std::vector<float>& b) {
-  double m = 0;
-  for (float v : b) m = std::max(m, double(std::fabs(v)));
-  return max_abs_err(a, b) / std::max(m, 1e-30);
 }
 
 }  // namespace sgnlf::test

@@ -1,5 +1,5 @@
 // Shared test helpers: the test device (SGNLF_DEVICE or the default), paths to fixtures, and
-// comparison helpers (symmetric relative error, as tiny-cuda-nn's tests use for gradients).
+// (through support/device_tolerance.hpp) the device-vs-reference comparisons.
 #pragma once
 #include <catch2/catch.hpp>
 
@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cl/runtime.hpp"
+#include "support/device_tolerance.hpp"
 
 namespace sgnlf::test {
 
@@ -26,15 +27,8 @@ std::string shared_dir();  // $SGNLF_SHARED_DIR, else ../shared beside the check
 // The real-data tests' paths (the large data, else the in-repo sample): support/real_data.hpp.
 std::string temp_dir(const std::string& name);  // fresh empty folder under the build tree
 
-// max_i |a_i − b_i| / max(|a_i| + |b_i|, floor): symmetric relative error.
-double max_sym_rel_err(const std::vector<float>& a, const std::vector<float>& b,
-                       double floor = 1e-6);
-double max_abs_err(const std::vector<float>& a, const std::vector<float>& b);
 // n values uniform in [lo, hi) from the project's generator (core/rng.hpp) seeded with `seed`.
 std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed);
-// max_i |a_i − b_i| / max_i |b_i|: for float GEMM outputs, whose rounding scales with the
-// magnitude of the whole output rather than of each entry.
-double norm_err(const std::vector<float>& a, const std::vector<float>& b);
 
 }  // namespace sgnlf::test
 
