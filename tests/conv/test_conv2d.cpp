@@ -102,7 +102,8 @@ TEST_CASE("Conv2d forward and backward match the host reference", "[conv][conv2d
       for (int o = s.c_out; o < ocs; ++o) CHECK(g_dev[s.bias_index(o)] == 0.0f);
       for (size_t i = 0; i < out.size(); ++i)
         if (int(i % size_t(ocs)) >= s.c_out) REQUIRE(out[i] == 0.0f);  // padding channels
-      // Fused leaky ReLU: same pre-activation, activation of exactly that output.
+      // Fused leaky ReLU: same pre-activation, activation of exactly that output (same kernel
+      // and device; the activation is a selection or one multiplication: bit equality).
       cl::Buffer b_pre(rt, d_out.size() * 4), b_act(rt, d_out.size() * 4);
       cv.forward(b_p, off, b_in, c.n, c.h, c.w, b_pre, &b_act, 0.2f);
       CHECK(b_pre.read_all<float>() == out);

@@ -37,6 +37,7 @@ TEST_CASE("Leaky ReLU matches the reference and finite differences", "[conv][lea
     act.forward(b_x, n, b_y);
     act.backward(b_x, b_dy, n, b_dx);
     const auto y = b_y.read_all<float>(), dx = b_dx.read_all<float>();
+    // Bit equality, exact by construction: a selection of x or one IEEE multiplication.
     CHECK(y == test::ref::leaky_relu_fwd(x, slope));
     CHECK(dx == test::ref::leaky_relu_bwd(x, dy, slope));
     // FD of L = Σ dy · f(x) through the device forward, every 7th entry.
@@ -74,6 +75,8 @@ TEST_CASE("2x2 average pooling matches the reference and finite differences", "[
     auto b_dout = cl::Buffer::from(rt, d_out), b_din = cl::Buffer::from(rt, d_in0);
     pool.forward(s, b_in, b_out);
     const auto out = b_out.read_all<float>();
+    // Bit equality, exact by construction: additions in the kernel's order and scaling by 0.25
+    // (a power of two: exact, so also the accumulating backward's 0.25·d + d_in, fused or not).
     CHECK(out == test::ref::avgpool2_fwd(s, in, out0));
     for (bool acc : {false, true}) {
       b_din.write_vec(d_in0);

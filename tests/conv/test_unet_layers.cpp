@@ -76,6 +76,7 @@ TEST_CASE("2x2 max pooling matches the reference and finite differences", "[conv
     auto b_in = cl::Buffer::from(rt, in), b_out = cl::Buffer::from(rt, out0);
     auto b_dout = cl::Buffer::from(rt, d_out), b_din = cl::Buffer::from(rt, d_in0);
     pool.forward(s, b_in, b_out);
+    // Bit equality, exact by construction: a selection, and one addition when accumulating.
     CHECK(b_out.read_all<float>() == test::ref::maxpool2_fwd(s, in, out0));
     for (bool acc : {false, true}) {
       b_din.write_vec(d_in0);
@@ -167,6 +168,7 @@ TEST_CASE("Channel copy (skip concatenation and its split) matches the reference
   for (bool acc : {false, true}) {
     b_dst.write_vec(dst0);
     copy.run(s, b_src, b_dst, acc);
+    // Bit equality, exact by construction: a copy, and one addition when accumulating.
     CHECK(b_dst.read_all<float>() == test::ref::copy_channels(s, src, dst0, acc));
   }
   // The split is the transpose of the copy: <copy(x), g> = <x, split(g)>.
@@ -236,6 +238,7 @@ TEST_CASE("Box mask matches the reference; no boxes is the scaling alone", "[con
   auto b_in = cl::Buffer::from(rt, in), b_out = cl::Buffer::from(rt, out0);
   auto b_s = cl::Buffer::from(rt, scale), b_b = cl::Buffer::from(rt, flat);
   mask.run(s, b_s, b_b, 1, 3, b_in, b_out);  // the last three boxes
+  // Bit equality below, exact by construction: integer box tests and one multiplication.
   const std::vector<std::array<int, 4>> used(all.begin() + 1, all.end());
   CHECK(b_out.read_all<float>() == test::ref::box_mask(s, scale, used, in, out0));
   b_out.write_vec(out0);

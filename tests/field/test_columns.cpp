@@ -1,5 +1,6 @@
 // Device-vs-reference tests of kernels/field/columns.cl (a column of the density MLP's output
-// <-> a plain vector) and kernels/field/accumulate.cl (dst += src).
+// <-> a plain vector) and kernels/field/accumulate.cl (dst += src). Bit equality: copies and one
+// IEEE addition are exact by construction on any device.
 #include <catch2/catch.hpp>
 
 #include "core/rng.hpp"

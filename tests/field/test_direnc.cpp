@@ -91,6 +91,8 @@ TEST_CASE("head input assembly and its backward split", "[field][direnc]") {
     auto b_ddens = cl::Buffer::from(rt, std::vector<float>(size_t(n) * 16, 5.0f));
     de.head_input_forward(b_dens, b_enc, rays, s, b_head);
     de.head_input_backward(b_dhead, rays, s, b_ddens, b_denc);
+    // Bit equality, exact by construction on any device: the forward and d_dens are copies,
+    // d_enc sums in the kernel's order with additions only (nothing to contract into an FMA).
     CHECK(b_head.read_vec<float>(size_t(n) * hw) ==
           test::ref::head_input_fwd(dens, enc, rays, s, 15, 1, 16, ed));
     const auto ddens = b_ddens.read_vec<float>(size_t(n) * 16);

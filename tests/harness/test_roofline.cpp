@@ -61,6 +61,7 @@ TEST_CASE("roofline copy and triad match the host reference", "[harness][device]
   const size_t n = 1 << 16;
   probe.alloc_stream(n);
   probe.run_copy();
+  // Bit equality: a copy, and a triad of small integers, exact in float on any device.
   CHECK(test::max_abs_err(probe.stream_output(), std::vector<float>(n, 1.0f)) == 0.0);
   probe.run_triad(3.0f);  // a = b + 3 c = 1 + 6
   CHECK(test::max_abs_err(probe.stream_output(), std::vector<float>(n, 7.0f)) == 0.0);

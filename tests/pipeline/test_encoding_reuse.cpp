@@ -1,6 +1,6 @@
 // Device-vs-reference tests of kernels/pipeline/encoding_reuse.cl (pipeline::EncodingReuse):
 // the importance samples' positions, and the merged positions and encodings in sample order;
-// and the launcher itself.
+// and the launcher itself. Bit equality: index maps and copies, exact by construction.
 #include <catch2/catch.hpp>
 
 #include <utility>

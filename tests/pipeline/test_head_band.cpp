@@ -1,6 +1,7 @@
 // Device-vs-reference tests of kernels/pipeline/head_band.cl (pipeline::HeadBand): the band per
 // ray, the band gather, its scatter into the live layout and the head expansion; and the
-// launcher itself.
+// launcher itself. Bit equality: comparisons with the threshold, index maps and copies, exact by
+// construction.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
