@@ -106,10 +106,11 @@ const Registrar reg("odometry", "Estimate poses from raw scans with the built-in
       std::printf("ATE %.3f m (horizontal %.3f m)  RPE %.2f cm %.3f deg  (%zu frames, SE(3) "
                   "Umeyama, protocol §4)\n",
                   e.ate_m, e.ate_h_m, e.rpe_t_cm, e.rpe_r_deg, gt.size());
-      if (e.planar_reference)
-        std::printf("the reference poses are planar (every z equal): judge by the horizontal ATE\n");
+      const bool planar = d.planar_reference || e.planar_reference;
+      if (planar)
+        std::printf("the reference poses are planar (nuScenes' ego poses, z = 0): judge by the horizontal ATE\n");
       metrics = Json{{"ate_m", e.ate_m}, {"ate_h_m", e.ate_h_m},
-                     {"ate_reference", e.planar_reference ? "horizontal" : "3d"},
+                     {"ate_reference", planar ? "horizontal" : "3d"},
                      {"rpe_t_cm", e.rpe_t_cm}, {"rpe_r_deg", e.rpe_r_deg}};
       // Ground truth expressed in the odometry's frame (first pose at the identity) for the picture.
       const Pose T0_inv = gt.front().inverse();

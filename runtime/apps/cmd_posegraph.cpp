@@ -112,7 +112,7 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
       std::fflush(stdout);
       log.push_back(Json{{"call", call}, {"progress", progress}, {"ate_m", e.ate_m},
                          {"ate_h_m", e.ate_h_m},
-                         {"ate_reference", e.planar_reference ? "horizontal" : "3d"},
+                         {"ate_reference", d.planar_reference || e.planar_reference ? "horizontal" : "3d"},
                          {"rpe_t_cm", e.rpe_t_cm}, {"rpe_r_deg", e.rpe_r_deg},
                          {"loss", r ? Json(r->loss_after) : Json(nullptr)}});
     };

@@ -57,6 +57,12 @@ struct Dataset {
   // False for scans without poses (a plain folder of scans): the frames' T_world_lidar are
   // then the identity, not a reference, and nothing may score poses against them.
   bool has_reference_poses = true;
+  // The reference poses are planar: nuScenes' ego poses carry z = 0, so the LiDAR's reference
+  // height moves only with roll and pitch and the scans' climb is not in it. Pose accuracy is
+  // then judged horizontally (metrics::PoseReference::horizontal). Set by the nuScenes loader,
+  // and by the synthetic-layout loader for a window copied from nuScenes (sgnlf_dataset.json:
+  // "planar_reference", or "real_source": "nuscenes" in folders written before the key).
+  bool planar_reference = false;
 };
 
 }  // namespace sgnlf

@@ -70,6 +70,18 @@ std::string meta_string(const Json& meta, const std::string& key, const std::str
   return v.get<std::string>();
 }
 
+// Whether a synthetic-layout folder's reference poses are planar (Dataset::planar_reference):
+// "planar_reference" when written, else a window that sgnlf bench copied from nuScenes.
+bool meta_planar_reference(const Json& meta, const std::string& where) {
+  if (meta.contains("planar_reference")) {
+    const Json& v = meta.at("planar_reference");
+    if (!v.is_boolean())
+      throw IoError(where + ": key 'planar_reference' must be true or false, found " + v.dump());
+    return v.get<bool>();
+  }
+  return meta.contains("real_source") && meta_string(meta, "real_source", where) == "nuscenes";
+}
+
 int meta_int(const Json& meta, const std::string& key, int min, const std::string& where) {
   const Json& v = meta.at(key);
   if (!v.is_number_integer() || v.get<long long>() < min || v.get<long long>() > INT_MAX)
@@ -180,6 +192,7 @@ Dataset load_kitti360(const std::string& root_s, const LoadOptions& opt, bool sy
   Dataset d;
   d.name = synthetic ? meta.value("name", drive) : drive + "@" + std::to_string(start);
   d.source = synthetic ? "synthetic" : "kitti360";
+  if (synthetic) d.planar_reference = meta_planar_reference(meta, (root / "sgnlf_dataset.json").string());
   d.path = root_s;
   d.frequency = freq;
   d.sensor = sensor;

@@ -165,6 +165,7 @@ Dataset load_nuscenes(const std::string& root_s, const LoadOptions& opt) {
   Dataset d;
   d.name = sc;
   d.source = "nuscenes";
+  d.planar_reference = true;  // ego poses with z = 0 (dataset.hpp)
   d.path = root_s;
   d.frequency = freq;
   d.sensor = sensor;

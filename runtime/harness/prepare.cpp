@@ -73,6 +73,7 @@ PreparedSequence prepare_sequence(const SequenceDef& s, const BenchOptions& opt,
                       {"frequency", r.dataset.frequency}, {"first_frame", r.dataset.frames[0].id},
                       {"stride", stride}, {"frames", r.dataset.frames.size()},
                       {"real_source", r.dataset.source}, {"real_path", root},
+                      {"planar_reference", r.dataset.planar_reference},
                       {"real_sequence", s.sequence}, {"source_frame_ids", source_ids},
                       {"description", "window of real data copied by sgnlf bench"}};
   }

@@ -149,6 +149,7 @@ TEST_CASE("nuScenes layout: LIDAR_TOP records, timestamp order, scenes, pose cha
   CHECK(detect_layout(root) == "nuscenes");
   const Dataset low = load_dataset(root);  // default: low frequency (keyframes), first scene
   CHECK(low.name == "scene-0001");
+  CHECK(low.planar_reference);  // ego poses with z = 0: judged by the horizontal ATE
   REQUIRE(low.frames.size() == 2);
   CHECK(low.frames[0].points[0].x == 3.f);  // a.pcd.bin (earlier timestamp) first
   CHECK(low.frames[0].points[0].intensity == Approx(0.4));

@@ -236,3 +236,24 @@ TEST_CASE("test folders live under the build tree, not a fixed /tmp name", "[sup
   CHECK(a.find("/tmp/sgnlf-test-") == std::string::npos);
   CHECK(fs::is_directory(a));
 }
+
+TEST_CASE("a synthetic-layout folder says whether its reference poses are planar", "[layout][bad-input]") {
+  // A twin: 3D reference. A window sgnlf bench copied from nuScenes: planar (horizontal ATE),
+  // from the written key or, in folders written before it, from real_source.
+  const std::string root = kitti360_tree("planar_reference", true);
+  CHECK_FALSE(load_dataset(root).planar_reference);
+  Json meta = load_json_file(root + "/sgnlf_dataset.json");
+  meta["real_source"] = "nuscenes";
+  write_json_file(root + "/sgnlf_dataset.json", meta);
+  CHECK(load_dataset(root).planar_reference);
+  meta["real_source"] = "kitti360";
+  write_json_file(root + "/sgnlf_dataset.json", meta);
+  CHECK_FALSE(load_dataset(root).planar_reference);
+  meta["planar_reference"] = true;
+  write_json_file(root + "/sgnlf_dataset.json", meta);
+  CHECK(load_dataset(root).planar_reference);
+  meta["planar_reference"] = "yes";
+  write_json_file(root + "/sgnlf_dataset.json", meta);
+  CHECK_THROWS_WITH(load_dataset(root),
+                    Catch::Contains("sgnlf_dataset.json") && Catch::Contains("'planar_reference'"));
+}

@@ -129,4 +129,5 @@ TEST_CASE("prepare the nuscenes-low table's real scene from the real-data root",
   const Dataset d = load_dataset(p.dataset_dir);
   REQUIRE(d.frames.size() == size_t(n));
   CHECK_FALSE(d.frames[0].points.empty());
+  CHECK(d.planar_reference);  // the copy keeps nuScenes' planar reference (horizontal ATE)
 }

@@ -57,7 +57,7 @@ io::RgbImage stack(const io::RgbImage& a, const io::RgbImage& b, int gap) {
 Json pose_metrics_json(const std::vector<Pose>& est, const std::vector<Pose>& gt,
                        const Dataset& d) {
   Json j = metrics::pose_metrics(est, gt,
-                                 d.source == "nuscenes" ? metrics::PoseReference::horizontal
+                                 d.planar_reference ? metrics::PoseReference::horizontal
                                                         : metrics::PoseReference::full_3d);
   j["frames"] = est.size();
   return j;
