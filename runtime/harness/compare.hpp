@@ -1,10 +1,14 @@
 // `sgnlf compare NEW BASELINE`: checks a results JSON against a committed baseline. Quality
 // metrics must agree within the tolerances of tables.json ("tolerances", documented in
-// results/schema.md): tight when both runs are deterministic twins (same device, driver and
-// run configs), loose otherwise. A metric worse than its tolerance, a missing row, sequence
-// or metric, or a timing whose median grew by more than the allowed ratio over enough
-// repetitions on the same device is a regression. The library returns a report; the app
-// prints it and exits with 4 on regression.
+// results/schema.md): tight when both runs are deterministic twins (same device, driver, device
+// profile and run configs), loose otherwise. A smoke table (an untrained model) is tight on the
+// baseline's own device; on another device it is compared with that device's own baseline when
+// one exists (harness/device_baseline.hpp; the caller picks the file), else tight if every
+// metric still matches and loose otherwise, with a note that the device differs and has no
+// baseline. Its configs must always be the baseline's. A metric worse than its tolerance, a
+// non-finite metric, a missing row, sequence or metric, or a timing whose median grew by more
+// than the allowed ratio over enough repetitions on the same device is a regression. The
+// library returns a report; the app prints it and exits with 4 on regression.
 #pragma once
 #include <string>
 #include <vector>
@@ -23,6 +27,11 @@ struct CompareOptions {
   bool subset = false;
   int min_repetitions = -1;   // -1: tables.json tolerances.timing
   double max_median_ratio = -1;
+  // Set by the caller that chose the baseline file (harness::choose_baseline): where the new
+  // result's device's own smoke baseline is or would be ("" = not looked for), and whether the
+  // baseline given is that one. Only named in the report.
+  std::string device_baseline = "";
+  bool device_baseline_used = false;
   void validate() const;
 };
 

@@ -1,12 +1,19 @@
 // sgnlf compare: identical results pass; a worsened metric, a missing metric, row or sequence
 // fail; improvements only fail with --strict; timing noise below the ratio or with too few
-// repetitions is not flagged, a large median ratio over enough repetitions is.
+// repetitions is not flagged, a large median ratio over enough repetitions is; a smoke table is
+// tight on its baseline's device or against its own device's baseline, loose on another device
+// without one (with a note), and never accepts other configs or non-finite metrics.
 #include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
 
 #include "core/config.hpp"
 #include "fake_table.hpp"
 #include "harness/compare.hpp"
+#include "harness/device_baseline.hpp"
 #include "harness/tables.hpp"
+#include "support/test_device.hpp"
 
 using namespace sgnlf;
 using harness::compare_results;
@@ -121,31 +128,77 @@ TEST_CASE("every loose tolerance covers 3 sd of the measured seed spread", "[har
   CHECK(checked == 17);
 }
 
-TEST_CASE("a smoke table is compared only as a deterministic twin", "[harness][compare]") {
-  // Before: another device or driver silently switched a smoke comparison to the loose
-  // tolerances (CD ±25 % around a 60-iteration model), and the 1 % drift below passed.
+namespace {
+bool has_finding(const harness::CompareReport& rep, const std::string& kind, bool fails,
+                 const std::vector<std::string>& words) {
+  for (const auto& f : rep.findings) {
+    if (f.kind != kind || f.fails != fails) continue;
+    bool all = true;
+    for (const auto& w : words) all = all && f.message.find(w) != std::string::npos;
+    if (all) return true;
+  }
+  return false;
+}
+}  // namespace
+
+TEST_CASE("a smoke table is tight on its baseline's device, loose on another without its own",
+          "[harness][compare]") {
   const Json base = test::fake_results();
   REQUIRE(base["scale"] == "smoke");
-  Json drift = base;
-  test::row(drift, "lidar-nerf")["mean"]["cd"] = base["rows"][0]["mean"]["cd"].get<double>() * 1.01;
-  drift["context"]["opencl"]["device"] = "another-device";
+  const double cd = base["rows"][0]["mean"]["cd"].get<double>();
+  Json drift = base;  // 1 % worse: beyond the tight tolerances, well within the loose ones
+  test::row(drift, "lidar-nerf")["mean"]["cd"] = cd * 1.01;
+  // The baseline's own device: a deterministic twin, so tight, and the drift fails.
   auto rep = compare_results(drift, base);
   CHECK(rep.mode == "tight");
   CHECK(rep.regression());
-  bool named = false;
-  for (const auto& f : rep.findings)
-    if (f.kind == "not-twins" && f.fails && f.message.find("another-device") != std::string::npos &&
-        f.message.find("fake-device") != std::string::npos && f.message.find("regenerate") != std::string::npos)
-      named = true;
-  CHECK(named);
-  // Same device, other driver, drifting: the same.
+  // Another device, no baseline of that device: its rounding, amplified by 60 training steps,
+  // moves an untrained model's metrics, so loose; the report says the device differs, that no
+  // baseline of it exists, where to put one, and which metrics missed the tight tolerances.
+  Json other = drift;
+  other["context"]["opencl"]["device"] = "another-device";
+  harness::CompareOptions opt;
+  opt.device_baseline = "tables/t/smoke/devices/another-device_1.0/results.json";
+  rep = compare_results(other, base, opt);
+  CHECK(rep.mode == "loose");
+  CHECK_FALSE(rep.regression());
+  CHECK(has_finding(rep, "note", false,
+                    {"the device differs", "another-device", "fake-device",
+                     "no baseline of this device exists",
+                     "copy this run's results.json to " + opt.device_baseline}));
+  CHECK(has_finding(rep, "note", false, {"not the tight ones", "lidar-nerf / mean / cd"}));
+  CHECK_THAT(harness::format_report(rep), Catch::Contains("loose tolerances (smoke scale on another"));
+  // ... the same for another driver or another device profile on the same device.
   Json driver = drift;
-  driver["context"]["opencl"]["device"] = base["context"]["opencl"]["device"];
   driver["context"]["opencl"]["driver_version"] = "2.0";
-  CHECK(compare_results(driver, base).regression());
-  // Another device (another PoCL CPU target) that computes the same numbers is still a twin:
-  // it passes, tight, and a note names both devices. (CI moved from a skylake-avx512 to a
-  // haswell PoCL target and every one of 400 metrics matched.)
+  CHECK(compare_results(driver, base).mode == "loose");
+  CHECK_FALSE(compare_results(driver, base).regression());
+  Json profiled_base = base, profile = drift;
+  profiled_base["context"]["device_profile"] = {{"name", "cpu"}};
+  profile["context"]["device_profile"] = {{"name", "gpu"}};
+  CHECK(compare_results(profile, profiled_base).mode == "loose");
+  CHECK_FALSE(compare_results(profile, profiled_base).regression());
+  // Loose still fails on what is not rounding: a metric beyond the loose tolerance, a non-finite
+  // metric, a missing row, other configs.
+  Json gross = other;
+  test::row(gross, "lidar-nerf")["mean"]["cd"] = cd * 3;
+  CHECK(compare_results(gross, base).regression());
+  Json nan = other;
+  test::row(nan, "lidar-nerf")["sequences"][0]["metrics"]["depth_psnr"] = std::nan("");
+  rep = compare_results(nan, base);
+  CHECK(rep.regression());
+  CHECK(has_finding(rep, "regression", true, {"not finite"}));
+  Json missing = other;
+  missing["rows"].erase(0);
+  CHECK(compare_results(missing, base).regression());
+  Json cfg = other;
+  test::row(cfg, "lidar-nerf")["sequences"][0]["config_hash"] = "ffffffffffffffff";
+  rep = compare_results(cfg, base);
+  CHECK(rep.regression());
+  CHECK_THAT(harness::format_report(rep), Catch::Contains("lidar-nerf / ") && Catch::Contains("ffffffffffffffff"));
+  // Another device that computes the same numbers (another PoCL CPU target) is still a twin:
+  // tight, and a note names both devices. (CI moved from a skylake-avx512 to a haswell PoCL
+  // target and every one of 400 metrics matched.)
   Json same_numbers = base;
   same_numbers["context"]["opencl"]["device"] = "another-device";
   rep = compare_results(same_numbers, base, {"auto", true});
@@ -154,13 +207,80 @@ TEST_CASE("a smoke table is compared only as a deterministic twin", "[harness][c
   CHECK_THAT(harness::format_report(rep), Catch::Contains("another-device") &&
                                                Catch::Contains("every metric still matches"));
   // Same device, another run config: not a twin either, and the message says which.
-  Json cfg = base;
-  test::row(cfg, "lidar-nerf")["sequences"][0]["config_hash"] = "ffffffffffffffff";
+  test::row(cfg, "lidar-nerf")["mean"]["cd"] = cd;
+  cfg["context"]["opencl"]["device"] = base["context"]["opencl"]["device"];
   rep = compare_results(cfg, base);
   CHECK(rep.regression());
-  CHECK_THAT(harness::format_report(rep), Catch::Contains("lidar-nerf / ") && Catch::Contains("ffffffffffffffff"));
-  // An explicit --mode loose is the user's choice and still allowed.
+  CHECK(has_finding(rep, "not-twins", true, {"ffffffffffffffff"}));
+  // An explicit mode is the user's choice: tight fails the other device's drift, loose passes
+  // the same device's.
+  CHECK(compare_results(other, base, {"tight"}).regression());
   CHECK_FALSE(compare_results(drift, base, {"loose"}).regression());
+}
+
+TEST_CASE("a smoke result from another device is compared with that device's own baseline",
+          "[harness][compare]") {
+  const Json base = test::fake_results();
+  const std::string dir = test::temp_dir("compare_device_baseline");
+  const std::string committed = dir + "/smoke/results.json";
+  std::filesystem::create_directories(dir + "/smoke");
+  write_text_file(committed, base.dump());
+  // The GPU's own smoke run: another device and profile, and numbers 5 % off the committed ones
+  // (its rounding over 60 steps), copied beside the committed baseline.
+  Json gpu = base;
+  gpu["context"]["opencl"]["device"] = "NVIDIA H100 80GB HBM3";
+  gpu["context"]["opencl"]["driver_version"] = "550.54.15";
+  gpu["context"]["device_profile"] = {{"name", "gpu"}};
+  const double cd = base["rows"][0]["mean"]["cd"].get<double>();
+  test::row(gpu, "lidar-nerf")["mean"]["cd"] = cd * 1.05;
+  CHECK(harness::device_slug(gpu) == "nvidia-h100-80gb-hbm3_550.54.15_gpu");
+  const std::string own = harness::device_baseline_path(committed, gpu);
+  CHECK(own == dir + "/smoke/devices/nvidia-h100-80gb-hbm3_550.54.15_gpu/results.json");
+  // Before it exists: looked for, not found; the comparison is loose and names the path.
+  Json gpu_drift = gpu;
+  test::row(gpu_drift, "lidar-nerf")["mean"]["cd"] = cd * 1.05 * 1.01;
+  auto choice = harness::choose_baseline(committed, base, gpu_drift);
+  CHECK_FALSE(choice.per_device);
+  CHECK(choice.path == committed);
+  CHECK(choice.looked_for == own);
+  harness::CompareOptions opt;
+  opt.device_baseline = choice.looked_for;
+  auto rep = compare_results(gpu_drift, choice.baseline, opt);
+  CHECK(rep.mode == "loose");
+  CHECK_FALSE(rep.regression());
+  CHECK(has_finding(rep, "note", false, {"no baseline of this device exists", own}));
+  // With it: the GPU's results are compared tightly with the GPU's own numbers. Its own rerun
+  // passes; the 1 % drift that passed loosely above now fails.
+  std::filesystem::create_directories(std::filesystem::path(own).parent_path());
+  write_text_file(own, gpu.dump());
+  choice = harness::choose_baseline(committed, base, gpu);
+  REQUIRE(choice.per_device);
+  CHECK(choice.path == own);
+  CHECK(choice.baseline == gpu);
+  opt.device_baseline = choice.looked_for;
+  opt.device_baseline_used = true;
+  rep = compare_results(gpu, choice.baseline, opt);
+  CHECK(rep.mode == "tight");
+  CHECK_FALSE(rep.regression());
+  CHECK(has_finding(rep, "note", false, {"this device's own baseline", own}));
+  choice = harness::choose_baseline(committed, base, gpu_drift);
+  REQUIRE(choice.per_device);
+  rep = compare_results(gpu_drift, choice.baseline, opt);
+  CHECK(rep.mode == "tight");
+  CHECK(rep.regression());
+  // The committed baseline's own device never looks for one; nor does a trained table.
+  choice = harness::choose_baseline(committed, base, base);
+  CHECK_FALSE(choice.per_device);
+  CHECK(choice.looked_for.empty());
+  Json quick = base, quick_gpu = gpu;
+  quick["scale"] = quick_gpu["scale"] = "quick";
+  CHECK(harness::choose_baseline(committed, quick, quick_gpu).looked_for.empty());
+  // The slug of a PoCL result (this machine's), and of a result without a profile.
+  Json pocl = base;
+  pocl["context"]["opencl"] = {{"device", "pthread-skylake-avx512-AMD EPYC"}, {"driver_version", "3.1+debian"}};
+  CHECK(harness::device_slug(pocl) == "pthread-skylake-avx512-amd-epyc_3.1-debian");
+  pocl["context"]["device_profile"] = {{"name", "cpu"}};
+  CHECK(harness::device_slug(pocl) == "pthread-skylake-avx512-amd-epyc_3.1-debian_cpu");
 }
 
 TEST_CASE("results of the wrong shape are findings, not JSON type errors", "[harness][compare]") {
