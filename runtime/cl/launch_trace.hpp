@@ -1,6 +1,7 @@
 // A record of what a Runtime's queue was asked to do, launch by launch: each kernel launch with
 // its work-items and the size of its largest buffer argument, each blocking transfer (a
-// Buffer::read or Buffer::write, which wait for the queue) and each Runtime::finish. For
+// Buffer::read or Buffer::write, which wait for the queue), each non-blocking write
+// (Buffer::write_async, which does not) and each Runtime::finish. For
 // auditing the shape of a training step (tests/pipeline/test_step_parallelism.cpp: does every
 // kernel over many elements launch many work-items, how often does a step wait for the
 // device), not for timing: it records no times and changes nothing in the launches.
@@ -31,8 +32,13 @@ struct LaunchTrace {
     blocking_transfers.push_back(
         {read, bytes, launches.empty() ? std::string("(trace start)") : launches.back().kernel});
   }
+  void add_async_transfer(size_t bytes) {
+    async_transfers.push_back(
+        {false, bytes, launches.empty() ? std::string("(trace start)") : launches.back().kernel});
+  }
   std::vector<TracedLaunch> launches;
   std::vector<TracedTransfer> blocking_transfers;
+  std::vector<TracedTransfer> async_transfers;  // non-blocking writes (no wait)
   long finishes = 0;  // Runtime::finish() calls
   void clear() { *this = LaunchTrace{}; }
 };

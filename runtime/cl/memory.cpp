@@ -43,6 +43,19 @@ void Buffer::write(const void* src, size_t bytes, size_t offset) {
         "clEnqueueWriteBuffer");
 }
 
+Event Buffer::write_async(const void* src, size_t bytes, size_t offset) {
+  if (offset + bytes > bytes_)
+    throw Error("cl::Buffer::write_async: " + std::to_string(offset + bytes) + " bytes past a " +
+                std::to_string(bytes_) + "-byte buffer");
+  if (bytes == 0) return Event();
+  if (rt_->trace()) rt_->trace()->add_async_transfer(bytes);
+  cl_event e = nullptr;
+  check(clEnqueueWriteBuffer(rt_->queue(), mem_.get(), CL_FALSE, offset, bytes, src, 0, nullptr,
+                             &e),
+        "clEnqueueWriteBuffer (non-blocking)");
+  return Event(e);
+}
+
 void Buffer::read(void* dst, size_t bytes, size_t offset) const {
   if (offset + bytes > bytes_)
     throw Error("cl::Buffer::read: " + std::to_string(offset + bytes) + " bytes past a " +

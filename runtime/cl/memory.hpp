@@ -73,6 +73,10 @@ class Buffer {
   explicit operator bool() const { return bool(mem_); }
 
   void write(const void* src, size_t bytes, size_t offset = 0);
+  // Non-blocking write: enqueued behind the queue's earlier commands and returned at once; `src`
+  // must stay valid and unchanged until the returned event has completed (cl::StagedUpload
+  // keeps its host copy so). Recorded in the launch trace as an asynchronous transfer.
+  Event write_async(const void* src, size_t bytes, size_t offset = 0);
   void read(void* dst, size_t bytes, size_t offset = 0) const;
   void fill_zero();
   void copy_from(const Buffer& src, size_t bytes, size_t src_offset = 0, size_t dst_offset = 0);

@@ -98,7 +98,7 @@ void HashGrid::set_level_weights(const std::vector<float>& w) {
     throw Error("HashGrid::set_level_weights: got " + std::to_string(w.size()) +
                 " weights for " + std::to_string(cfg_.levels) + " levels");
   weights_host_ = w;
-  weights_.write_vec(w);
+  up_weights_.write_vec(weights_, w);  // non-blocking (BARF's weights change between steps)
 }
 
 static void check_bytes(const cl::Buffer& b, size_t floats, const char* what) {

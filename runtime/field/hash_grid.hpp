@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cl/runtime.hpp"
+#include "cl/staged_upload.hpp"
 #include "core/config_fwd.hpp"
 #include "field/entry_reduction.hpp"
 #include "field/hash_grid_config.hpp"
@@ -80,6 +81,7 @@ class HashGrid {
   size_t n_params_ = 0;
   std::vector<float> weights_host_;
   cl::Buffer scale_, meta_, weights_;
+  cl::StagedUpload up_weights_;  // the level weights, written without blocking
   cl::Kernel fwd_, bwd_, bwd_atomic_, bwd_pairs_, bwd_dx_, dx_reduce_, zero_, to_half_;
   cl::EncoderBackward variant_ = cl::EncoderBackward::Serial;
   std::unique_ptr<EntryReduction> reduction_;  // made on the first deterministic parallel pass

@@ -228,15 +228,17 @@ void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long ste
   require(R > 0 && R <= max_rays_, "LidarNerfModel::forward_backward: batch of " +
                                        std::to_string(R) + " rays, capacity " +
                                        std::to_string(max_rays_));
-  std::vector<float> target(size_t(R) * 3);
+  // Non-blocking uploads (the same bytes as blocking writes): the queue reads the host copies
+  // when it gets there, behind the previous step's kernels.
+  float* target = up_target_.stage<float>(size_t(R) * 3);
   for (int i = 0; i < R; ++i) {
     target[3 * size_t(i)] = b.range[size_t(i)];
     target[3 * size_t(i) + 1] = b.intensity[size_t(i)];
     target[3 * size_t(i) + 2] = b.label[size_t(i)];
   }
-  o_.write_vec(b.origins);
-  d_.write_vec(b.directions);
-  target_.write_vec(target);
+  up_target_.write(target_);
+  up_o_.write_vec(o_, b.origins);
+  up_d_.write_vec(d_, b.directions);
   // Training samples by the returns when render.surface_* says so, else the protocol's.
   const ForwardContext ctx =
       forward(sample(*training_, R, cfg_.render.jitter, seed, uint32_t(step)));

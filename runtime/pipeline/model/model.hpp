@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "cl/runtime.hpp"
+#include "cl/staged_upload.hpp"
 #include "field/adam.hpp"
 #include "field/dir_encoding.hpp"
 #include "field/encoder.hpp"
@@ -286,6 +287,9 @@ class LidarNerfModel {
   cl::Buffer o_, d_, target_, t_c_, x_c_, w_c_, enc_c_, t_, x_, enc_, dens_, h0_, dir_enc_,
       head_out_, out_, weights_, grad_out_, terms_, loss_buf_, g_h0_, g_head_, g_dens_, g_enc_,
       g_dir_enc_;
+  // The training batch's host copies (origins, directions, targets), written into o_, d_ and
+  // target_ without blocking and kept until the queue has read them.
+  cl::StagedUpload up_o_, up_d_, up_target_;
   // Pose-free methods: dL/dx per evaluated sample, per-ray dL/do, dL/dd, and the direction
   // encoding's share of dL/dd.
   cl::Buffer g_x_, g_o_, g_d_, g_dir_;
