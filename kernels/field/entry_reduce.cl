@@ -27,6 +27,7 @@
 #endif
 #define HALF_TABLE 0
 #include "field/hashgrid.clh"
+#include "common/scan.clh"
 
 #define RADIX 16
 
@@ -45,33 +46,10 @@ __kernel void entry_radix_hist(const uint m, const uint tiles, const uint shift,
 
 // In-place exclusive scan of each unit's count = 16·tiles histogram words (digit-major, so a
 // (digit, tile) word becomes the first output position of that tile's pairs of that digit).
-// One work-group of SCAN_WG per unit: each work-item sums a contiguous chunk, the chunk sums are
-// scanned in order, then each chunk is rewritten. Integer sums: any order gives the same words.
+// One work-group of SCAN_WG per unit (common/scan.clh).
 __kernel void entry_radix_scan(const uint count, __global uint* hist) {
   __local uint part[SCAN_WG];
-  const uint lid = get_local_id(0), u = get_group_id(0);
-  __global uint* h = hist + (size_t)u * count;
-  const uint per = (count + SCAN_WG - 1u) / SCAN_WG;
-  const uint lo = min(count, lid * per), hi = min(count, lo + per);
-  uint s = 0u;
-  for (uint j = lo; j < hi; ++j) s += h[j];
-  part[lid] = s;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  if (lid == 0) {
-    uint acc = 0u;
-    for (int k = 0; k < SCAN_WG; ++k) {
-      const uint v = part[k];
-      part[k] = acc;
-      acc += v;
-    }
-  }
-  barrier(CLK_LOCAL_MEM_FENCE);
-  uint acc = part[lid];
-  for (uint j = lo; j < hi; ++j) {
-    const uint v = h[j];
-    h[j] = acc;
-    acc += v;
-  }
+  group_exclusive_scan(count, hist + (size_t)get_group_id(0) * count, part);
 }
 
 // Stable scatter of one pass: tile g of unit u walks its pairs in order and moves each to the

@@ -2,7 +2,12 @@
 // pipeline::SampleCompaction): the live merged samples of each ray, their rows gathered into a
 // compact layout for the field, and the field's outputs expanded back into the full layout the
 // renderer reads. Host references: tests/pipeline/test_sample_compaction.cpp.
+#include "common/scan.clh"
 #include "pipeline/stop_index.clh"
+
+#ifndef OFFSETS_WG
+#define OFFSETS_WG 256
+#endif
 
 // Early ray termination (render.stop_transmittance, instant-ngp / torch-ngp's T threshold):
 // merged samples behind the point where the coarse pass's transmittance fell below eps carry
@@ -24,6 +29,17 @@ __kernel void pipeline_live_count(const int n_rays, const int S, const int M, co
     while (c < M && tr[c] <= t_stop) ++c;
   }
   count[r] = c;
+}
+
+// The per-ray offsets from the live counts on the device (device profile compaction: device):
+// offset holds count[0..n_rays) on entry (pipeline_live_count wrote it there) and gets
+// offset[r] = Σ_{q<r} count[q] for r ≤ n_rays, so offset[n_rays] is the live rows' total. One
+// work-group of OFFSETS_WG; integer sums, equal to the host's prefix sum on any device.
+__kernel void pipeline_offsets_scan(const int n_rays, __global int* offset) {
+  __local uint part[OFFSETS_WG];
+  if (get_local_id(0) == 0) offset[n_rays] = 0;
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_exclusive_scan((uint)n_rays + 1u, (__global uint*)offset, part);
 }
 
 // Compact rows: for ray r and sample s < count[r] (count[r] = offset[r + 1] − offset[r]),

@@ -16,6 +16,10 @@ const char* encoder_backward_name(EncoderBackward b) {
 
 const char* gemm_name(GemmVariant g) { return config::choices(kGemmNames).name_of(g); }
 
+const char* compaction_name(CompactionScan c) {
+  return config::choices(kCompactionNames).name_of(c);
+}
+
 void DeviceProfile::validate(const std::string& where) const {
   if (name.empty()) throw ConfigError(where + ": 'name' must not be empty");
   config::check_fields(*this, where);
@@ -49,6 +53,7 @@ DeviceProfile gpu_profile() {
   p.hash_grid_chunk = 1;
   p.plane_chunk = 1;
   p.gemm = GemmVariant::LocalTiles;
+  p.compaction = CompactionScan::Device;
   return p;
 }
 

@@ -3,13 +3,14 @@
 // A profile names the work-group size of the element-wise kernels (cl::launch_1d), the
 // variant of the encoders' parameter backward (hash grid, time hash grid, K-Planes), the
 // points per work-item of the encoders' forward on CPUs and the variant and tiles of the MLP
-// layers' GEMMs. The built-in "cpu" profile is exactly what every run did before profiles
+// layers' GEMMs, and where the step's small reductions run (early termination's prefix sum).
+// The built-in "cpu" profile is exactly what every run did before profiles
 // existed (local size 64, the serial per-level backward, hash-grid chunks of 256 points, plane
 // chunks of 64, the float16 register-tiled GEMMs of kernels/field/mlp.cl); "gpu" keeps local
 // size 64, runs one point per work-item, the deterministic parallel backward (sorted by entry,
-// summed in point order, bit-identical to the serial one: docs/architecture.md) and the
-// local-memory tiled GEMMs of kernels/field/mlp_tiles.cl. A device of type CPU gets "cpu", any
-// other device (GPU, accelerator) "gpu"; the vendor is recorded in the result's context but
+// summed in point order, bit-identical to the serial one: docs/architecture.md), the
+// local-memory tiled GEMMs of kernels/field/mlp_tiles.cl and compaction's scan on the device.
+// A device of type CPU gets "cpu", any other device (GPU, accelerator) "gpu"; the vendor is recorded in the result's context but
 // chooses nothing yet. `--device-profile cpu|gpu|auto|FILE` (or SGNLF_DEVICE_PROFILE) overrides
 // the choice; FILE is JSON whose keys are read over the built-in profile named by its "base"
 // (default: the device's automatic one), unknown keys refused.
@@ -47,6 +48,17 @@ inline constexpr std::pair<GemmVariant, const char*> kGemmNames[] = {
 
 const char* gemm_name(GemmVariant g);
 
+// Early ray termination's per-ray offsets (pipeline::SampleCompaction): host = the live counts
+// read back, summed on the host and written back (two blocking transfers); device = a
+// work-group scan on the device (kernels/common/scan.clh) and one blocking read of the total,
+// which sizes the launches after it. Integer sums: the offsets are the same bits either way.
+enum class CompactionScan { Host, Device };
+
+inline constexpr std::pair<CompactionScan, const char*> kCompactionNames[] = {
+    {CompactionScan::Host, "host"}, {CompactionScan::Device, "device"}};
+
+const char* compaction_name(CompactionScan c);
+
 struct DeviceProfile {
   std::string name = "cpu";
   // Work-group size of the 1-D element-wise kernels (global size rounded up to it).
@@ -81,6 +93,8 @@ struct DeviceProfile {
   // chunking, and so the rounding, is fixed.
   int gemm_chunk_points = 64;
   int gemm_max_chunks = 1024;
+  // Where early termination's prefix sum runs (above).
+  CompactionScan compaction = CompactionScan::Host;
 
   template <class Self, class V>
   static void fields(Self& s, V& v) {
@@ -98,6 +112,7 @@ struct DeviceProfile {
     v("gemm_min_work_items", s.gemm_min_work_items, 0, 1 << 30);
     v("gemm_chunk_points", s.gemm_chunk_points, 1, 1 << 20);
     v("gemm_max_chunks", s.gemm_max_chunks, 1, 65536);
+    v("compaction", s.compaction, config::choices(kCompactionNames));
   }
   // Throws ConfigError naming `where` and the key.
   void validate(const std::string& where = "device_profile") const;

@@ -38,6 +38,7 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(cpu.hash_grid_chunk == 256);
   CHECK(cpu.plane_chunk == 64);
   CHECK(cpu.gemm == cl::GemmVariant::CpuTiles);
+  CHECK(cpu.compaction == cl::CompactionScan::Host);
   const auto gpu = cl::gpu_profile();
   CHECK(gpu.name == "gpu");
   CHECK(gpu.local_size == 64);
@@ -46,6 +47,7 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(gpu.plane_chunk == 1);
   CHECK(gpu.gemm == cl::GemmVariant::LocalTiles);
   CHECK(gpu.gemm_block_rows * gpu.gemm_block_cols <= 32);
+  CHECK(gpu.compaction == cl::CompactionScan::Device);
   CHECK(cl::automatic_profile(device_of_type("CPU")) == cpu);
   CHECK(cl::automatic_profile(device_of_type("GPU")) == gpu);
   CHECK(cl::automatic_profile(device_of_type("accelerator")) == gpu);
@@ -56,6 +58,8 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(gpu.to_json()["encoder_backward"] == "deterministic_parallel");
   CHECK(gpu.to_json()["gemm"] == "local_tiles");
   CHECK(cpu.to_json()["gemm"] == "cpu_tiles");
+  CHECK(gpu.to_json()["compaction"] == "device");
+  CHECK(cpu.to_json()["compaction"] == "host");
   CHECK(cl::DeviceProfile::from_json(gpu.to_json(), "p", cpu) == gpu);
 }
 
@@ -119,6 +123,14 @@ TEST_CASE("device profile files: keys over a base, strictly read", "[cl][device_
                                           R"({"name": "g", "base": "gpu", "gemm": "cpu_tiles"})"),
                             cpu_dev)
             .gemm == cl::GemmVariant::CpuTiles);
+  CHECK(cl::resolve_profile(write_profile("host_scan.json",
+                                          R"({"name": "g", "base": "gpu", "compaction": "host"})"),
+                            cpu_dev)
+            .compaction == cl::CompactionScan::Host);
+  CHECK_THROWS_WITH(
+      cl::resolve_profile(write_profile("scan.json", R"({"name": "s", "compaction": "gpu"})"),
+                          cpu_dev),
+      Contains("compaction") && Contains("device"));
   CHECK_THROWS_WITH(
       cl::resolve_profile(write_profile("gemm.json", R"({"name": "g", "gemm": "tensor_cores"})"),
                           cpu_dev),

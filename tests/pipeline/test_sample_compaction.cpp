@@ -1,14 +1,18 @@
 // Device-vs-reference tests of kernels/pipeline/sample_compaction.cl (pipeline::SampleCompaction):
-// live counts of early ray termination, the row → ray map, row compaction and the expansion of
-// the field outputs; and the launcher itself. Bit equality, exact by construction on any device:
+// live counts of early ray termination, the device scan of the per-ray offsets, the row → ray
+// map, row compaction and the expansion of the field outputs; and the launcher itself, with the
+// host and the device scan. Bit equality, exact by construction on any device:
 // the counts compare a running sum of additions in the kernel's order, the rest are index maps
 // and copies.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <vector>
 
+#include "cl/launch_trace.hpp"
 #include "copy_encoder.hpp"
 #include "core/rng.hpp"
 #include "pipeline/model/sample_compaction.hpp"
@@ -241,4 +245,86 @@ TEST_CASE("SampleCompaction selects, gathers and expands the live rows",
   live3.encode(encoder, params, 0);
   CHECK(encoder.rows == n);
   CHECK(live3.encodings().read_vec<float>(size_t(n) * 3) == live_rows(x, d, M, 3));
+}
+
+// The device profile's `compaction: device` (kernels/common/scan.clh through
+// pipeline_offsets_scan): the per-ray offsets from the live counts on the device. Integer sums,
+// so bit equality with the host's serial prefix sum holds on any device.
+TEST_CASE("the device scan of the live counts equals the host prefix sum",
+          "[pipeline][sample-compaction][scan][device]") {
+  auto& rt = test::runtime();
+  Rng rng(59);
+  auto scan = rt.kernel("pipeline/sample_compaction.cl", "pipeline_offsets_scan");
+  // Sizes around the work-group (256): fewer rays than work-items, one per work-item, chunks
+  // with a tail; the audit's 4096 rays; large counts whose total nears 2^30.
+  for (const auto& [n, max_count] : std::vector<std::pair<int, int>>{
+           {1, 40}, {2, 40}, {63, 40}, {255, 300}, {256, 300}, {257, 300}, {1000, 300},
+           {4096, 300}, {5001, 64}, {4096, 1 << 18}}) {
+    CAPTURE(n, max_count);
+    std::vector<int32_t> count(size_t(n) + 1), ref(size_t(n) + 1, 0);
+    for (int r = 0; r < n; ++r)
+      count[size_t(r)] = rng.next_u64() % 5 == 0 ? 0 : int32_t(rng.next_u64() % uint64_t(max_count + 1));
+    count[size_t(n)] = 0x5eadbeef;  // whatever the slot held: the kernel writes it
+    for (int r = 0; r < n; ++r) ref[size_t(r) + 1] = ref[size_t(r)] + count[size_t(r)];
+    auto buf = cl::Buffer::from(rt, count);
+    scan.set_args(n, buf).launch({256}, {256});
+    CHECK(buf.read_vec<int32_t>(size_t(n) + 1) == ref);
+  }
+}
+
+namespace {
+// Makes the launchers built inside its scope read `p`; the runtime's own profile comes back after.
+struct ProfileScope {
+  cl::Runtime& rt;
+  cl::DeviceProfile saved;
+  ProfileScope(cl::Runtime& r, const cl::DeviceProfile& p) : rt(r), saved(r.device_profile()) {
+    rt.set_device_profile(p);
+  }
+  ~ProfileScope() { rt.set_device_profile(saved); }
+};
+}  // namespace
+
+TEST_CASE("SampleCompaction gives the same offsets with the host and the device scan",
+          "[pipeline][sample-compaction][scan][device]") {
+  auto& rt = test::runtime();
+  const int R = 301, S = 12, M = 18;
+  const float eps = 1e-3f;
+  Rng rng(61);
+  const Termination d = make_termination(R, S, M, eps, rng);
+  std::vector<float> x(size_t(R) * M * 3);
+  for (auto& v : x) v = rng.uniform(-1, 1);
+  auto btc = cl::Buffer::from(rt, d.t_c), bwc = cl::Buffer::from(rt, d.w_c);
+  auto bt = cl::Buffer::from(rt, d.t), bx = cl::Buffer::from(rt, x);
+  for (const auto mode : {cl::CompactionScan::Host, cl::CompactionScan::Device}) {
+    CAPTURE(cl::compaction_name(mode));
+    cl::DeviceProfile p = rt.device_profile();
+    p.compaction = mode;
+    std::unique_ptr<pipeline::SampleCompaction> live;
+    {
+      ProfileScope scope(rt, p);
+      live = std::make_unique<pipeline::SampleCompaction>(rt, R + 5, M, S, 3, eps);
+    }
+    for (int pass = 0; pass < 2; ++pass) {  // a second select over the first one's offsets
+      rt.finish();
+      cl::LaunchTrace trace;
+      rt.set_trace(&trace);
+      const long rows = live->select(R - pass, M, btc, bwc, bt, bx);
+      rt.set_trace(nullptr);
+      std::vector<int32_t> ref(d.offset.begin(), d.offset.end() - pass);
+      CHECK(rows == ref.back());
+      CHECK(live->offsets().read_vec<int32_t>(ref.size()) == ref);
+      const std::vector<float> x_live = live_rows(x, d, M, 3);  // rays 0..R-1; a prefix for fewer
+      CHECK(live->positions().read_vec<float>(size_t(rows) * 3) ==
+            std::vector<float>(x_live.begin(), x_live.begin() + rows * 3));
+      // Host: the counts read and the offsets written; device: the total read, 4 bytes.
+      if (mode == cl::CompactionScan::Host) {
+        REQUIRE(trace.blocking_transfers.size() == 2);
+        CHECK(trace.blocking_transfers[0].bytes == size_t(R - pass) * 4);
+      } else {
+        REQUIRE(trace.blocking_transfers.size() == 1);
+        CHECK(trace.blocking_transfers[0].read);
+        CHECK(trace.blocking_transfers[0].bytes == 4);
+      }
+    }
+  }
 }

@@ -88,9 +88,10 @@ struct KnownTransfers {
 // So did the pose-free methods' 56-byte write before the batch, which was BARF's level weights,
 // HashGrid::set_level_weights, not a pose.)
 const std::vector<KnownTransfers> kBlockingTransfers = {
-    {"compaction offsets", {"lidar-nerf", "lidar4d"}, 2,
-     "early termination's prefix sum on the host (sample_compaction.cpp: the live counts read, the "
-     "offsets written back); item 4: a device scan"},
+    {"compaction total", {"lidar-nerf", "lidar4d"}, 1,
+     "early termination's live rows (4 bytes, sample_compaction.cpp): the launches after it are "
+     "sized by it. The prefix sum itself runs on the device under the gpu profile (compaction: "
+     "device; the host's read of the counts and write of the offsets were 2 transfers)"},
     {"loss for reweighting", {"geonlf", "sg-nlf"}, 2,
      "PoseFreeStep reads the step's loss (pose_free_step.cpp: per-frame reweighting), 2 x 16 bytes"},
     {"ray gradients", {"geonlf", "sg-nlf"}, 3,

@@ -8,6 +8,10 @@
 namespace sgnlf::pipeline {
 using namespace model_detail;
 
+namespace {
+constexpr size_t kOffsetsWg = 256;  // OFFSETS_WG of kernels/pipeline/sample_compaction.cl
+}
+
 SampleCompaction::SampleCompaction(cl::Runtime& rt, int max_rays, int max_samples, int n_samples,
                                    int width, float eps)
     : S_(n_samples),
@@ -16,7 +20,9 @@ SampleCompaction::SampleCompaction(cl::Runtime& rt, int max_rays, int max_sample
       live_count_(rt.kernel("pipeline/sample_compaction.cl", "pipeline_live_count")),
       compact_rows_(rt.kernel("pipeline/sample_compaction.cl", "pipeline_compact_rows")),
       expand_(rt.kernel("pipeline/sample_compaction.cl", "pipeline_expand_outputs")),
-      row_ray_k_(rt.kernel("pipeline/sample_compaction.cl", "pipeline_row_ray")) {
+      row_ray_k_(rt.kernel("pipeline/sample_compaction.cl", "pipeline_row_ray")),
+      device_scan_(rt.device_profile().compaction == cl::CompactionScan::Device) {
+  if (device_scan_) scan_k_ = rt.kernel("pipeline/sample_compaction.cl", "pipeline_offsets_scan");
   const size_t R = size_t(max_rays), N = R * size_t(max_samples);
   count_ = floats(rt, R), offset_ = floats(rt, R + 1), row_ray_ = floats(rt, N);
   x_l_ = floats(rt, N * 3), enc_l_ = floats(rt, N * size_t(width)), head_l_ = floats(rt, N * 2);
@@ -25,14 +31,26 @@ SampleCompaction::SampleCompaction(cl::Runtime& rt, int max_rays, int max_sample
 
 long SampleCompaction::select(int n_rays, int M, const cl::Buffer& t_c, const cl::Buffer& w_c,
                               const cl::Buffer& t, const cl::Buffer& x) {
-  live_count_.set_args(n_rays, S_, M, eps_, t_c, w_c, t, count_);
-  live_count_.launch({cl::round_up(size_t(n_rays), 64)}, {64});
-  // The one host sync of the step before the loss: kernel sizes below depend on the total.
-  const std::vector<int32_t> count = count_.read_vec<int32_t>(size_t(n_rays));
-  std::vector<int32_t> offset(size_t(n_rays) + 1, 0);
-  for (int r = 0; r < n_rays; ++r) offset[size_t(r) + 1] = offset[size_t(r)] + count[size_t(r)];
-  rows_ = offset.back();
-  offset_.write_vec(offset);
+  if (device_scan_) {
+    // The counts straight into the offsets, scanned there; the one host sync of the step before
+    // the loss is the total (4 bytes): the kernel sizes below depend on it.
+    live_count_.set_args(n_rays, S_, M, eps_, t_c, w_c, t, offset_);
+    live_count_.launch({cl::round_up(size_t(n_rays), 64)}, {64});
+    scan_k_.set_args(n_rays, offset_);
+    scan_k_.launch({kOffsetsWg}, {kOffsetsWg});
+    int32_t total = 0;
+    offset_.read(&total, sizeof total, size_t(n_rays) * sizeof total);
+    rows_ = total;
+  } else {
+    live_count_.set_args(n_rays, S_, M, eps_, t_c, w_c, t, count_);
+    live_count_.launch({cl::round_up(size_t(n_rays), 64)}, {64});
+    // The one host sync of the step before the loss: kernel sizes below depend on the total.
+    const std::vector<int32_t> count = count_.read_vec<int32_t>(size_t(n_rays));
+    std::vector<int32_t> offset(size_t(n_rays) + 1, 0);
+    for (int r = 0; r < n_rays; ++r) offset[size_t(r) + 1] = offset[size_t(r)] + count[size_t(r)];
+    rows_ = offset.back();
+    offset_.write_vec(offset);
+  }
   row_rays(n_rays, offset_, row_ray_);
   compact_rows_.set_args(n_rays, M, 3, offset_, x, x_l_);
   compact_rows_.launch({cl::round_up(size_t(n_rays) * M, 64)}, {64});

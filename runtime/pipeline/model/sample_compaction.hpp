@@ -24,8 +24,11 @@ class SampleCompaction {
                    float eps);
 
   // Counts the live samples of each of n_rays rays (M per ray at t, the coarse pass's t_c and
-  // weights w_c: n_samples per ray), with one blocking read of n_rays ints, and gathers the live
-  // rows of the positions x (n_rays × M × 3) into positions(). Returns the live rows.
+  // weights w_c: n_samples per ray), sums them into the per-ray offsets and gathers the live
+  // rows of the positions x (n_rays × M × 3) into positions(). Returns the live rows. The
+  // device profile's `compaction` says where the sum runs: host = one blocking read of n_rays
+  // ints and one blocking write of the offsets; device = the scan on the device
+  // (pipeline_offsets_scan) and one blocking read of the total. The same offsets either way.
   long select(int n_rays, int M, const cl::Buffer& t_c, const cl::Buffer& w_c,
               const cl::Buffer& t, const cl::Buffer& x);
   // encodings() from the live rows of enc (n_rays × M × width, already encoded), or by
@@ -59,7 +62,8 @@ class SampleCompaction {
   int S_, width_;
   float eps_;
   long rows_ = 0;
-  cl::Kernel live_count_, compact_rows_, expand_, row_ray_k_;
+  cl::Kernel live_count_, compact_rows_, expand_, row_ray_k_, scan_k_;
+  bool device_scan_;  // the profile's compaction: device (read when made)
   // Per-ray live counts and offsets (int32), each live row's ray, and the live rows' positions,
   // encodings, head outputs and their gradients.
   cl::Buffer count_, offset_, row_ray_, x_l_, enc_l_, head_l_, g_h0_l_, g_head_l_;
