@@ -38,8 +38,9 @@ enum Stage : size_t { kOdometry, kAlign, kTrain, kEvaluate, kRender, kCloud, kRe
 const std::vector<std::string> kProgressStages{"odometry", "align", "train", "evaluate",
                                                "render", "cloud", "report"};
 
-Json pose_errors_json(const std::vector<Pose>& est, const std::vector<Pose>& ref) {
-  Json j = metrics::pose_metrics(est, ref);
+Json pose_errors_json(const std::vector<Pose>& est, const std::vector<Pose>& ref, const Dataset& d) {
+  Json j = metrics::pose_metrics(est, ref, d.planar_reference ? metrics::PoseReference::horizontal
+                                                              : metrics::PoseReference::detect);
   j["frames"] = est.size();
   return j;
 }
@@ -122,7 +123,7 @@ Json odometry_stage(const Dataset& d, const std::string& run_dir, const std::vec
          {"failed", res.failed},
          {"kitti", (dir / "odometry.kitti.txt").string()},
          {"tum", (dir / "odometry.tum.txt").string()}};
-  if (!ref.empty()) j["pose_errors"] = pose_errors_json(res.T_world_lidar, ref);
+  if (!ref.empty()) j["pose_errors"] = pose_errors_json(res.T_world_lidar, ref, d);
   write_json_file((dir / "odometry.json").string(), Json{{"config", cfg.to_json()}, {"result", j}, {"frames", frames}});
   if (!res.failed.empty()) {
     const int k = res.failed.front();
@@ -285,8 +286,8 @@ Json reconstruct(cl::Runtime& rt, const ReconstructRequest& req) {
     const fs::path traj = fs::path(req.run_dir) / "trajectories";
     const std::vector<Pose> odo = io::read_kitti_poses(record.stage("odometry").at("kitti").get<std::string>());
     const std::vector<Pose> opt = io::read_kitti_poses((traj / "optimised.kitti.txt").string());
-    record.set("pose_errors", Json{{"odometry", pose_errors_json(odo, ref)},
-                                   {"optimised", pose_errors_json(opt, ref)}});
+    record.set("pose_errors", Json{{"odometry", pose_errors_json(odo, ref, d)},
+                                   {"optimised", pose_errors_json(opt, ref, d)}});
   }
   if (!record.done("report") || !ref.empty()) {
     progress.begin(kReport);

@@ -40,7 +40,7 @@ std::vector<Pose> PoseFreeStep::poses_world() const {
 
 Json PoseFreeStep::pose_errors() const {
   if (gt_.size() < 2) return Json::object();
-  return metrics::pose_metrics(poses_world(), gt_);
+  return metrics::pose_metrics(poses_world(), gt_, reference_);
 }
 
 void PoseFreeStep::on_epoch(long epoch, long step) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "metrics/evaluate.hpp"
 #include "pipeline/train/pose_set.hpp"
 #include "pipeline/train/step_policy.hpp"
 
@@ -54,6 +55,8 @@ class PoseFreeStep : public StepPolicy {
   double geometric_seconds() const { return geometric_seconds_; }
   // Network lr multiplier of `frame` under selective reweighting (1 when off or not yet known).
   double reweight(int frame) const;
+  // Which ATE the reference supports (Dataset::planar_reference): horizontal for nuScenes.
+  void set_pose_reference(metrics::PoseReference r) { reference_ = r; }
 
  private:
   Json pose_errors() const;
@@ -61,6 +64,7 @@ class PoseFreeStep : public StepPolicy {
   const TrainConfig& cfg_;
   PoseSet& poses_;
   std::vector<Pose> gt_;
+  metrics::PoseReference reference_ = metrics::PoseReference::full_3d;
   std::string run_dir_;
   GeometricStage geometric_;
   GeometricProgress report_;

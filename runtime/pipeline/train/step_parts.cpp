@@ -29,6 +29,8 @@ StepPolicy& RunStepParts::pose_free() {
       c_.confidence_graph()
           ? make_geometric_stage(d_, scene_, c_, field_features(model_, scene_.norm), run_dir_)
           : make_geometric_stage(d_, scene_, c_));
+  pose_step_->set_pose_reference(d_.planar_reference ? metrics::PoseReference::horizontal
+                                                     : metrics::PoseReference::full_3d);
   return *pose_step_;
 }
 
