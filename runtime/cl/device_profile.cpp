@@ -20,6 +20,8 @@ const char* compaction_name(CompactionScan c) {
   return config::choices(kCompactionNames).name_of(c);
 }
 
+const char* pose_grad_name(PoseGrad g) { return config::choices(kPoseGradNames).name_of(g); }
+
 void DeviceProfile::validate(const std::string& where) const {
   if (name.empty()) throw ConfigError(where + ": 'name' must not be empty");
   config::check_fields(*this, where);
@@ -54,6 +56,7 @@ DeviceProfile gpu_profile() {
   p.plane_chunk = 1;
   p.gemm = GemmVariant::LocalTiles;
   p.compaction = CompactionScan::Device;
+  p.pose_grad = PoseGrad::Device;
   return p;
 }
 

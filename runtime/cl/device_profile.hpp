@@ -3,13 +3,15 @@
 // A profile names the work-group size of the element-wise kernels (cl::launch_1d), the
 // variant of the encoders' parameter backward (hash grid, time hash grid, K-Planes), the
 // points per work-item of the encoders' forward on CPUs and the variant and tiles of the MLP
-// layers' GEMMs, and where the step's small reductions run (early termination's prefix sum).
+// layers' GEMMs, and where the step's small reductions run (early termination's prefix sum,
+// the pose gradient's sums).
 // The built-in "cpu" profile is exactly what every run did before profiles
 // existed (local size 64, the serial per-level backward, hash-grid chunks of 256 points, plane
 // chunks of 64, the float16 register-tiled GEMMs of kernels/field/mlp.cl); "gpu" keeps local
 // size 64, runs one point per work-item, the deterministic parallel backward (sorted by entry,
 // summed in point order, bit-identical to the serial one: docs/architecture.md), the
-// local-memory tiled GEMMs of kernels/field/mlp_tiles.cl and compaction's scan on the device.
+// local-memory tiled GEMMs of kernels/field/mlp_tiles.cl, compaction's scan and the pose
+// gradient's sums on the device.
 // A device of type CPU gets "cpu", any other device (GPU, accelerator) "gpu"; the vendor is recorded in the result's context but
 // chooses nothing yet. `--device-profile cpu|gpu|auto|FILE` (or SGNLF_DEVICE_PROFILE) overrides
 // the choice; FILE is JSON whose keys are read over the built-in profile named by its "base"
@@ -59,6 +61,18 @@ inline constexpr std::pair<CompactionScan, const char*> kCompactionNames[] = {
 
 const char* compaction_name(CompactionScan c);
 
+// The pose-free methods' pose gradient (PoseFreeStep): host = the per-ray gradients read back
+// (3 × n_rays × 3 floats) and summed in double on the host (render::pose_gradient); device = the
+// same sums in float on the device in a fixed tree (kernels/render/pose_grad.cl), 6 floats read
+// back, the Jacobians and the pose Adam on the host. Bit-reproducible per device either way;
+// the two differ by the sums' float rounding.
+enum class PoseGrad { Host, Device };
+
+inline constexpr std::pair<PoseGrad, const char*> kPoseGradNames[] = {
+    {PoseGrad::Host, "host"}, {PoseGrad::Device, "device"}};
+
+const char* pose_grad_name(PoseGrad g);
+
 struct DeviceProfile {
   std::string name = "cpu";
   // Work-group size of the 1-D element-wise kernels (global size rounded up to it).
@@ -95,6 +109,8 @@ struct DeviceProfile {
   int gemm_max_chunks = 1024;
   // Where early termination's prefix sum runs (above).
   CompactionScan compaction = CompactionScan::Host;
+  // Where the pose gradient's per-ray sums run (above).
+  PoseGrad pose_grad = PoseGrad::Host;
 
   template <class Self, class V>
   static void fields(Self& s, V& v) {
@@ -113,6 +129,7 @@ struct DeviceProfile {
     v("gemm_chunk_points", s.gemm_chunk_points, 1, 1 << 20);
     v("gemm_max_chunks", s.gemm_max_chunks, 1, 65536);
     v("compaction", s.compaction, config::choices(kCompactionNames));
+    v("pose_grad", s.pose_grad, config::choices(kPoseGradNames));
   }
   // Throws ConfigError naming `where` and the key.
   void validate(const std::string& where = "device_profile") const;

@@ -37,4 +37,14 @@ Vec6 pose_gradient(const Pose& T_init, const Vec6& xi, const std::vector<float>&
   return g;
 }
 
+Vec6 pose_gradient_from_world_sums(const Pose& T_init, const Vec6& xi, const Vec3& sum_go,
+                                   const Vec3& sum_cross) {
+  const Vec3 w = xi.head<3>();
+  const Mat3 R = T_init.linear() * exp_so3(w);
+  Vec6 g;
+  g.head<3>() = right_jacobian_so3(w).transpose() * (R.transpose() * sum_cross);
+  g.tail<3>() = T_init.linear().transpose() * sum_go;
+  return g;
+}
+
 }  // namespace sgnlf::render

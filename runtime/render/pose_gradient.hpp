@@ -19,4 +19,11 @@ Vec6 pose_gradient(const Pose& T_init, const Vec6& xi, const std::vector<float>&
                    const std::vector<float>& dirs_lidar, const std::vector<float>& grad_o,
                    const std::vector<float>& grad_d);
 
+// The same gradient for rays from the sensor origin, from their sums in the world frame
+// (render::PoseGradSums on the device): sum_go = Σ_r g_o,r, sum_cross = Σ_r d_r × g_d,r with
+// d_r = R v_r the world directions, so Σ_r v_r × Rᵀ g_d,r = Rᵀ sum_cross:
+//   dL/dω = J_r(ω)ᵀ Rᵀ sum_cross,   dL/du = R_initᵀ sum_go   (R = R_init Exp(ω), in double).
+Vec6 pose_gradient_from_world_sums(const Pose& T_init, const Vec6& xi, const Vec3& sum_go,
+                                   const Vec3& sum_cross);
+
 }  // namespace sgnlf::render

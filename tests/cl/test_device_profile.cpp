@@ -39,6 +39,7 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(cpu.plane_chunk == 64);
   CHECK(cpu.gemm == cl::GemmVariant::CpuTiles);
   CHECK(cpu.compaction == cl::CompactionScan::Host);
+  CHECK(cpu.pose_grad == cl::PoseGrad::Host);
   const auto gpu = cl::gpu_profile();
   CHECK(gpu.name == "gpu");
   CHECK(gpu.local_size == 64);
@@ -48,6 +49,7 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(gpu.gemm == cl::GemmVariant::LocalTiles);
   CHECK(gpu.gemm_block_rows * gpu.gemm_block_cols <= 32);
   CHECK(gpu.compaction == cl::CompactionScan::Device);
+  CHECK(gpu.pose_grad == cl::PoseGrad::Device);
   CHECK(cl::automatic_profile(device_of_type("CPU")) == cpu);
   CHECK(cl::automatic_profile(device_of_type("GPU")) == gpu);
   CHECK(cl::automatic_profile(device_of_type("accelerator")) == gpu);
@@ -60,6 +62,8 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(cpu.to_json()["gemm"] == "cpu_tiles");
   CHECK(gpu.to_json()["compaction"] == "device");
   CHECK(cpu.to_json()["compaction"] == "host");
+  CHECK(gpu.to_json()["pose_grad"] == "device");
+  CHECK(cpu.to_json()["pose_grad"] == "host");
   CHECK(cl::DeviceProfile::from_json(gpu.to_json(), "p", cpu) == gpu);
 }
 
@@ -127,6 +131,14 @@ TEST_CASE("device profile files: keys over a base, strictly read", "[cl][device_
                                           R"({"name": "g", "base": "gpu", "compaction": "host"})"),
                             cpu_dev)
             .compaction == cl::CompactionScan::Host);
+  CHECK(cl::resolve_profile(write_profile("host_pose.json",
+                                          R"({"name": "g", "base": "gpu", "pose_grad": "host"})"),
+                            cpu_dev)
+            .pose_grad == cl::PoseGrad::Host);
+  CHECK_THROWS_WITH(
+      cl::resolve_profile(write_profile("pose.json", R"({"name": "p", "pose_grad": "gpu"})"),
+                          cpu_dev),
+      Contains("pose_grad") && Contains("device"));
   CHECK_THROWS_WITH(
       cl::resolve_profile(write_profile("scan.json", R"({"name": "s", "compaction": "gpu"})"),
                           cpu_dev),

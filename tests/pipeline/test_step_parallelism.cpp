@@ -15,7 +15,9 @@
 // 36, 10; none outside the lists. With the MLP's local_tiles GEMMs in the gpu profile (issue 54,
 // item 3: no transpose kernel, every MLP launch 16 384 work-items or more) their entries left
 // the list: lidar-nerf 82 launches, 13 narrow; lidar4d 327, 70; geonlf 70, 13 (after 0f1ddf6's
-// surface sampling); sg-nlf 72, 13.
+// surface sampling); sg-nlf 72, 13. Blocking transfers as item 4 lands (gpu profile): ray batch
+// and level weights written without blocking, compaction's scan and the pose gradient's sums on
+// the device: lidar-nerf 5 -> 1, lidar4d 12 -> 8, geonlf 10 -> 4, sg-nlf 10 -> 4.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -94,9 +96,11 @@ const std::vector<KnownTransfers> kBlockingTransfers = {
      "device; the host's read of the counts and write of the offsets were 2 transfers)"},
     {"loss for reweighting", {"geonlf", "sg-nlf"}, 2,
      "PoseFreeStep reads the step's loss (pose_free_step.cpp: per-frame reweighting), 2 x 16 bytes"},
-    {"ray gradients", {"geonlf", "sg-nlf"}, 3,
-     "LidarNerfModel::read_ray_grads: dL/d(origin, direction, direction encoding) to the host, "
-     "where the SE(3) pose gradients and the pose Adam run; item 4: pose gradients on the device"},
+    {"ray gradient sums", {"geonlf", "sg-nlf"}, 1,
+     "LidarNerfModel::read_ray_grad_sums: the frame's ray gradients summed on the device (gpu "
+     "profile pose_grad: device, kernels/render/pose_grad.cl), 6 floats to the host, where the "
+     "SE(3) Jacobians and the pose Adam run (the host path read dL/d(origin, direction, direction "
+     "encoding), 3 transfers); item 4: the pose Adam on the device, with the batch drawn there"},
     {"weight-carving terms", {"geonlf", "sg-nlf"}, 1,
      "WeightCarving reads its per-ray terms to the host (weight_carving.cpp)"},
     {"flow supervision", {"lidar4d"}, 4,

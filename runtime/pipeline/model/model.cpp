@@ -70,7 +70,8 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
       renderer_(rt, c.render, scene_scale),
       loss_(rt, c.render, scene_scale,
             c.lidar4d ? float(c.lidar4d->ray_drop_label_smoothing) : 0.0f),
-      ray_grad_(rt) {
+      ray_grad_(rt),
+      pose_grad_device_(rt.device_profile().pose_grad == cl::PoseGrad::Device) {
   if (1 + c.field.geo_features != kDensStride)
     throw ConfigError("config.field: 'geo_features' must be 15 (density output 1 + 15 = 16)");
   off_grid_ = layout_.add("hash_grid", encoder_->n_params()).offset;
@@ -366,6 +367,15 @@ LidarNerfModel::RayGrads LidarNerfModel::read_ray_grads() const {
   const auto dir_enc = g_dir_.read_vec<float>(n);
   for (size_t i = 0; i < n; ++i) g.direction[i] += dir_enc[i];
   return g;
+}
+
+render::RayGradSums LidarNerfModel::read_ray_grad_sums() {
+  if (grad_rays_ == 0)
+    throw Error("LidarNerfModel::read_ray_grad_sums: no step computed ray gradients");
+  if (!pose_sums_) pose_sums_ = std::make_unique<render::PoseGradSums>(rt_);
+  // d_ still holds the directions of the pass whose ray gradients these are.
+  pose_sums_->reduce(grad_rays_, d_, g_o_, g_d_, g_dir_);
+  return pose_sums_->read();
 }
 
 render::LossValues LidarNerfModel::read_loss() const {

@@ -47,6 +47,7 @@
 #include "pipeline/model/ray_batch.hpp"
 #include "pipeline/model/sample_compaction.hpp"
 #include "pipeline/model/sampler.hpp"
+#include "render/pose_grad_sums.hpp"
 #include "render/range_loss.hpp"
 #include "render/ray_gradient.hpp"
 #include "render/ray_sampler.hpp"
@@ -99,6 +100,13 @@ class LidarNerfModel {
     std::vector<float> origin, direction;
   };
   RayGrads read_ray_grads() const;
+  // The device profile's pose_grad when the model was made: device = the pose-free step takes
+  // read_ray_grad_sums() instead of read_ray_grads().
+  bool pose_grad_on_device() const { return pose_grad_device_; }
+  // The same ray gradients summed on the device over the rays' world directions
+  // (render::PoseGradSums: Σ dL/do and Σ d × dL/dd, the direction encoding's share included),
+  // for render::pose_gradient_from_world_sums(): one kernel and one blocking read of 6 floats.
+  render::RayGradSums read_ray_grad_sums();
 
   // An externally given per-ray output gradient through the same backward chain (SG-NLF's
   // adversarial consistency term, method.md §4.3–4.4): forward_rays() is the training-mode
@@ -294,6 +302,9 @@ class LidarNerfModel {
   // encoding's share of dL/dd.
   cl::Buffer g_x_, g_o_, g_d_, g_dir_;
   int grad_rays_ = 0;
+  // The profile's pose_grad: device; the launcher of the sums, made on first use.
+  bool pose_grad_device_ = false;
+  std::unique_ptr<render::PoseGradSums> pose_sums_;
   // External gradient (backward_external): its parameter gradient, pending until update(),
   // when field/accumulate.cl adds it to grad_.
   cl::Buffer grad_ext_;

@@ -102,15 +102,24 @@ void PoseFreeStep::step(LidarNerfModel& model, uint64_t seed, long step, float l
     seen_[size_t(b.frame)] = 1.0;
   }
   if (!optimize) return;
+  const size_t f = size_t(b.frame);
+  poses_.step(f, pose_gradient(model, b), progress);
+}
+
+Vec6 PoseFreeStep::pose_gradient(LidarNerfModel& model, const RayBatch& b) const {
+  const size_t f = size_t(b.frame);
+  if (model.pose_grad_on_device()) {  // the device profile's pose_grad: device
+    const render::RayGradSums s = model.read_ray_grad_sums();
+    return render::pose_gradient_from_world_sums(poses_.initial(f), poses_.correction(f),
+                                                 s.origin, s.cross);
+  }
   const auto g = model.read_ray_grads();
   std::vector<float> dirs_lidar(size_t(b.n_rays) * 3);
   for (int i = 0; i < b.n_rays; ++i)
     for (int a = 0; a < 3; ++a)
       dirs_lidar[3 * size_t(i) + a] = scene_.directions[3 * size_t(b.pixels[size_t(i)]) + a];
-  const size_t f = size_t(b.frame);
-  const Vec6 grad = render::pose_gradient(poses_.initial(f), poses_.correction(f), {}, dirs_lidar,
-                                          g.origin, g.direction);
-  poses_.step(f, grad, progress);
+  return render::pose_gradient(poses_.initial(f), poses_.correction(f), {}, dirs_lidar, g.origin,
+                               g.direction);
 }
 
 Json PoseFreeStep::log_fields() {

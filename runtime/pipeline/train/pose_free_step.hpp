@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "metrics/evaluate.hpp"
+#include "pipeline/model/ray_batch.hpp"
 #include "pipeline/train/pose_set.hpp"
 #include "pipeline/train/step_policy.hpp"
 
@@ -60,6 +61,10 @@ class PoseFreeStep : public StepPolicy {
 
  private:
   Json pose_errors() const;
+  // dL/dξ of the batch's frame from the step's ray gradients: on the host from the per-ray
+  // gradients, or from their sums on the device (the device profile's pose_grad, read by the
+  // model: LidarNerfModel::pose_grad_on_device()).
+  Vec6 pose_gradient(LidarNerfModel& model, const RayBatch& b) const;
   const Scene& scene_;
   const TrainConfig& cfg_;
   PoseSet& poses_;
