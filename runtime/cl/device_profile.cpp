@@ -22,6 +22,10 @@ const char* compaction_name(CompactionScan c) {
 
 const char* pose_grad_name(PoseGrad g) { return config::choices(kPoseGradNames).name_of(g); }
 
+const char* loss_reduce_name(LossReduce l) {
+  return config::choices(kLossReduceNames).name_of(l);
+}
+
 void DeviceProfile::validate(const std::string& where) const {
   if (name.empty()) throw ConfigError(where + ": 'name' must not be empty");
   config::check_fields(*this, where);
@@ -57,6 +61,7 @@ DeviceProfile gpu_profile() {
   p.gemm = GemmVariant::LocalTiles;
   p.compaction = CompactionScan::Device;
   p.pose_grad = PoseGrad::Device;
+  p.loss_reduce = LossReduce::Device;
   return p;
 }
 

@@ -4,14 +4,14 @@
 // variant of the encoders' parameter backward (hash grid, time hash grid, K-Planes), the
 // points per work-item of the encoders' forward on CPUs and the variant and tiles of the MLP
 // layers' GEMMs, and where the step's small reductions run (early termination's prefix sum,
-// the pose gradient's sums).
+// the pose gradient's sums, the loss).
 // The built-in "cpu" profile is exactly what every run did before profiles
 // existed (local size 64, the serial per-level backward, hash-grid chunks of 256 points, plane
 // chunks of 64, the float16 register-tiled GEMMs of kernels/field/mlp.cl); "gpu" keeps local
 // size 64, runs one point per work-item, the deterministic parallel backward (sorted by entry,
 // summed in point order, bit-identical to the serial one: docs/architecture.md), the
-// local-memory tiled GEMMs of kernels/field/mlp_tiles.cl, compaction's scan and the pose
-// gradient's sums on the device.
+// local-memory tiled GEMMs of kernels/field/mlp_tiles.cl, compaction's scan, the pose
+// gradient's sums and the loss's on the device.
 // A device of type CPU gets "cpu", any other device (GPU, accelerator) "gpu"; the vendor is recorded in the result's context but
 // chooses nothing yet. `--device-profile cpu|gpu|auto|FILE` (or SGNLF_DEVICE_PROFILE) overrides
 // the choice; FILE is JSON whose keys are read over the built-in profile named by its "base"
@@ -73,6 +73,18 @@ inline constexpr std::pair<PoseGrad, const char*> kPoseGradNames[] = {
 
 const char* pose_grad_name(PoseGrad g);
 
+// How a training pass's loss reaches the host (LidarNerfModel::read_loss, the pose-free step's
+// reweighting and the logged steps): host = each loss term reads its own values (the range and
+// patch terms' 4 floats twice, weight carving's per-ray terms summed in double on the host);
+// device = weight carving's per-ray terms summed on the device in the loss kernels' fixed tree
+// (render_loss_reduce) into the loss buffer, and the whole buffer read once.
+enum class LossReduce { Host, Device };
+
+inline constexpr std::pair<LossReduce, const char*> kLossReduceNames[] = {
+    {LossReduce::Host, "host"}, {LossReduce::Device, "device"}};
+
+const char* loss_reduce_name(LossReduce l);
+
 struct DeviceProfile {
   std::string name = "cpu";
   // Work-group size of the 1-D element-wise kernels (global size rounded up to it).
@@ -111,6 +123,8 @@ struct DeviceProfile {
   CompactionScan compaction = CompactionScan::Host;
   // Where the pose gradient's per-ray sums run (above).
   PoseGrad pose_grad = PoseGrad::Host;
+  // How the loss is summed and read (above).
+  LossReduce loss_reduce = LossReduce::Host;
 
   template <class Self, class V>
   static void fields(Self& s, V& v) {
@@ -130,6 +144,7 @@ struct DeviceProfile {
     v("gemm_max_chunks", s.gemm_max_chunks, 1, 65536);
     v("compaction", s.compaction, config::choices(kCompactionNames));
     v("pose_grad", s.pose_grad, config::choices(kPoseGradNames));
+    v("loss_reduce", s.loss_reduce, config::choices(kLossReduceNames));
   }
   // Throws ConfigError naming `where` and the key.
   void validate(const std::string& where = "device_profile") const;

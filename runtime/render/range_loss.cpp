@@ -34,6 +34,9 @@ RangeLoss::RangeLoss(cl::Runtime& rt, const RenderConfig& cfg, float scene_scale
 
 cl::Event RangeLoss::reduce(const cl::Buffer& in, int n, int stride, int offset, float scale,
                             cl::Buffer& loss, int index) {
+  require(n >= 0 && stride > 0 && offset >= 0 && index >= 0, "RangeLoss::reduce: bad shape");
+  if (n > 0) check_floats(in, size_t(offset) + size_t(n - 1) * size_t(stride) + 1, "RangeLoss::reduce in");
+  check_floats(loss, size_t(index) + 1, "RangeLoss::reduce loss");
   reduce_k_.set_args(n, stride, offset, scale, in, loss, index);
   return reduce_k_.launch({reduce_wg_}, {reduce_wg_});
 }

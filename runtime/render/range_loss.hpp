@@ -40,10 +40,13 @@ class RangeLoss {
                            cl::Buffer& grad_out, cl::Buffer& terms, cl::Buffer& loss);
 
   static LossValues read_losses(const cl::Buffer& loss);
-
- private:
+  // loss[index] = scale · Σ_{i<n} in[offset + i·stride], one work-group in a fixed tree
+  // (render_loss_reduce: the loss values above; weight carving's sum under the device
+  // profile's loss_reduce: device).
   cl::Event reduce(const cl::Buffer& in, int n, int stride, int offset, float scale,
                    cl::Buffer& loss, int index);
+
+ private:
   RenderConfig cfg_;
   float scene_scale_;
   float smooth_ = 0.0f;

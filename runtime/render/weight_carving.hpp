@@ -21,6 +21,9 @@ class WeightCarving {
                 const cl::Buffer& target, int n_rays, int M, float half_w, cl::Buffer& g_h0);
   // The loss of the last add() (the sum of its per-ray terms, in ray order). Blocking.
   double read() const;
+  // The per-ray terms of the last add() (n_rays() floats, summed by read()).
+  const cl::Buffer& terms() const { return terms_; }
+  int n_rays() const { return n_rays_; }
 
  private:
   RenderConfig cfg_;

@@ -40,6 +40,7 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(cpu.gemm == cl::GemmVariant::CpuTiles);
   CHECK(cpu.compaction == cl::CompactionScan::Host);
   CHECK(cpu.pose_grad == cl::PoseGrad::Host);
+  CHECK(cpu.loss_reduce == cl::LossReduce::Host);
   const auto gpu = cl::gpu_profile();
   CHECK(gpu.name == "gpu");
   CHECK(gpu.local_size == 64);
@@ -50,6 +51,7 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(gpu.gemm_block_rows * gpu.gemm_block_cols <= 32);
   CHECK(gpu.compaction == cl::CompactionScan::Device);
   CHECK(gpu.pose_grad == cl::PoseGrad::Device);
+  CHECK(gpu.loss_reduce == cl::LossReduce::Device);
   CHECK(cl::automatic_profile(device_of_type("CPU")) == cpu);
   CHECK(cl::automatic_profile(device_of_type("GPU")) == gpu);
   CHECK(cl::automatic_profile(device_of_type("accelerator")) == gpu);
@@ -64,6 +66,8 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(cpu.to_json()["compaction"] == "host");
   CHECK(gpu.to_json()["pose_grad"] == "device");
   CHECK(cpu.to_json()["pose_grad"] == "host");
+  CHECK(gpu.to_json()["loss_reduce"] == "device");
+  CHECK(cpu.to_json()["loss_reduce"] == "host");
   CHECK(cl::DeviceProfile::from_json(gpu.to_json(), "p", cpu) == gpu);
 }
 
@@ -135,6 +139,10 @@ TEST_CASE("device profile files: keys over a base, strictly read", "[cl][device_
                                           R"({"name": "g", "base": "gpu", "pose_grad": "host"})"),
                             cpu_dev)
             .pose_grad == cl::PoseGrad::Host);
+  CHECK_THROWS_WITH(
+      cl::resolve_profile(write_profile("loss.json", R"({"name": "l", "loss_reduce": "gpu"})"),
+                          cpu_dev),
+      Contains("loss_reduce") && Contains("device"));
   CHECK_THROWS_WITH(
       cl::resolve_profile(write_profile("pose.json", R"({"name": "p", "pose_grad": "gpu"})"),
                           cpu_dev),

@@ -2,11 +2,12 @@
 // per ray, rows, encodings present, live rows, coarse samples) and head rows as the forward's
 // context records them; a context whose activations a later pass overwrote is refused; the loss
 // terms' list per config, and a term's gradient is exactly its own share of the output
-// gradient.
+// gradient; the loss read once under the device profile's loss_reduce: device.
 #include <catch2/catch.hpp>
 
 #include <numeric>
 
+#include "cl/launch_trace.hpp"
 #include "core/config.hpp"
 #include "pipeline/model/ray_batch.hpp"
 #include "render/chamfer_loss.hpp"
@@ -220,5 +221,50 @@ TEST_CASE("the loss terms: the list per config, each term's own share of the gra
     CHECK(a->read_loss().depth == b->read_loss().depth);
     CHECK(a->loss_value("range") == Approx(double(a->read_loss().depth) + a->read_loss().ret +
                                            a->read_loss().intensity));
+  }
+}
+
+// The device profile's loss_reduce: device: weight carving's per-ray terms summed on the device
+// (render_loss_reduce's fixed tree) and the loss buffer read once, against each term reading its
+// own values (host).
+TEST_CASE("the loss read once under loss_reduce: device equals the terms' own reads",
+          "[pipeline][model][loss_reduce][device]") {
+  const Scene scene = make_scene(test::tiny_dataset());
+  const TrainConfig c = test::tiny_config(Json{{"render", {{"weights", {{"carve", 10.0}}}}}});
+  std::unique_ptr<LidarNerfModel> host, device;
+  for (const auto mode : {cl::LossReduce::Host, cl::LossReduce::Device}) {
+    cl::DeviceProfile p = test::runtime().device_profile();
+    p.loss_reduce = mode;
+    test::ProfileScope scope(p);
+    (mode == cl::LossReduce::Host ? host : device) = model_of(scene, c);
+  }
+  for (const long step : {14L, 15L}) {  // two batches, the second over the first's values
+    CAPTURE(step);
+    const RayBatch batch = draw_ray_batch(scene, c, 5, step);
+    host->forward_backward(batch, 9, step);
+    device->forward_backward(batch, 9, step);
+    // The reduction touches no gradient: the same kernels, the same bits.
+    CHECK(host->read_gradient() == device->read_gradient());
+    test::runtime().finish();
+    cl::LaunchTrace th, td;
+    test::runtime().set_trace(&th);
+    const render::LossValues a = host->read_loss();
+    test::runtime().set_trace(&td);
+    const render::LossValues b = device->read_loss();
+    test::runtime().set_trace(nullptr);
+    // The range and patch values are the same buffer's words, read once or twice.
+    CHECK(a.depth == b.depth);
+    CHECK(a.ret == b.ret);
+    CHECK(a.intensity == b.intensity);
+    CHECK(a.grad == b.grad);
+    // Carving: the host sums the per-ray terms in double, the device in float (strided partials
+    // and a tree over 200 rays); the terms are non-negative, so no cancellation: a few float
+    // roundings of the sum, 1e-5 relative with room for any device's order.
+    REQUIRE(a.carve > 0.0f);
+    CHECK(test::sym_rel_err({b.carve}, {a.carve}, 0.0) <= 1e-5);
+    CHECK(device->loss_value("carve") == double(b.carve));
+    CHECK(th.blocking_transfers.size() == 3);  // range, patch, carving's per-ray terms
+    REQUIRE(td.blocking_transfers.size() == 1);
+    CHECK(td.blocking_transfers[0].bytes == kLossBufferFloats * sizeof(float));
   }
 }

@@ -272,18 +272,6 @@ TEST_CASE("the device scan of the live counts equals the host prefix sum",
   }
 }
 
-namespace {
-// Makes the launchers built inside its scope read `p`; the runtime's own profile comes back after.
-struct ProfileScope {
-  cl::Runtime& rt;
-  cl::DeviceProfile saved;
-  ProfileScope(cl::Runtime& r, const cl::DeviceProfile& p) : rt(r), saved(r.device_profile()) {
-    rt.set_device_profile(p);
-  }
-  ~ProfileScope() { rt.set_device_profile(saved); }
-};
-}  // namespace
-
 TEST_CASE("SampleCompaction gives the same offsets with the host and the device scan",
           "[pipeline][sample-compaction][scan][device]") {
   auto& rt = test::runtime();
@@ -301,7 +289,7 @@ TEST_CASE("SampleCompaction gives the same offsets with the host and the device 
     p.compaction = mode;
     std::unique_ptr<pipeline::SampleCompaction> live;
     {
-      ProfileScope scope(rt, p);
+      test::ProfileScope scope(p);
       live = std::make_unique<pipeline::SampleCompaction>(rt, R + 5, M, S, 3, eps);
     }
     for (int pass = 0; pass < 2; ++pass) {  // a second select over the first one's offsets

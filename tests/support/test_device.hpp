@@ -30,6 +30,21 @@ std::string temp_dir(const std::string& name);  // fresh empty folder under the 
 // n values uniform in [lo, hi) from the project's generator (core/rng.hpp) seeded with `seed`.
 std::vector<float> uniform(size_t n, float lo, float hi, uint64_t seed);
 
+// The shared Runtime's device profile set to `p` for a scope (launchers read it when they are
+// made, so one made inside keeps it); the previous profile comes back at the scope's end.
+class ProfileScope {
+ public:
+  explicit ProfileScope(const cl::DeviceProfile& p) : saved_(runtime().device_profile()) {
+    runtime().set_device_profile(p);
+  }
+  ~ProfileScope() { runtime().set_device_profile(saved_); }
+  ProfileScope(const ProfileScope&) = delete;
+  ProfileScope& operator=(const ProfileScope&) = delete;
+
+ private:
+  cl::DeviceProfile saved_;
+};
+
 }  // namespace sgnlf::test
 
 // Put once in each test .cpp that uses the device.

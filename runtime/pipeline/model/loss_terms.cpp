@@ -19,6 +19,9 @@ class RangeTerm final : public LossTerm {
     const render::LossValues l = render::RangeLoss::read_losses(buf_);
     v.depth = l.depth, v.ret = l.ret, v.intensity = l.intensity;
   }
+  void read_copy(render::LossValues& v, const std::vector<float>& loss) const override {
+    v.depth = loss.at(0), v.ret = loss.at(1), v.intensity = loss.at(2);
+  }
   double value() const override {
     render::LossValues v;
     read(v);
@@ -44,6 +47,9 @@ class PatchGradientTerm final : public LossTerm {
   }
   void read(render::LossValues& v) const override {
     v.grad = render::RangeLoss::read_losses(buf_).grad;
+  }
+  void read_copy(render::LossValues& v, const std::vector<float>& loss) const override {
+    v.grad = loss.at(3);
   }
   double value() const override { return render::RangeLoss::read_losses(buf_).grad; }
 
@@ -86,23 +92,41 @@ class ChamferTerm final : public LossTerm {
   double last_ = 0.0;
 };
 
-// NeuRAD's weight carving (render::WeightCarving): adds to the σ-logit gradient.
+// NeuRAD's weight carving (render::WeightCarving): adds to the σ-logit gradient. Its value: the
+// per-ray terms summed on the host in double, or (device_sums) on the device in the loss
+// kernels' fixed tree into loss_buf[kCarveSlot].
 class CarveTerm final : public LossTerm {
  public:
-  CarveTerm(render::WeightCarving& c, const render::RenderConfig& rc, float scale)
-      : carve_(c), rc_(rc), scale_(scale) {}
+  CarveTerm(render::WeightCarving& c, const render::RenderConfig& rc, float scale,
+            render::RangeLoss& range, const cl::Buffer& loss_buf, bool device_sums)
+      : carve_(c), rc_(rc), scale_(scale), range_(range), buf_(loss_buf),
+        device_sums_(device_sums) {}
   const char* name() const override { return "carve"; }
   void add_sample_gradient(LossPass& p) override {
     const float half_w = float(rc_.surface_band_m(p.step)) * scale_;
     carve_.add(p.t, p.h0, p.weights, p.target, p.n_rays, p.per_ray, half_w, p.g_h0);
+    if (device_sums_)
+      range_.reduce(carve_.terms(), p.n_rays, 1, 0, 1.0f, p.loss_buf, int(kCarveSlot));
   }
-  void read(render::LossValues& v) const override { v.carve = float(carve_.read()); }
-  double value() const override { return carve_.read(); }
+  void read(render::LossValues& v) const override { v.carve = float(value()); }
+  void read_copy(render::LossValues& v, const std::vector<float>& loss) const override {
+    v.carve = device_sums_ ? loss.at(kCarveSlot) : float(carve_.read());
+  }
+  double value() const override {
+    if (!device_sums_) return carve_.read();
+    if (carve_.n_rays() == 0) return 0.0;
+    float s = 0.0f;
+    buf_.read(&s, sizeof s, kCarveSlot * sizeof(float));
+    return double(s);
+  }
 
  private:
   render::WeightCarving& carve_;
   render::RenderConfig rc_;
   float scale_;
+  render::RangeLoss& range_;
+  const cl::Buffer& buf_;
+  bool device_sums_;
 };
 
 }  // namespace
@@ -110,14 +134,17 @@ class CarveTerm final : public LossTerm {
 std::vector<std::unique_ptr<LossTerm>> make_loss_terms(const TrainConfig& c, float scene_scale,
                                                         render::RangeLoss& range,
                                                         const cl::Buffer& loss_buf,
-                                                        render::WeightCarving* carve) {
+                                                        render::WeightCarving* carve,
+                                                        bool device_sums) {
   std::vector<std::unique_ptr<LossTerm>> terms;
   terms.push_back(std::make_unique<RangeTerm>(range, loss_buf));
   terms.push_back(std::make_unique<PatchGradientTerm>(
       range, loss_buf, c.render.patch_rows * c.render.patch_cols));
   if (c.lidar4d && c.lidar4d->chamfer_weight > 0.0)
     terms.push_back(std::make_unique<ChamferTerm>(scene_scale, float(c.lidar4d->chamfer_weight)));
-  if (carve) terms.push_back(std::make_unique<CarveTerm>(*carve, c.render, scene_scale));
+  if (carve)
+    terms.push_back(std::make_unique<CarveTerm>(*carve, c.render, scene_scale, range, loss_buf,
+                                                device_sums));
   return terms;
 }
 

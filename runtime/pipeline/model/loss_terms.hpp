@@ -18,6 +18,11 @@
 
 namespace sgnlf::pipeline {
 
+// The model's loss buffer: render::RangeLoss's kLossFloats (depth, ret, intensity, grad), then
+// weight carving's sum when the device profile's loss_reduce is device (slot kCarveSlot).
+inline constexpr size_t kCarveSlot = render::kLossFloats;
+inline constexpr size_t kLossBufferFloats = render::kLossFloats + 1;
+
 // One training pass as the terms see it: the batch, the renderer's forward (t, h0, weights:
 // n_rays × per_ray; out: n_rays × 3), the targets (n_rays × 3) and the gradients they add to.
 struct LossPass {
@@ -25,7 +30,7 @@ struct LossPass {
   long step;
   int n_rays, per_ray;
   const cl::Buffer &out, &target, &t, &h0, &weights;
-  cl::Buffer &grad_out, &terms, &loss_buf;  // grad_out: n_rays × 3; loss_buf: kLossFloats
+  cl::Buffer &grad_out, &terms, &loss_buf;  // grad_out: n_rays × 3; loss_buf: kLossBufferFloats
   cl::Buffer& g_h0;                          // n_rays × per_ray, the renderer's dL/dh0
 };
 
@@ -40,6 +45,12 @@ class LossTerm {
   // The term's value(s) of the last pass into v (its own fields of it; none for "chamfer",
   // which LossValues does not hold). Blocking.
   virtual void read(render::LossValues& v) const = 0;
+  // The same from `loss`, a host copy of the loss buffer read once for every term (the device
+  // profile's loss_reduce: device); a term whose value lives on the host reads it as read().
+  virtual void read_copy(render::LossValues& v, const std::vector<float>& loss) const {
+    (void)loss;
+    read(v);
+  }
   // The term's value of the last pass (the sum of its fields); 0 before the first. Blocking.
   virtual double value() const = 0;
 };
@@ -48,9 +59,12 @@ class LossTerm {
 // patch batches), "chamfer" (lidar4d.chamfer_weight > 0), "carve" (render.weights.carve > 0).
 // `loss_buf` is the buffer the passes' loss_buf will be (the range and patch terms' values);
 // `carve` is null when the config has no carving. Both, and `range`, must outlive the terms.
+// `device_sums`: the device profile's loss_reduce is device (carving's terms summed into
+// loss_buf[kCarveSlot] on the device).
 std::vector<std::unique_ptr<LossTerm>> make_loss_terms(const TrainConfig& c, float scene_scale,
                                                         render::RangeLoss& range,
                                                         const cl::Buffer& loss_buf,
-                                                        render::WeightCarving* carve);
+                                                        render::WeightCarving* carve,
+                                                        bool device_sums = false);
 
 }  // namespace sgnlf::pipeline

@@ -71,7 +71,8 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
       loss_(rt, c.render, scene_scale,
             c.lidar4d ? float(c.lidar4d->ray_drop_label_smoothing) : 0.0f),
       ray_grad_(rt),
-      pose_grad_device_(rt.device_profile().pose_grad == cl::PoseGrad::Device) {
+      pose_grad_device_(rt.device_profile().pose_grad == cl::PoseGrad::Device),
+      loss_device_(rt.device_profile().loss_reduce == cl::LossReduce::Device) {
   if (1 + c.field.geo_features != kDensStride)
     throw ConfigError("config.field: 'geo_features' must be 15 (density output 1 + 15 = 16)");
   off_grid_ = layout_.add("hash_grid", encoder_->n_params()).offset;
@@ -99,7 +100,7 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
   dens_ = floats(rt, N * kDensStride), h0_ = floats(rt, N);
   dir_enc_ = floats(rt, R * enc_dim), head_out_ = floats(rt, N * 2);
   out_ = floats(rt, R * 3), weights_ = floats(rt, N), grad_out_ = floats(rt, R * 3);
-  terms_ = floats(rt, R * 3), loss_buf_ = floats(rt, render::kLossFloats);
+  terms_ = floats(rt, R * 3), loss_buf_ = floats(rt, kLossBufferFloats);
   g_h0_ = floats(rt, N), g_head_ = floats(rt, N * 2);
   g_dens_ = floats(rt, N * kDensStride), g_enc_ = floats(rt, N * lf);
   g_dir_enc_ = floats(rt, R * enc_dim);
@@ -151,7 +152,7 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
     surface_sampler_ = make_sampler(SampleStrategy::Surface, rc, parts, buffers, field);
     training_ = surface_sampler_.get();
   }
-  losses_ = make_loss_terms(c, scene_scale, loss_, loss_buf_, carve_.get());
+  losses_ = make_loss_terms(c, scene_scale, loss_, loss_buf_, carve_.get(), loss_device_);
 }
 
 void LidarNerfModel::init_params(uint64_t seed) {
@@ -380,6 +381,11 @@ render::RayGradSums LidarNerfModel::read_ray_grad_sums() {
 
 render::LossValues LidarNerfModel::read_loss() const {
   render::LossValues l;
+  if (loss_device_) {  // the device profile's loss_reduce: one read of the whole loss buffer
+    const std::vector<float> copy = loss_buf_.read_vec<float>(kLossBufferFloats);
+    for (const auto& term : losses_) term->read_copy(l, copy);
+    return l;
+  }
   for (const auto& term : losses_) term->read(l);
   return l;
 }

@@ -305,6 +305,8 @@ class LidarNerfModel {
   // The profile's pose_grad: device; the launcher of the sums, made on first use.
   bool pose_grad_device_ = false;
   std::unique_ptr<render::PoseGradSums> pose_sums_;
+  // The profile's loss_reduce: device (read_loss() reads the loss buffer once).
+  bool loss_device_ = false;
   // External gradient (backward_external): its parameter gradient, pending until update(),
   // when field/accumulate.cl adds it to grad_.
   cl::Buffer grad_ext_;
