@@ -28,6 +28,10 @@ void PoseGradSums::reduce(int n_rays, const cl::Buffer& d, const cl::Buffer& g_o
 
 RayGradSums PoseGradSums::read() const {
   const auto s = out_.read_vec<float>(6);
+  return from_floats(s.data());
+}
+
+RayGradSums PoseGradSums::from_floats(const float* s) {
   RayGradSums r;
   r.origin = Vec3(s[0], s[1], s[2]);
   r.cross = Vec3(s[3], s[4], s[5]);

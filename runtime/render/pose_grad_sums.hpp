@@ -22,9 +22,11 @@ class PoseGradSums {
   // encoding's share of dL/dd). Only enqueues.
   void reduce(int n_rays, const cl::Buffer& d, const cl::Buffer& g_o, const cl::Buffer& g_d,
               const cl::Buffer& g_dir);
-  // The sums of the last reduce(): one blocking read of 6 floats.
+  // The sums of the last reduce(): one blocking read of 6 floats (or, by a caller that reads
+  // them with other values in one transfer, from sums() copied elsewhere: from_floats()).
   RayGradSums read() const;
   const cl::Buffer& sums() const { return out_; }  // 6 floats: s_o, then s_x
+  static RayGradSums from_floats(const float* s);
 
  private:
   cl::Kernel k_;

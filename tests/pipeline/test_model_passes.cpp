@@ -268,3 +268,39 @@ TEST_CASE("the loss read once under loss_reduce: device equals the terms' own re
     CHECK(td.blocking_transfers[0].bytes == kLossBufferFloats * sizeof(float));
   }
 }
+
+// The pose-free step's one read under the gpu profile: the loss and the ray gradients' sums
+// copied on the device into one buffer and read together, the same values as the two reads.
+TEST_CASE("the loss and the ray-gradient sums in one read equal the two reads",
+          "[pipeline][model][loss_reduce][pose_grad_sums][device]") {
+  const Scene scene = make_scene(test::tiny_dataset());
+  const TrainConfig c = test::tiny_config(Json{{"render", {{"weights", {{"carve", 10.0}}}}}});
+  for (const auto mode : {cl::LossReduce::Host, cl::LossReduce::Device}) {
+    CAPTURE(cl::loss_reduce_name(mode));
+    cl::DeviceProfile p = test::runtime().device_profile();
+    p.loss_reduce = mode;
+    std::unique_ptr<LidarNerfModel> m;
+    {
+      test::ProfileScope scope(p);
+      m = model_of(scene, c);
+    }
+    const RayBatch batch = draw_ray_batch(scene, c, 5, 14);
+    m->forward_backward(batch, 9, 14, true);
+    test::runtime().finish();
+    cl::LaunchTrace trace;
+    test::runtime().set_trace(&trace);
+    const LidarNerfModel::LossAndRaySums both = m->read_loss_and_ray_grad_sums();
+    test::runtime().set_trace(nullptr);
+    const render::LossValues l = m->read_loss();
+    const render::RayGradSums s = m->read_ray_grad_sums();
+    // Copies of the same words (the sums' kernel run again over the same gradients, a fixed
+    // tree: the same bits).
+    CHECK(both.loss.depth == l.depth);
+    CHECK(both.loss.grad == l.grad);
+    CHECK(both.loss.carve == l.carve);
+    CHECK(both.sums.origin == s.origin);
+    CHECK(both.sums.cross == s.cross);
+    CHECK(s.cross.norm() > 0.0);
+    CHECK(trace.blocking_transfers.size() == (mode == cl::LossReduce::Device ? 1u : 4u));
+  }
+}

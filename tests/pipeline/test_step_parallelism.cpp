@@ -17,8 +17,8 @@
 // the list: lidar-nerf 82 launches, 13 narrow; lidar4d 327, 70; geonlf 70, 13 (after 0f1ddf6's
 // surface sampling); sg-nlf 72, 13. Blocking transfers as item 4 lands (gpu profile): ray batch
 // and level weights written without blocking, compaction's scan and the pose gradient's sums on
-// the device, the loss read once: lidar-nerf 5 -> 1, lidar4d 12 -> 8, geonlf 10 -> 2, sg-nlf
-// 10 -> 2.
+// the device, the loss read with them: lidar-nerf 5 -> 1, lidar4d 12 -> 8, geonlf 10 -> 1,
+// sg-nlf 10 -> 1.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -95,16 +95,13 @@ const std::vector<KnownTransfers> kBlockingTransfers = {
      "early termination's live rows (4 bytes, sample_compaction.cpp): the launches after it are "
      "sized by it. The prefix sum itself runs on the device under the gpu profile (compaction: "
      "device; the host's read of the counts and write of the offsets were 2 transfers)"},
-    {"loss for reweighting", {"geonlf", "sg-nlf"}, 1,
-     "PoseFreeStep reads the step's loss (pose_free_step.cpp: per-frame reweighting): the loss "
-     "buffer once, 20 bytes, with weight carving's sum made on the device (gpu profile "
-     "loss_reduce: device; the terms' own reads were 2 x 16 bytes and the carving's per-ray "
-     "terms)"},
-    {"ray gradient sums", {"geonlf", "sg-nlf"}, 1,
-     "LidarNerfModel::read_ray_grad_sums: the frame's ray gradients summed on the device (gpu "
-     "profile pose_grad: device, kernels/render/pose_grad.cl), 6 floats to the host, where the "
-     "SE(3) Jacobians and the pose Adam run (the host path read dL/d(origin, direction, direction "
-     "encoding), 3 transfers); item 4: the pose Adam on the device, with the batch drawn there"},
+    {"loss and ray-gradient sums", {"geonlf", "sg-nlf"}, 1,
+     "PoseFreeStep's one read (LidarNerfModel::read_loss_and_ray_grad_sums, 44 bytes): the loss "
+     "for per-frame reweighting and the frame's ray gradients summed on the device (gpu profile "
+     "loss_reduce, pose_grad: device), copied into one buffer; the SE(3) Jacobians and the pose "
+     "Adam run on the host. Was 6: the range and patch values, weight carving's per-ray terms and "
+     "dL/d(origin, direction, direction encoding). Item 4: the pose Adam on the device, with the "
+     "batch drawn there"},
     {"flow supervision", {"lidar4d"}, 4,
      "model_four_d.cpp: flow points and times written, the flow read, its gradient written "
      "(the flow loss on the host)"},

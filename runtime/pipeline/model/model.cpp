@@ -379,6 +379,24 @@ render::RayGradSums LidarNerfModel::read_ray_grad_sums() {
   return pose_sums_->read();
 }
 
+LidarNerfModel::LossAndRaySums LidarNerfModel::read_loss_and_ray_grad_sums() {
+  if (!loss_device_) return {read_loss(), read_ray_grad_sums()};
+  if (grad_rays_ == 0)
+    throw Error("LidarNerfModel::read_loss_and_ray_grad_sums: no step computed ray gradients");
+  if (!pose_sums_) pose_sums_ = std::make_unique<render::PoseGradSums>(rt_);
+  if (!loss_and_sums_) loss_and_sums_ = floats(rt_, kLossBufferFloats + 6);
+  pose_sums_->reduce(grad_rays_, d_, g_o_, g_d_, g_dir_);
+  const size_t loss_bytes = kLossBufferFloats * sizeof(float);
+  loss_and_sums_.copy_from(loss_buf_, loss_bytes);
+  loss_and_sums_.copy_from(pose_sums_->sums(), 6 * sizeof(float), 0, loss_bytes);
+  const std::vector<float> all = loss_and_sums_.read_vec<float>(kLossBufferFloats + 6);
+  LossAndRaySums r;
+  const std::vector<float> loss(all.begin(), all.begin() + long(kLossBufferFloats));
+  for (const auto& term : losses_) term->read_copy(r.loss, loss);
+  r.sums = render::PoseGradSums::from_floats(all.data() + kLossBufferFloats);
+  return r;
+}
+
 render::LossValues LidarNerfModel::read_loss() const {
   render::LossValues l;
   if (loss_device_) {  // the device profile's loss_reduce: one read of the whole loss buffer

@@ -107,6 +107,15 @@ class LidarNerfModel {
   // (render::PoseGradSums: Σ dL/do and Σ d × dL/dd, the direction encoding's share included),
   // for render::pose_gradient_from_world_sums(): one kernel and one blocking read of 6 floats.
   render::RayGradSums read_ray_grad_sums();
+  // read_loss() and read_ray_grad_sums() in one blocking read (the pose-free step with
+  // reweighting: its only read of the step) when the profile's loss_reduce is device: the loss
+  // buffer and the sums copied on the device into one buffer. The same values as the two calls;
+  // otherwise it is the two calls.
+  struct LossAndRaySums {
+    render::LossValues loss;
+    render::RayGradSums sums;
+  };
+  LossAndRaySums read_loss_and_ray_grad_sums();
 
   // An externally given per-ray output gradient through the same backward chain (SG-NLF's
   // adversarial consistency term, method.md §4.3–4.4): forward_rays() is the training-mode
@@ -305,6 +314,7 @@ class LidarNerfModel {
   // The profile's pose_grad: device; the launcher of the sums, made on first use.
   bool pose_grad_device_ = false;
   std::unique_ptr<render::PoseGradSums> pose_sums_;
+  cl::Buffer loss_and_sums_;  // read_loss_and_ray_grad_sums(): the loss buffer, then the sums
   // The profile's loss_reduce: device (read_loss() reads the loss buffer once).
   bool loss_device_ = false;
   // External gradient (backward_external): its parameter gradient, pending until update(),

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "core/config.hpp"
 #include "core/error.hpp"
@@ -95,21 +96,30 @@ void PoseFreeStep::step(LidarNerfModel& model, uint64_t seed, long step, float l
   const bool pose_only =
       std::find(scene_.pose_only.begin(), scene_.pose_only.end(), b.frame) != scene_.pose_only.end();
   model.update(pose_only ? 0.0f : float(lr * reweight(b.frame)));
+  // With the pose gradient summed on the device, the loss and the sums come in one read.
+  std::optional<render::RayGradSums> sums;
   if (pc.reweight) {
-    const double l = model.read_loss().total();
+    double l = 0.0;
+    if (optimize && model.pose_grad_on_device()) {
+      const LidarNerfModel::LossAndRaySums r = model.read_loss_and_ray_grad_sums();
+      l = r.loss.total(), sums = r.sums;
+    } else {
+      l = model.read_loss().total();
+    }
     double& e = ema_[size_t(b.frame)];
     e = seen_[size_t(b.frame)] == 0.0 ? l : pc.reweight->ema * e + (1.0 - pc.reweight->ema) * l;
     seen_[size_t(b.frame)] = 1.0;
   }
   if (!optimize) return;
   const size_t f = size_t(b.frame);
-  poses_.step(f, pose_gradient(model, b), progress);
+  poses_.step(f, pose_gradient(model, b, sums), progress);
 }
 
-Vec6 PoseFreeStep::pose_gradient(LidarNerfModel& model, const RayBatch& b) const {
+Vec6 PoseFreeStep::pose_gradient(LidarNerfModel& model, const RayBatch& b,
+                                 const std::optional<render::RayGradSums>& sums) const {
   const size_t f = size_t(b.frame);
   if (model.pose_grad_on_device()) {  // the device profile's pose_grad: device
-    const render::RayGradSums s = model.read_ray_grad_sums();
+    const render::RayGradSums s = sums ? *sums : model.read_ray_grad_sums();
     return render::pose_gradient_from_world_sums(poses_.initial(f), poses_.correction(f),
                                                  s.origin, s.cross);
   }

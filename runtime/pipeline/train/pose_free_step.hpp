@@ -9,6 +9,7 @@
 // <run>/geometric_log.jsonl.
 #pragma once
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "pipeline/model/ray_batch.hpp"
 #include "pipeline/train/pose_set.hpp"
 #include "pipeline/train/step_policy.hpp"
+#include "render/pose_grad_sums.hpp"
 
 namespace sgnlf::pipeline {
 
@@ -63,8 +65,10 @@ class PoseFreeStep : public StepPolicy {
   Json pose_errors() const;
   // dL/dξ of the batch's frame from the step's ray gradients: on the host from the per-ray
   // gradients, or from their sums on the device (the device profile's pose_grad, read by the
-  // model: LidarNerfModel::pose_grad_on_device()).
-  Vec6 pose_gradient(LidarNerfModel& model, const RayBatch& b) const;
+  // model: LidarNerfModel::pose_grad_on_device()); `sums`: the device's sums when the step read
+  // them already (with the loss, read_loss_and_ray_grad_sums).
+  Vec6 pose_gradient(LidarNerfModel& model, const RayBatch& b,
+                     const std::optional<render::RayGradSums>& sums) const;
   const Scene& scene_;
   const TrainConfig& cfg_;
   PoseSet& poses_;
