@@ -4,7 +4,8 @@
 // (cl/launch_trace.hpp), and
 //   - a kernel over more than 1e5 elements (its largest buffer argument, in 4-byte words) must
 //     launch at least 1e4 work-items (a GPU has ~1e5 threads in flight: fewer idle it), and
-//   - the step may make at most two blocking transfers (each waits for the whole queue).
+//   - the step may make at most two blocking transfers (each waits for the whole queue); every
+//     transfer it makes is listed below (kBlockingTransfers), so a new one fails the test.
 // The size makes the rule mean something (4096 rays of the quick preset, ~4e5 samples) and
 // runs in seconds on PoCL. What the code breaks today is an explicit allow-list below, one
 // entry per kernel or transfer with why: each is a to-do for item 4 (the work-efficient GPU
@@ -78,8 +79,11 @@ const std::map<std::string, std::string> kNarrowKernels = {
 };
 
 // Blocking transfers known today, by where they happen, how many a step makes and for which
-// methods; beyond these, a step may make at most kMaxBlockingTransfers. The trace names each
-// transfer by the kernel launched before it and its size, which the report prints.
+// methods. The list is exact: a step making a transfer it does not name fails (a new transfer
+// must be listed with its reason), one making fewer fails until the list shrinks; the issue's
+// bound, at most kMaxBlockingTransfers a step, is what the list should come down to, and the
+// report names the methods still above it. The trace names each transfer by the kernel
+// launched before it and its size, which the report prints.
 struct KnownTransfers {
   const char* site;
   std::set<std::string> methods;
@@ -191,10 +195,10 @@ TEST_CASE("a training step under the gpu profile: wide kernels and at most two b
     for (const auto& k : kBlockingTransfers)
       if (k.methods.count(method)) known += k.count;
     const size_t transfers = a.trace.blocking_transfers.size();
-    if (transfers > known + kMaxBlockingTransfers) {
+    if (transfers > known) {
       violations << "  " << method << ": " << transfers << " blocking transfers, " << known
-                 << " known (kBlockingTransfers) + at most " << kMaxBlockingTransfers
-                 << " allowed; the step's transfers:\n";
+                 << " listed in kBlockingTransfers (name a new one there, with why, or remove "
+                    "it); the step's transfers:\n";
       for (const auto& t : a.trace.blocking_transfers)
         violations << "    " << (t.read ? "read" : "write") << " after " << t.after_kernel << " ("
                    << t.bytes << " bytes)\n";
@@ -209,7 +213,10 @@ TEST_CASE("a training step under the gpu profile: wide kernels and at most two b
     report << method << ": " << a.trace.launches.size() << " launches, " << narrow
            << " narrow (" << narrow_allowed << " on the allow-list), " << transfers
            << " blocking transfers (" << known << " known), " << a.trace.async_transfers.size()
-           << " non-blocking writes, " << a.trace.finishes << " finishes\n";
+           << " non-blocking writes, " << a.trace.finishes << " finishes"
+           << (known > kMaxBlockingTransfers ? " (the list is above the bound of 2: item 4's to-do)"
+                                             : "")
+           << "\n";
   }
   for (const auto& [k, why] : kNarrowKernels)
     if (!used_kernels.count(k))
