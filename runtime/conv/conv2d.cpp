@@ -49,14 +49,19 @@ int Conv2dSpec::input_cs() const {
   return c_in >= 16 ? pad16(c_in) : c_in;
 }
 
-Conv2d::Conv2d(cl::Runtime& rt, const Conv2dSpec& spec) : rt_(rt), spec_(spec) {
+Conv2d::Conv2d(cl::Runtime& rt, const Conv2dSpec& spec)
+    : rt_(rt), spec_(spec), profile_(rt.device_profile()) {
   spec_.validate();
+  tiles_ = profile_.gemm == cl::GemmVariant::LocalTiles;
   auto d = [](const char* k, int v) { return std::string(" -D") + k + "=" + std::to_string(v); };
   const std::string opt = d("C_IN", spec_.c_in) + d("IN_CS", spec_.input_cs()) +
                           d("IN_PAD", pad16(spec_.c_in)) + d("C_OUT", spec_.c_out) +
                           d("O_PAD", spec_.out_cs()) + d("K", spec_.kernel) +
                           d("S", spec_.stride) + d("P", spec_.pad) + d("PTS", kPts) +
                           d("ROWS", kRows);
+  opt_ = d("C_IN", spec_.c_in) + d("IN_CS", spec_.input_cs()) + d("IN_PAD", pad16(spec_.c_in)) +
+         d("C_OUT", spec_.c_out) + d("O_PAD", spec_.out_cs()) + d("K", spec_.kernel) +
+         d("S", spec_.stride) + d("P", spec_.pad);
   const std::string f = "conv/conv2d.cl", fn = "conv/conv2d_narrow.cl";
   // Must match the guards of kernels/conv/conv2d_narrow.cl.
   narrow_ = spec_.c_out <= 2 && spec_.c_in % 16 == 0 && spec_.input_cs() % 16 == 0;
@@ -73,6 +78,36 @@ Conv2d::Conv2d(cl::Runtime& rt, const Conv2dSpec& spec) : rt_(rt), spec_(spec) {
   zeros_ = cl::Buffer::from(rt_, std::vector<float>(zeros, 0.0f));
   wt_ = cl::Buffer(rt_, size_t(spec_.kernel) * spec_.kernel * spec_.c_out * pad16(spec_.c_in) *
                             sizeof(float));
+}
+
+Conv2d::Tiled& Conv2d::tiled(bool small) {
+  Tiled& t = tiled_[small ? 1 : 0];
+  if (t.built) return t;
+  t.block_rows = small ? 1 : profile_.gemm_block_rows;
+  t.block_cols = small ? 1 : profile_.gemm_block_cols;
+  const int tile = small ? 16 : profile_.gemm_tile;
+  t.f = cl::gemm_tile(profile_, spec_.out_cs(), tile, t.block_rows, t.block_cols);
+  t.b = cl::gemm_tile(profile_, pad16(spec_.c_in), tile, t.block_rows, t.block_cols);
+  t.w = cl::gemm_tile(profile_, spec_.out_cs(), tile, t.block_rows, t.block_cols);
+  // Local memory of each kernel (conv2d_tiles.cl's tiles and pixel tables), in floats.
+  const size_t k = size_t(profile_.gemm_tile_k);
+  const size_t floats = std::max({size_t(t.f.tr) * (k + 1) + k * t.f.tc + 3 * size_t(t.f.tr),
+                                  size_t(t.b.tr) * (k + 1) + k * (t.b.tc + 1) + 3 * size_t(t.b.tr),
+                                  k * (t.w.tr + 1) + k * t.w.tc + 3 * k});
+  cl::check_gemm_fit(rt_, "Conv2d", floats, t.f, t.b, t.w);
+  const auto d = cl::gemm_define;
+  const std::string opt = opt_ + d("TILE_K", profile_.gemm_tile_k) + d("BLK_R", t.block_rows) +
+                          d("BLK_C", t.block_cols) + d("FWD_TC", t.f.tc) + d("FWD_LR", t.f.lr) +
+                          d("BIN_TC", t.b.tc) + d("BIN_LR", t.b.lr) + d("WGT_TC", t.w.tc) +
+                          d("WGT_LR", t.w.lr);
+  const std::string f = "conv/conv2d_tiles.cl";
+  t.fwd = rt_.kernel(f, "conv2d_fwd_tiles", opt);
+  t.built = true;
+  return t;
+}
+
+Conv2d::Tiled& Conv2d::pick(size_t work_items_main) {
+  return tiled(work_items_main < size_t(profile_.gemm_min_work_items));
 }
 
 void Conv2d::init_params(std::vector<float>& host_params, size_t offset, uint64_t seed,
@@ -118,6 +153,15 @@ void Conv2d::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& 
   if (act_out) {
     check_bytes(*act_out, size_t(n) * ho * wo * spec_.out_cs(), "act_out");
     check_range("conv2d", "slope", slope, 0.0f, 1.0f);
+  }
+  if (tiles_) {
+    const size_t pixels = size_t(n) * ho * wo, cols = size_t(spec_.out_cs());
+    Tiled& t = pick(tiled(false).f.work_items(pixels, cols));
+    t.fwd.set_args(n, h, w, ho, wo, params, uint32_t(offset), in, out, int(act_out != nullptr),
+                   slope, act_out ? *act_out : out);
+    const auto g = t.f.global(pixels, cols);
+    t.fwd.launch({g[0], g[1]}, {size_t(t.f.lc), size_t(t.f.lr)});
+    return;
   }
   const size_t tiles = size_t(n) * ho * ceil_div(size_t(wo), kPts);
   const size_t oblocks = size_t(spec_.out_cs() / 16);

@@ -14,10 +14,18 @@
 //
 // Parameter slice (in one flat buffer, runtime/field/param_layout.hpp): W[(ky·k + kx)·c_in +
 // c][out_cs] then bias[out_cs]; padding columns are zero and receive zero gradient.
+//
+// Kernels: the Runtime's device profile, read when the Conv2d is made, chooses them by its
+// `gemm` key, as for the MLP. cpu_tiles: kernels/conv/conv2d.cl and conv2d_narrow.cl (float16
+// register tiles, what every run used before profiles). local_tiles (the gpu profile's):
+// kernels/conv/conv2d_tiles.cl, local-memory tiles with the profile's gemm_* tiles and register
+// block (<= 32 floats per work-item), a 1 x 1 block with 16-column tiles for launches under
+// gemm_min_work_items (the same sums, the same bits).
 #pragma once
 #include <cstdint>
 #include <vector>
 
+#include "cl/gemm_tiles.hpp"
 #include "cl/runtime.hpp"
 
 namespace sgnlf::conv {
@@ -74,6 +82,8 @@ class Conv2d {
                 int w, const cl::Buffer& d_out, cl::Buffer* grad, size_t grad_offset,
                 cl::Buffer* d_in);
 
+  // True when the local_tiles kernels are used (device profile gemm = local_tiles).
+  bool local_tiles() const { return tiles_; }
   // True when the narrow-output kernels are used (c_out <= 2, c_in and input_cs % 16 == 0).
   bool narrow() const { return narrow_; }
   // True when the input backward vectorises over output channels (c_in <= 4).
@@ -90,6 +100,21 @@ class Conv2d {
   bool narrow_ = false;
   bool narrow_in_ = false;  // c_in <= 4: input backward vectorised over output channels
   cl::Kernel fwd_, transpose_, bwd_in_, bwd_wgt_, reduce_;
+  // local_tiles: the GEMM kernels of one register block (the profile's [0], 1 x 1 [1]), built
+  // on first use.
+  struct Tiled {
+    bool built = false;
+    int block_rows = 1, block_cols = 1;
+    cl::GemmTile f, b, w;  // forward, input backward, weight gradient
+    cl::Kernel fwd;
+  };
+  Tiled& tiled(bool small);
+  // The profile's block, or the 1 x 1 one when the profile's gives under gemm_min_work_items.
+  Tiled& pick(size_t work_items_main);
+  bool tiles_ = false;
+  cl::DeviceProfile profile_;
+  std::string opt_;  // the shape defines
+  Tiled tiled_[2];
   cl::Buffer zeros_, wt_, partial_;
   size_t partial_floats_ = 0;
 };

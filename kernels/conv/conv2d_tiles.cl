@@ -1,0 +1,89 @@
+// 2-D convolution, the GPU-shaped variant (device profile gemm = "local_tiles", the "gpu"
+// profile's): the same layouts, parameter slice and results as kernels/conv/conv2d.cl (+
+// conv2d_narrow.cl), computed as implicit GEMMs by work-groups that stage tiles of the operands
+// in local memory, each work-item keeping a BLK_R x BLK_C register block of scalar floats
+// (kernels/common/gemm_tile.clh; conv2d.cl's work-items keep 8 x 16 floats in float16 vectors
+// and 8 gathered pointers: right for PoCL's AVX-512 cores, spilled on a GPU). Any c_in / c_out:
+// no narrow variants.
+//
+// Defines: conv2d.clh's (C_IN, IN_CS, IN_PAD, C_OUT, O_PAD, K, S, P) and, from the profile's
+// gemm_* keys (runtime/conv/conv2d.cpp, runtime/cl/gemm_tiles.hpp), TILE_K (depth of a local
+// tile), BLK_R, BLK_C and per kernel FWD_, BIN_, WGT_ + TC (columns of a tile) and LR (rows of
+// work-items).
+//
+// Sums keep conv2d.cl's order (the forward: fma over the weight rows (ky, kx, c) in order from
+// the bias, out-of-image taps adding fma(0, w, ·)), so the register block changes no bit.
+#include "common/gemm_tile.clh"
+#include "conv/conv2d.clh"
+
+// Forward: the GEMM out[p][o] = bias[o] + Σ_r A[p][r] · W[r][o] over output pixels p =
+// (n·HO + oy)·WO + ox and weight rows r = (ky·K + kx)·C_IN + c, A[p][r] = in[n, oy·S − P + ky,
+// ox·S − P + kx, c] (0 outside the image). With `fuse_act` also act = leaky_relu(out, slope).
+// Global (ceil(O_PAD / FWD_TC) · LC, ceil(pixels / TR) · FWD_LR).
+#define FWD_LC (FWD_TC / BLK_C)
+#define FWD_TR (FWD_LR * BLK_R)
+#define FWD_WG (FWD_LC * FWD_LR)
+__kernel __attribute__((reqd_work_group_size(FWD_LC, FWD_LR, 1))) void conv2d_fwd_tiles(
+    const int n_img, const int H, const int W, const int HO, const int WO,
+    __global const float* params, const uint w_off, __global const float* in,
+    __global float* out, const int fuse_act, const float slope, __global float* act) {
+  __local float a_tile[FWD_TR][TILE_K + 1];  // gathered input rows (+1: no bank conflicts)
+  __local float w_tile[TILE_K][FWD_TC];
+  __local int pix_img[FWD_TR], pix_y[FWD_TR], pix_x[FWD_TR];  // image offset, oy·S − P, ox·S − P
+  const int lc = get_local_id(0), lr = get_local_id(1), lid = lr * FWD_LC + lc;
+  const int c0 = get_group_id(0) * FWD_TC, p0 = get_group_id(1) * FWD_TR;
+  const int n_pix = n_img * HO * WO;
+  __global const float* Wg = params + w_off;
+  for (int t = lid; t < FWD_TR; t += FWD_WG) {
+    const int p = p0 + t;
+    const int ox = p % WO, q = p / WO, oy = q % HO, n = q / HO;
+    pix_img[t] = p < n_pix ? n * H * W * IN_CS : 0;
+    pix_y[t] = p < n_pix ? oy * S - P : -K;  // -K: every tap outside
+    pix_x[t] = ox * S - P;
+  }
+  float acc[BLK_R][BLK_C];
+#pragma unroll
+  for (int a = 0; a < BLK_R; ++a)
+#pragma unroll
+    for (int b = 0; b < BLK_C; ++b) {
+      const int o = c0 + lc + FWD_LC * b;
+      acc[a][b] = o < O_PAD ? Wg[N_ROWS * O_PAD + o] : 0.0f;
+    }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int k0 = 0; k0 < N_ROWS; k0 += TILE_K) {
+    const int kn = min(TILE_K, N_ROWS - k0);
+    for (int t = lid; t < FWD_TR * TILE_K; t += FWD_WG) {
+      const int r = t / TILE_K, k = t % TILE_K;
+      float v = 0.0f;
+      if (k < kn) {
+        const int row = k0 + k, tap = row / C_IN, c = row - tap * C_IN;
+        const int iy = pix_y[r] + tap / K, ix = pix_x[r] + tap % K;
+        if (iy >= 0 && iy < H && ix >= 0 && ix < W)
+          v = in[(size_t)pix_img[r] + ((size_t)iy * W + ix) * IN_CS + c];
+      }
+      a_tile[r][k] = v;
+    }
+    for (int t = lid; t < TILE_K * FWD_TC; t += FWD_WG) {
+      const int k = t / FWD_TC, c = t % FWD_TC;
+      w_tile[k][c] = (k < kn && c0 + c < O_PAD) ? Wg[(size_t)(k0 + k) * O_PAD + c0 + c] : 0.0f;
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+#define FWD_A(r, k) a_tile[r][k]
+#define FWD_B(k, c) w_tile[k][c]
+    GEMM_TILE_MAC(acc, kn, FWD_A, FWD_B, FWD_LR, FWD_LC, lr, lc);
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+#pragma unroll
+  for (int a = 0; a < BLK_R; ++a) {
+    const int p = p0 + lr + FWD_LR * a;
+    if (p >= n_pix) continue;
+#pragma unroll
+    for (int b = 0; b < BLK_C; ++b) {
+      const int o = c0 + lc + FWD_LC * b;
+      if (o >= O_PAD) continue;
+      const float v = acc[a][b];
+      out[(size_t)p * O_PAD + o] = v;
+      if (fuse_act) act[(size_t)p * O_PAD + o] = v > 0.0f ? v : v * slope;
+    }
+  }
+}
