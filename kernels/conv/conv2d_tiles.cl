@@ -87,3 +87,85 @@ __kernel __attribute__((reqd_work_group_size(FWD_LC, FWD_LR, 1))) void conv2d_fw
     }
   }
 }
+
+// Input backward (a transposed convolution) as a GEMM per residue class: input pixels (iy, ix)
+// with iy ≡ ry, ix ≡ rx (mod S) are read by the same taps (ky, kx) (those with S dividing
+// iy + P − ky and ix + P − kx), so a tile of one class sums over those taps only:
+// d_in[p][c] = Σ_{valid taps in (ky, kx) order} Σ_o d_out[n, oy, ox, o] · W[tap·C_IN + c][o],
+// oy = (iy + P − ky) / S, ox = (ix + P − kx) / S (0 outside the output), conv2d.cl's order.
+// Class pixels are enumerated as q = (n·HS + iy / S)·WS + ix / S (HS = ceil(H / S), WS =
+// ceil(W / S)); W is read transposed into local memory (no transpose kernel). Writes the C_IN
+// channels of d_in only. Global (ceil(IN_PAD / BIN_TC) · LC, S² · ceil(n·HS·WS / TR) · BIN_LR).
+#define BIN_LC (BIN_TC / BLK_C)
+#define BIN_TR (BIN_LR * BLK_R)
+#define BIN_WG (BIN_LC * BIN_LR)
+__kernel __attribute__((reqd_work_group_size(BIN_LC, BIN_LR, 1))) void conv2d_bwd_in_tiles(
+    const int n_img, const int H, const int W, const int HO, const int WO,
+    __global const float* params, const uint w_off, __global const float* d_out,
+    __global float* d_in) {
+  __local float d_tile[BIN_TR][TILE_K + 1];
+  __local float w_tile[TILE_K][BIN_TC + 1];  // [output][input]: +1, the loads run down a column
+  __local int pix_img[BIN_TR], pix_y[BIN_TR], pix_x[BIN_TR];  // n·HO·WO, iy, ix (iy -1: none)
+  const int lc = get_local_id(0), lr = get_local_id(1), lid = lr * BIN_LC + lc;
+  const int c0 = get_group_id(0) * BIN_TC;
+  const int HS = (H + S - 1) / S, WS = (W + S - 1) / S;
+  const int per_class = n_img * HS * WS, tiles = (per_class + BIN_TR - 1) / BIN_TR;
+  const int cls = get_group_id(1) / tiles, p0 = (get_group_id(1) - cls * tiles) * BIN_TR;
+  const int ry = cls / S, rx = cls % S;
+  __global const float* Wg = params + w_off;
+  for (int t = lid; t < BIN_TR; t += BIN_WG) {
+    const int q = p0 + t;
+    const int xs = q % WS, u = q / WS, ys = u % HS, n = u / HS;
+    const int iy = ry + S * ys, ix = rx + S * xs;
+    const int ok = q < per_class && iy < H && ix < W;
+    pix_img[t] = n * HO * WO;
+    pix_y[t] = ok ? iy : -1;
+    pix_x[t] = ix;
+  }
+  float acc[BLK_R][BLK_C];
+  GEMM_BLOCK_FILL(acc, 0.0f);
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int ky = 0; ky < K; ++ky) {
+    if (((ry + P - ky) % S + S) % S != 0) continue;  // the same for the whole work-group
+    for (int kx = 0; kx < K; ++kx) {
+      if (((rx + P - kx) % S + S) % S != 0) continue;
+      const int tap = ky * K + kx;
+      for (int k0 = 0; k0 < C_OUT; k0 += TILE_K) {
+        const int kn = min(TILE_K, C_OUT - k0);
+        for (int t = lid; t < BIN_TR * TILE_K; t += BIN_WG) {
+          const int r = t / TILE_K, k = t % TILE_K;
+          float v = 0.0f;
+          const int ty = pix_y[r] + P - ky, tx = pix_x[r] + P - kx;  // multiples of S
+          if (k < kn && pix_y[r] >= 0 && ty >= 0 && tx >= 0) {
+            const int oy = ty / S, ox = tx / S;
+            if (oy < HO && ox < WO)
+              v = d_out[((size_t)pix_img[r] + (size_t)oy * WO + ox) * O_PAD + k0 + k];
+          }
+          d_tile[r][k] = v;
+        }
+        for (int t = lid; t < BIN_TC * TILE_K; t += BIN_WG) {
+          const int c = t / TILE_K, k = t % TILE_K, i = c0 + c;
+          w_tile[k][c] =
+              (k < kn && i < C_IN) ? Wg[((size_t)tap * C_IN + i) * O_PAD + k0 + k] : 0.0f;
+        }
+        barrier(CLK_LOCAL_MEM_FENCE);
+#define BIN_A(r, k) d_tile[r][k]
+#define BIN_B(k, c) w_tile[k][c]
+        GEMM_TILE_MAC(acc, kn, BIN_A, BIN_B, BIN_LR, BIN_LC, lr, lc);
+        barrier(CLK_LOCAL_MEM_FENCE);
+      }
+    }
+  }
+#pragma unroll
+  for (int a = 0; a < BLK_R; ++a) {
+    const int r = lr + BIN_LR * a;
+    if (pix_y[r] < 0) continue;
+    const size_t n = (size_t)(pix_img[r] / (HO * WO));
+    __global float* dst = d_in + ((n * H + pix_y[r]) * W + pix_x[r]) * IN_CS;
+#pragma unroll
+    for (int b = 0; b < BLK_C; ++b) {
+      const int c = c0 + lc + BIN_LC * b;
+      if (c < C_IN) dst[c] = acc[a][b];
+    }
+  }
+}

@@ -102,6 +102,7 @@ Conv2d::Tiled& Conv2d::tiled(bool small) {
                           d("WGT_LR", t.w.lr);
   const std::string f = "conv/conv2d_tiles.cl";
   t.fwd = rt_.kernel(f, "conv2d_fwd_tiles", opt);
+  t.bwd_in = rt_.kernel(f, "conv2d_bwd_in_tiles", opt);
   t.built = true;
   return t;
 }
@@ -216,6 +217,17 @@ void Conv2d::backward(const cl::Buffer& params, size_t offset, const cl::Buffer&
     check_bytes(*d_in, size_t(n) * h * w * spec_.input_cs(), "d_in");
     const int ip = pad16(spec_.c_in), taps = spec_.kernel * spec_.kernel;
     const int s = spec_.stride;
+    if (tiles_) {
+      // Rows: the S² residue classes of input pixels, each n · ceil(h / S) · ceil(w / S) slots.
+      const size_t per_class = size_t(n) * ceil_div(size_t(h), size_t(s)) *
+                               ceil_div(size_t(w), size_t(s));
+      const size_t main_items = size_t(s) * s * tiled(false).b.work_items(per_class, size_t(ip));
+      Tiled& t = pick(main_items);
+      t.bwd_in.set_args(n, h, w, ho, wo, params, uint32_t(offset), d_out, *d_in);
+      const auto g = t.b.global(per_class, size_t(ip));
+      t.bwd_in.launch({g[0], size_t(s) * s * g[1]}, {size_t(t.b.lc), size_t(t.b.lr)});
+      return;
+    }
     const size_t txr = ceil_div(ceil_div(size_t(w), size_t(s)), kPts);
     const size_t tiles = size_t(n) * h * s * txr;
     if (narrow_in_) {

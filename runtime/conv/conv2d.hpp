@@ -106,7 +106,7 @@ class Conv2d {
     bool built = false;
     int block_rows = 1, block_cols = 1;
     cl::GemmTile f, b, w;  // forward, input backward, weight gradient
-    cl::Kernel fwd;
+    cl::Kernel fwd, bwd_in;
   };
   Tiled& tiled(bool small);
   // The profile's block, or the 1 x 1 one when the profile's gives under gemm_min_work_items.

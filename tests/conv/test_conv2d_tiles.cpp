@@ -52,7 +52,7 @@ bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 // The d_in channels < c_in of an NHWC buffer with stride cs.
-[[maybe_unused]] std::vector<float> channels(const std::vector<float>& v, int c, int cs) {
+std::vector<float> channels(const std::vector<float>& v, int c, int cs) {
   std::vector<float> r;
   for (size_t i = 0; i < v.size(); ++i)
     if (int(i % size_t(cs)) < c) r.push_back(v[i]);
@@ -155,5 +155,75 @@ TEST_CASE("Conv2d local_tiles forward matches the host reference and cpu_tiles",
       CHECK(same_bits(p1.out, p4.out));
       CHECK(same_bits(p1.act, p4.act));
     }
+  }
+}
+
+TEST_CASE("Conv2d local_tiles input backward matches the host reference and cpu_tiles",
+          "[conv][conv2d][conv_tiles]") {
+  for (const auto& c : cases()) {
+    SECTION(c.name) {
+      const auto& s = c.spec;
+      const int ics = s.input_cs();
+      const Data d = make_data(c, 7);
+      const Pass p1 = run(tiles_profile(0), c, d), p4 = run(tiles_profile(1), c, d);
+      const Pass cpu = run(cpu_tiles_profile(), c, d);
+      std::vector<float> din_ref;
+      test::ref::conv2d_bwd(s, d.slice, d.in, c.n, c.h, c.w, d.d_out, din_ref);
+      const auto dev = channels(p4.d_in, s.c_in, ics), ref = channels(din_ref, s.c_in, ics);
+      CHECK(test::sym_rel_err(dev, ref, 1e-1) <= 1e-4);
+      CHECK(test::nmse(dev, ref) <= 1e-11);
+      CHECK(test::sym_rel_err(dev, channels(cpu.d_in, s.c_in, ics), 1e-1) <= 1e-4);
+      // Only the c_in channels are written.
+      for (size_t i = 0; i < p4.d_in.size(); ++i)
+        if (int(i % size_t(ics)) >= s.c_in) REQUIRE(p4.d_in[i] == 7.0f);
+      CHECK(same_bits(p1.d_in, p4.d_in));
+    }
+  }
+}
+
+// L = Σ r · out is linear in the parameters and the input: central differences of the device
+// forward are exact up to its float rounding.
+TEST_CASE("Conv2d local_tiles gradients agree with finite differences of the forward",
+          "[conv][conv2d][conv_tiles][fd]") {
+  auto& rt = test::runtime();
+  test::ProfileScope scoped(tiles_profile(1));
+  for (const auto& s : {spec(3, 5, 3, 2, 1), spec(2, 17, 4, 2, 1, 2), spec(20, 2, 4, 1, 1),
+                        spec(16, 18, 3, 1, 1, 16), spec(4, 6, 4, 3, 2)}) {
+    conv::Conv2d cv(rt, s);
+    REQUIRE(cv.local_tiles());
+    const int n = 2, h = 7, w = 9, ho = s.out_size(h), wo = s.out_size(w);
+    std::vector<float> params(cv.n_params(), 0.0f);
+    cv.init_params(params, 0, 11, 0.3f);
+    for (int o = 0; o < s.c_out; ++o) params[s.bias_index(o)] = 0.1f;
+    const auto in = uniform(size_t(n) * h * w * s.input_cs(), -1.0f, 1.0f, 12);
+    auto r = uniform(size_t(n) * ho * wo * s.out_cs(), -1.0f, 1.0f, 13);
+    zero_padding(r, s.c_out, s.out_cs());
+    auto b_p = cl::Buffer::from(rt, params), b_in = cl::Buffer::from(rt, in);
+    auto b_r = cl::Buffer::from(rt, r);
+    cl::Buffer b_out(rt, r.size() * 4), b_din(rt, in.size() * 4), b_g(rt, params.size() * 4);
+    cv.backward(b_p, 0, b_in, n, h, w, b_r, &b_g, 0, &b_din);
+    const auto grad = b_g.read_all<float>();
+    const auto din = b_din.read_all<float>();
+    auto loss = [&](const std::vector<float>& p, const std::vector<float>& x) {
+      b_p.write_vec(p);
+      b_in.write_vec(x);
+      cv.forward(b_p, 0, b_in, n, h, w, b_out);
+      const auto out = b_out.read_all<float>();
+      double l = 0;
+      for (size_t i = 0; i < out.size(); ++i) l += double(out[i]) * r[i];
+      return l;
+    };
+    const float step = 1e-2f;
+    std::vector<float> fd, an;
+    for (size_t k = 0; k < in.size(); k += 3) {
+      if (int(k % size_t(s.input_cs())) >= s.c_in) continue;
+      auto xp = in, xm = in;
+      xp[k] += step;
+      xm[k] -= step;
+      fd.push_back(float((loss(params, xp) - loss(params, xm)) / (2.0 * step)));
+      an.push_back(din[k]);
+    }
+    REQUIRE(fd.size() > 20);
+    CHECK(test::sym_rel_err(fd, an, 1e-1) <= 4e-3);
   }
 }
