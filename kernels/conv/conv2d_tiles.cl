@@ -169,3 +169,78 @@ __kernel __attribute__((reqd_work_group_size(BIN_LC, BIN_LR, 1))) void conv2d_bw
     }
   }
 }
+
+// Weight gradient, phase 1: partial[ch][r][o] = Σ_{output pixels p of chunk ch, in order}
+// A[p][r] · d_out[p][o] with A = [im2col row, 1] (row N_ROWS is the bias row: Σ d_out), the
+// pixels TILE_K at a time through local memory. Global (ceil(O_PAD / WGT_TC) · LC,
+// ceil((N_ROWS + 1) / TR) · WGT_LR, chunks).
+#define WGT_LC (WGT_TC / BLK_C)
+#define WGT_TR (WGT_LR * BLK_R)
+#define WGT_WG (WGT_LC * WGT_LR)
+__kernel __attribute__((reqd_work_group_size(WGT_LC, WGT_LR, 1))) void conv2d_bwd_wgt_tiles(
+    const int n_img, const int H, const int W, const int HO, const int WO, const int chunk,
+    __global const float* in, __global const float* d_out, __global float* partial) {
+  __local float a_tile[TILE_K][WGT_TR + 1];
+  __local float d_tile[TILE_K][WGT_TC];
+  __local int pix_img[TILE_K], pix_y[TILE_K], pix_x[TILE_K];  // as in the forward
+  const int lc = get_local_id(0), lr = get_local_id(1), lid = lr * WGT_LC + lc;
+  const int c0 = get_group_id(0) * WGT_TC, r0 = get_group_id(1) * WGT_TR;
+  const int ch = get_group_id(2);
+  const int n_pix = n_img * HO * WO;
+  const int begin = ch * chunk, end = min(n_pix, begin + chunk);
+  __global float* dst = partial + (size_t)ch * (N_ROWS + 1) * O_PAD;
+  float acc[BLK_R][BLK_C];
+  GEMM_BLOCK_FILL(acc, 0.0f);
+  for (int q0 = begin; q0 < end; q0 += TILE_K) {
+    const int kn = min(TILE_K, end - q0);
+    for (int t = lid; t < TILE_K; t += WGT_WG) {
+      const int p = q0 + t;
+      const int ox = p % WO, q = p / WO, oy = q % HO, n = q / HO;
+      pix_img[t] = t < kn ? n * H * W * IN_CS : 0;
+      pix_y[t] = t < kn ? oy * S - P : -K;
+      pix_x[t] = ox * S - P;
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (int t = lid; t < TILE_K * WGT_TR; t += WGT_WG) {
+      const int k = t / WGT_TR, r = t % WGT_TR, i = r0 + r;
+      float v = 0.0f;
+      if (k < kn) {
+        if (i < N_ROWS) {
+          const int tap = i / C_IN, c = i - tap * C_IN;
+          const int iy = pix_y[k] + tap / K, ix = pix_x[k] + tap % K;
+          if (iy >= 0 && iy < H && ix >= 0 && ix < W)
+            v = in[(size_t)pix_img[k] + ((size_t)iy * W + ix) * IN_CS + c];
+        } else if (i == N_ROWS) {
+          v = 1.0f;  // fma(1, d, s) = s + d: the bias sum
+        }
+      }
+      a_tile[k][r] = v;
+    }
+    for (int t = lid; t < TILE_K * WGT_TC; t += WGT_WG) {
+      const int k = t / WGT_TC, c = t % WGT_TC, o = c0 + c;
+      d_tile[k][c] = (k < kn && o < O_PAD) ? d_out[(size_t)(q0 + k) * O_PAD + o] : 0.0f;
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+#define WGT_A(r, k) a_tile[k][r]
+#define WGT_B(k, c) d_tile[k][c]
+    GEMM_TILE_MAC(acc, kn, WGT_A, WGT_B, WGT_LR, WGT_LC, lr, lc);
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+#pragma unroll
+  for (int a = 0; a < BLK_R; ++a)
+#pragma unroll
+    for (int b = 0; b < BLK_C; ++b) {
+      const int r = r0 + lr + WGT_LR * a, o = c0 + lc + WGT_LC * b;
+      if (r <= N_ROWS && o < O_PAD) dst[(size_t)r * O_PAD + o] = acc[a][b];
+    }
+}
+
+// Weight gradient, phase 2: grad[w_off + i] = Σ_ch partial[ch][i] (overwrites) in a fixed
+// order (gemm_reduce_chunks: GEMM_REDUCE_LANES lanes, then a tree). Global
+// (round_up((N_ROWS + 1) · O_PAD, 16), GEMM_REDUCE_LANES).
+__kernel __attribute__((reqd_work_group_size(16, GEMM_REDUCE_LANES, 1))) void
+conv2d_bwd_reduce_tiles(const int n_chunks, __global const float* partial, __global float* grad,
+                        const uint w_off) {
+  __local float sums[GEMM_REDUCE_LANES * 16];
+  gemm_reduce_chunks(n_chunks, (N_ROWS + 1) * O_PAD, partial, grad, w_off, sums);
+}

@@ -62,6 +62,10 @@ Conv2d::Conv2d(cl::Runtime& rt, const Conv2dSpec& spec)
   opt_ = d("C_IN", spec_.c_in) + d("IN_CS", spec_.input_cs()) + d("IN_PAD", pad16(spec_.c_in)) +
          d("C_OUT", spec_.c_out) + d("O_PAD", spec_.out_cs()) + d("K", spec_.kernel) +
          d("S", spec_.stride) + d("P", spec_.pad);
+  if (tiles_) {  // local_tiles: kernels/conv/conv2d_tiles.cl (the 1 x 1 block on first use)
+    tiled(false);  // the profile's tiles checked against the device here
+    return;
+  }
   const std::string f = "conv/conv2d.cl", fn = "conv/conv2d_narrow.cl";
   // Must match the guards of kernels/conv/conv2d_narrow.cl.
   narrow_ = spec_.c_out <= 2 && spec_.c_in % 16 == 0 && spec_.input_cs() % 16 == 0;
@@ -103,6 +107,11 @@ Conv2d::Tiled& Conv2d::tiled(bool small) {
   const std::string f = "conv/conv2d_tiles.cl";
   t.fwd = rt_.kernel(f, "conv2d_fwd_tiles", opt);
   t.bwd_in = rt_.kernel(f, "conv2d_bwd_in_tiles", opt);
+  t.wgt = rt_.kernel(f, "conv2d_bwd_wgt_tiles", opt);
+  if (!reduce_tiles_built_) {
+    reduce_tiles_ = rt_.kernel(f, "conv2d_bwd_reduce_tiles", opt);
+    reduce_tiles_built_ = true;
+  }
   t.built = true;
   return t;
 }
@@ -139,7 +148,9 @@ void Conv2d::check_shape(int n, int h, int w, const char* where) const {
 
 int Conv2d::wgrad_chunks(int pixels) const {
   const size_t per_chunk = size_t(spec_.kernel * spec_.kernel * spec_.c_in + 1) * spec_.out_cs();
-  size_t ch = std::min<size_t>(kMaxChunks, ceil_div(size_t(pixels), kMinChunk));
+  size_t ch = tiles_ ? std::min<size_t>(size_t(profile_.gemm_max_chunks),
+                                        ceil_div(size_t(pixels), size_t(profile_.gemm_chunk_points)))
+                     : std::min<size_t>(kMaxChunks, ceil_div(size_t(pixels), kMinChunk));
   ch = std::min(ch, std::max<size_t>(1, kMaxPartial / per_chunk));
   return int(std::max<size_t>(ch, 1));
 }
@@ -200,18 +211,30 @@ void Conv2d::backward(const cl::Buffer& params, size_t offset, const cl::Buffer&
       partial_ = cl::Buffer(rt_, size_t(chunks) * count * sizeof(float));
       partial_floats_ = size_t(chunks) * count;
     }
-    const size_t rows = size_t(spec_.kernel) * spec_.kernel * spec_.c_in;
-    const size_t row_blocks = ceil_div(rows, kRows) + 1;  // + the bias row block
-    bwd_wgt_.set_args(n, h, w, ho, wo, per, in, d_out, partial_);
-    if (narrow_) {
-      const size_t groups = size_t(spec_.kernel) * spec_.kernel * (spec_.c_in / 16) + 1;
-      bwd_wgt_.launch({size_t(chunks), cl::round_up(groups, kLocalRows)}, {1, kLocalRows});
+    if (tiles_) {
+      const size_t w_rows = size_t(spec_.kernel) * spec_.kernel * spec_.c_in + 1;  // + bias
+      const size_t cols = size_t(spec_.out_cs());
+      Tiled& t = pick(tiled(false).w.work_items(w_rows, cols) * size_t(chunks));
+      t.wgt.set_args(n, h, w, ho, wo, per, in, d_out, partial_);
+      const auto g = t.w.global(w_rows, cols);
+      t.wgt.launch({g[0], g[1], size_t(chunks)}, {size_t(t.w.lc), size_t(t.w.lr), 1});
+      reduce_tiles_.set_args(chunks, partial_, *grad, uint32_t(grad_offset));
+      // Work-groups of 16 weights x GEMM_REDUCE_LANES (16) lanes (kernels/common/gemm_tile.clh).
+      reduce_tiles_.launch({cl::round_up(count, 16), 16}, {16, 16});
     } else {
-      const size_t lr = tile_local(kLocalRows, oblocks);
-      bwd_wgt_.launch({size_t(chunks), cl::round_up(row_blocks, lr), oblocks}, {1, lr, oblocks});
+      const size_t rows = size_t(spec_.kernel) * spec_.kernel * spec_.c_in;
+      const size_t row_blocks = ceil_div(rows, kRows) + 1;  // + the bias row block
+      bwd_wgt_.set_args(n, h, w, ho, wo, per, in, d_out, partial_);
+      if (narrow_) {
+        const size_t groups = size_t(spec_.kernel) * spec_.kernel * (spec_.c_in / 16) + 1;
+        bwd_wgt_.launch({size_t(chunks), cl::round_up(groups, kLocalRows)}, {1, kLocalRows});
+      } else {
+        const size_t lr = tile_local(kLocalRows, oblocks);
+        bwd_wgt_.launch({size_t(chunks), cl::round_up(row_blocks, lr), oblocks}, {1, lr, oblocks});
+      }
+      reduce_.set_args(chunks, partial_, *grad, uint32_t(grad_offset));
+      reduce_.launch({cl::round_up(count, 64)}, {64});
     }
-    reduce_.set_args(chunks, partial_, *grad, uint32_t(grad_offset));
-    reduce_.launch({cl::round_up(count, 64)}, {64});
   }
   if (d_in) {
     check_bytes(*d_in, size_t(n) * h * w * spec_.input_cs(), "d_in");

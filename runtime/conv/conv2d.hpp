@@ -84,11 +84,14 @@ class Conv2d {
 
   // True when the local_tiles kernels are used (device profile gemm = local_tiles).
   bool local_tiles() const { return tiles_; }
-  // True when the narrow-output kernels are used (c_out <= 2, c_in and input_cs % 16 == 0).
+  // True when the narrow-output kernels are used (cpu_tiles, c_out <= 2, c_in and input_cs
+  // % 16 == 0).
   bool narrow() const { return narrow_; }
-  // True when the input backward vectorises over output channels (c_in <= 4).
+  // True when the input backward vectorises over output channels (cpu_tiles, c_in <= 4).
   bool narrow_input() const { return narrow_in_; }
-  // Chunks of the weight-gradient reduction for an output of `pixels` pixels (shapes only).
+  // Chunks of the weight-gradient reduction for an output of `pixels` pixels (shapes and the
+  // profile only: cpu_tiles chunks of >= 256 pixels, at most 256; local_tiles the profile's
+  // gemm_chunk_points and gemm_max_chunks; both at most 16 MiB of partial sums).
   int wgrad_chunks(int pixels) const;
 
  private:
@@ -106,7 +109,7 @@ class Conv2d {
     bool built = false;
     int block_rows = 1, block_cols = 1;
     cl::GemmTile f, b, w;  // forward, input backward, weight gradient
-    cl::Kernel fwd, bwd_in;
+    cl::Kernel fwd, bwd_in, wgt;
   };
   Tiled& tiled(bool small);
   // The profile's block, or the 1 x 1 one when the profile's gives under gemm_min_work_items.
@@ -115,6 +118,8 @@ class Conv2d {
   cl::DeviceProfile profile_;
   std::string opt_;  // the shape defines
   Tiled tiled_[2];
+  cl::Kernel reduce_tiles_;  // the chunk partials' fixed tree (block-independent)
+  bool reduce_tiles_built_ = false;
   cl::Buffer zeros_, wt_, partial_;
   size_t partial_floats_ = 0;
 };
