@@ -43,6 +43,8 @@ const char* encoder_backward_name(EncoderBackward b);
 // x 16 outputs in float16 registers with no local memory (shaped for AVX-512 cores through
 // PoCL); local_tiles = kernels/field/mlp_tiles.cl, work-groups that stage tiles of the inputs
 // and weights in local memory and give each work-item a small register block (the gemm_* keys).
+// The convolutions (conv::Conv2d) take the same key and tiles: cpu_tiles = kernels/conv/
+// conv2d.cl and conv2d_narrow.cl, local_tiles = kernels/conv/conv2d_tiles.cl.
 enum class GemmVariant { CpuTiles, LocalTiles };
 
 inline constexpr std::pair<GemmVariant, const char*> kGemmNames[] = {

@@ -295,3 +295,40 @@ TEST_CASE("Conv2d local_tiles weight gradient agrees with finite differences",
     CHECK(test::sym_rel_err(fd, an, 1e-1) <= 4e-3);
   }
 }
+
+// Small shapes for Oclgrind (tests/oclgrind, oclgrind_conv): every local_tiles kernel with both
+// register blocks, strided, padded, narrow and wide, against the host reference and cpu_tiles.
+TEST_CASE("Conv2d local_tiles on small shapes match the reference and cpu_tiles",
+          "[conv][conv2d][conv_tiles][small]") {
+  const std::vector<Case> small = {
+      {"patchgan 2->32 k4 s2", spec(2, 32, 4, 2, 1, 2), 1, 6, 9},
+      {"17->2 k4 s1 p1", spec(17, 2, 4, 1, 1), 1, 5, 6},
+      {"unet 3->20 k3", spec(3, 20, 3, 1, 1, 3), 2, 4, 5},
+      {"stride 3 5->7 k4 p2", spec(5, 7, 4, 3, 2), 1, 7, 8},
+  };
+  for (const auto& c : small) {
+    SECTION(c.name) {
+      const auto& s = c.spec;
+      const int ics = s.input_cs();
+      const Data d = make_data(c, 31);
+      const Pass p1 = run(tiles_profile(0), c, d), p4 = run(tiles_profile(1), c, d);
+      const Pass cpu = run(cpu_tiles_profile(), c, d);
+      std::vector<float> din_ref;
+      const auto out_ref = test::ref::conv2d_fwd(s, d.slice, d.in, c.n, c.h, c.w);
+      const auto g_ref = test::ref::conv2d_bwd(s, d.slice, d.in, c.n, c.h, c.w, d.d_out, din_ref);
+      const std::vector<float> g(p4.grad.begin() + long(d.off), p4.grad.end());
+      CHECK(test::sym_rel_err(p4.out, out_ref, 1e-1) <= 1e-4);
+      CHECK(test::sym_rel_err(g, g_ref, 1.0) <= 1e-4);
+      CHECK(test::sym_rel_err(channels(p4.d_in, s.c_in, ics), channels(din_ref, s.c_in, ics),
+                              1e-1) <= 1e-4);
+      CHECK(test::sym_rel_err(p4.out, cpu.out, 1e-1) <= 1e-4);
+      CHECK(test::sym_rel_err(p4.grad, cpu.grad, 1.0) <= 1e-4);
+      // The c_in channels (cpu_tiles' conv2d_bwd_in also zeroes c_in .. 16-aligned ones).
+      CHECK(test::sym_rel_err(channels(p4.d_in, s.c_in, ics), channels(cpu.d_in, s.c_in, ics),
+                              1e-1) <= 1e-4);
+      CHECK(same_bits(p1.out, p4.out));
+      CHECK(same_bits(p1.grad, p4.grad));
+      CHECK(same_bits(p1.d_in, p4.d_in));
+    }
+  }
+}
