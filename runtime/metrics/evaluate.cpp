@@ -156,7 +156,7 @@ Json definitions() {
       {"pose", {{"alignment", "Umeyama SE(3) on the positions, scale fixed to 1, applied to every estimated pose"},
                 {"ate_m", "sqrt(mean |p_gt - p_aligned|^2), metres, 3D"},
                 {"ate_h_m", "sqrt(mean |(p_gt - p_aligned)_xy|^2), metres: ate_m over x and y only, under the same 3D alignment"},
-                {"ate_reference", "which ATE the reference poses support: horizontal when the dataset's reference poses are planar (nuScenes' ego poses, z = 0, also in a window sgnlf bench copied from nuScenes), else 3d"},
+                {"ate_reference", "which ATE the reference poses support: horizontal when the dataset's reference poses are planar (nuScenes' ego poses, z = 0, also in a window sgnlf bench copied from nuScenes; where no dataset says, when every ground-truth z is equal within 1e-6 m), else 3d"},
                 {"rpe", "consecutive pairs of aligned poses; rpe_t_cm mean translation error in cm, rpe_r_deg mean rotation angle in degrees"}}},
       {"raydrop_mask", "predicted: return probability > 0.5 multiplies the predicted range and intensity; the ground-truth return label multiplies the ground truth (LiDAR4D's eval_step)"},
       {"depth", {{"units", "metres"}, {"clip_m", {1e-6, 80.0}},

@@ -224,6 +224,7 @@ TEST_CASE("the recorded metric definitions match the constants the metrics use",
   // climbs 0.1 m a frame, so "3d".
   CHECK_THAT(d.at("pose").at("ate_h_m").get<std::string>(), Catch::Contains("same 3D alignment"));
   CHECK_THAT(d.at("pose").at("ate_reference").get<std::string>(), Catch::Contains("1e-6 m"));
+  CHECK_THAT(d.at("pose").at("ate_reference").get<std::string>(), Catch::Contains("nuScenes"));
   CHECK(metrics::pose_metrics(moved, gt).at("ate_h_m").get<double>() < 1e-6);
   CHECK(metrics::pose_metrics(moved, gt).at("ate_reference") == "3d");
 }
