@@ -57,13 +57,23 @@ TEST_CASE("config: the fine geometric registration is an optional section of the
   REQUIRE(plain.pose_free->geometric);
   CHECK_FALSE(plain.pose_free->geometric->refine);
   CHECK_FALSE(train_config_to_json(plain)["geometric"].contains("refine"));
-  // On in SG-NLF's quick and paper presets and so in its ablations; not from the odometry,
-  // whose start is this estimator already (docs/studies/fine-registration).
+  // On in SG-NLF's quick and paper presets and so in its ablations. From the odometry the
+  // paper preset keeps its frozen start (no refine: that start is this estimator already); the
+  // quick one runs no first stage (first_steps 0: the odometry is the start) and keeps the
+  // refine section for its later epochs, with the pose updates from the first step
+  // (docs/studies/fine-registration, "From the odometry").
   CHECK(resolve_config("sg-nlf", "quick").pose_free->geometric->refine);
   CHECK(resolve_config("sg-nlf", "paper").pose_free->geometric->refine);
   CHECK(resolve_config("sg-nlf-no-graph", "quick").pose_free->geometric->refine);
-  CHECK_FALSE(resolve_config("sg-nlf", "quick", Json{{"poses", {{"init", "odometry"}}}})
-                  .pose_free->geometric->refine);
+  const Json odometry{{"poses", {{"init", "odometry"}}}};
+  CHECK_FALSE(resolve_config("sg-nlf", "paper", odometry).pose_free->geometric->refine);
+  const TrainConfig odo = resolve_config("sg-nlf", "quick", odometry);
+  REQUIRE(odo.pose_free->geometric->refine);
+  CHECK(odo.pose_free->geometric->refine->later_epochs);
+  CHECK(odo.pose_free->geometric->first_steps == 0);
+  CHECK(odo.pose_free->geometric->steps_per_epoch == 4.0);
+  CHECK(odo.pose_free->pose_optim.start_step == 0);
+  CHECK(odo.pose_free->pose_optim.lr_trans == resolve_config("sg-nlf", "quick").pose_free->pose_optim.lr_trans);
   const TrainConfig c =
       resolve_config("geonlf", "quick", Json{{"geometric", {{"refine", {{"steps", 50}}}}}});
   REQUIRE(c.pose_free->geometric->refine);

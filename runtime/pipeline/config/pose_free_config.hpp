@@ -89,7 +89,10 @@ struct ReweightConfig {
 // each new confidence graph take its residual, points and learning rates (lr·lr_final), and the
 // graph's loss is built over its clouds; without it they fall back to the schedule's own
 // optimiser, whose biased point-to-point steps measurably walk the refined poses back
-// (docs/studies/fine-registration). Not in GeoNLF or the paper; on when present.
+// (docs/studies/fine-registration). Not in GeoNLF or the paper; on when present. With
+// geometric.first_steps 0 there is no first stage at all: neither the coarse alignment nor these
+// `steps` run (a start that is already aligned, the odometry's), while later_epochs still hands
+// the later epochs this estimator.
 struct GeometricRefineConfig {
   int steps = 100;
   double lr_final = 1.0;
