@@ -9,10 +9,12 @@
 #include "cl/launch_trace.hpp"
 #include "cl/staged_upload.hpp"
 #include "support/test_device.hpp"
+#include "support/device_tolerance.hpp"
 
 SGNLF_DEVICE_TESTS;
 
 using namespace sgnlf;
+using sgnlf::test::same_bits;
 
 namespace {
 // Bit patterns that a float conversion anywhere would change (NaN payload, denormal, -0).
@@ -26,9 +28,6 @@ std::vector<float> odd_floats(int n, uint32_t salt) {
     std::memcpy(&v[size_t(i)], &u, 4);
   }
   return v;
-}
-bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * 4) == 0;
 }
 }  // namespace
 

@@ -13,10 +13,14 @@
 #include "conv/conv2d.hpp"
 #include "reference.hpp"
 #include "support/device_tolerance.hpp"
+#include "support/gemm_profiles.hpp"
 #include "support/test_device.hpp"
 
 SGNLF_DEVICE_TESTS;
 using namespace sgnlf;
+using sgnlf::test::same_bits;
+using sgnlf::test::tiles_profile;
+using sgnlf::test::cpu_tiles_profile;
 
 namespace {
 using test::uniform;
@@ -36,21 +40,6 @@ void zero_padding(std::vector<float>& v, int c, int cs) {
     if (int(i % size_t(cs)) >= c) v[i] = 0.0f;
 }
 // The gpu profile; `block` 0: the 1 x 1 block everywhere, 1: the profile's block everywhere.
-cl::DeviceProfile tiles_profile(int block) {
-  cl::DeviceProfile p = cl::gpu_profile();
-  p.gemm_min_work_items = block == 0 ? (1 << 30) : 0;
-  return p;
-}
-cl::DeviceProfile cpu_tiles_profile() {
-  cl::DeviceProfile p = cl::gpu_profile();
-  p.gemm = cl::GemmVariant::CpuTiles;
-  return p;
-}
-// Bitwise equality, only between runs on the same device of kernels making the same explicit
-// fma calls in the same order (the two register blocks, a repeat).
-bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
-}
 // The d_in channels < c_in of an NHWC buffer with stride cs.
 std::vector<float> channels(const std::vector<float>& v, int c, int cs) {
   std::vector<float> r;

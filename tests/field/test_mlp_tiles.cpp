@@ -16,9 +16,14 @@
 #include "field/mlp.hpp"
 #include "reference.hpp"
 #include "support/test_device.hpp"
+#include "support/gemm_profiles.hpp"
+#include "support/device_tolerance.hpp"
 
 SGNLF_DEVICE_TESTS;
 using namespace sgnlf;
+using sgnlf::test::same_bits;
+using sgnlf::test::tiles_profile;
+using sgnlf::test::cpu_tiles_profile;
 using field::Activation;
 
 namespace {
@@ -40,23 +45,6 @@ class ScopedProfile {
 };
 
 // The gpu profile; `block` 0: the 1 x 1 block everywhere, 1: the profile's block everywhere.
-cl::DeviceProfile tiles_profile(int block) {
-  cl::DeviceProfile p = cl::gpu_profile();
-  p.gemm_min_work_items = block == 0 ? (1 << 30) : 0;
-  return p;
-}
-cl::DeviceProfile cpu_tiles_profile() {
-  cl::DeviceProfile p = cl::gpu_profile();
-  p.gemm = cl::GemmVariant::CpuTiles;
-  return p;
-}
-
-// Bitwise equality, only between runs on the same device: the 4 x 4 and 1 x 1 register blocks
-// (and a repeat) make the same explicit fma calls in the same order, so the bits agree whatever
-// that device's rounding. Against the host reference and cpu_tiles the tests use a tolerance.
-bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
-}
 double dot(const std::vector<float>& a, const std::vector<float>& b) {
   double s = 0;
   for (size_t i = 0; i < a.size(); ++i) s += double(a[i]) * b[i];

@@ -18,9 +18,11 @@
 #include "reference.hpp"
 #include "reference_4d.hpp"
 #include "support/test_device.hpp"
+#include "support/device_tolerance.hpp"
 
 SGNLF_DEVICE_TESTS;
 using namespace sgnlf;
+using sgnlf::test::same_bits;
 using cl::EncoderBackward;
 using field::PlaneGroups;
 using test::uniform;
@@ -28,15 +30,6 @@ using test::uniform;
 namespace {
 const EncoderBackward kParallel[] = {EncoderBackward::DeterministicParallel,
                                      EncoderBackward::Atomic};
-
-// Bitwise equality of two float vectors (NaN-safe, -0 ≠ +0). Used only between two variants on
-// the same device, where it holds by construction: the deterministic parallel backward sums each
-// entry's terms in the serial kernel's order with the same explicit fma and shared inline code
-// (field/hashgrid.clh, entry_reduce.cl), whatever that device's rounding. Against the host
-// reference the tests use a tolerance.
-bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
-}
 
 field::HashGridConfig grid_config() {  // res 5, 9 dense; 17, 33 hashed into 4096 entries
   field::HashGridConfig c;

@@ -21,6 +21,7 @@
 
 #include <cstddef>
 #include <string>
+#include <cstring>
 #include <vector>
 
 namespace sgnlf::test {
@@ -52,6 +53,13 @@ double max_abs_err(const std::vector<float>& a, const std::vector<float>& b);
 // max_i |a_i − b_i| / max_i |b_i|: for float GEMM outputs, whose rounding scales with the
 // magnitude of the whole output rather than of each entry.
 double norm_err(const std::vector<float>& a, const std::vector<float>& b);
+
+// Bitwise equality of two float vectors (NaN-safe, -0 != +0): only between runs on one device
+// of kernels exact by construction against each other (the same explicit fma calls in the same
+// order, a repeat, a copy), never against a host reference.
+inline bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
 
 }  // namespace sgnlf::test
 
