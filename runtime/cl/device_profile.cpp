@@ -39,6 +39,10 @@ void DeviceProfile::validate(const std::string& where) const {
     throw ConfigError(where + ": 'gemm_block_rows' x 'gemm_block_cols' = " +
                       std::to_string(gemm_block_rows * gemm_block_cols) +
                       " floats of registers per work-item, more than 32");
+  if ((ray_work_items & (ray_work_items - 1)) != 0 || ray_work_items > local_size)
+    throw ConfigError(where + ": 'ray_work_items' = " + std::to_string(ray_work_items) +
+                      " must be a power of two no larger than 'local_size' = " +
+                      std::to_string(local_size));
   if (gemm_work_group < gemm_tile / gemm_block_cols)
     throw ConfigError(where + ": 'gemm_work_group' = " + std::to_string(gemm_work_group) +
                       " is below a tile row of gemm_tile / gemm_block_cols = " +
@@ -62,6 +66,7 @@ DeviceProfile gpu_profile() {
   p.compaction = CompactionScan::Device;
   p.pose_grad = PoseGrad::Device;
   p.loss_reduce = LossReduce::Device;
+  p.ray_work_items = 32;
   return p;
 }
 

@@ -127,6 +127,13 @@ struct DeviceProfile {
   PoseGrad pose_grad = PoseGrad::Host;
   // How the loss is summed and read (above).
   LossReduce loss_reduce = LossReduce::Host;
+  // Work-items that share one ray in the per-ray render, sampling and compaction kernels
+  // (volume rendering's sums and their backward, the ray-gradient reduction, weight carving,
+  // importance and surface sampling, early termination's counts): 1 = one work-item walks the
+  // ray's samples in order (the cpu profile's kernels); a power of two above 1 = a work-group
+  // slice of that many work-items per ray that splits the samples and combines them with
+  // local-memory scans and fixed-tree sums (deterministic per device, not the cpu kernels' bits).
+  int ray_work_items = 1;
 
   template <class Self, class V>
   static void fields(Self& s, V& v) {
@@ -147,6 +154,7 @@ struct DeviceProfile {
     v("compaction", s.compaction, config::choices(kCompactionNames));
     v("pose_grad", s.pose_grad, config::choices(kPoseGradNames));
     v("loss_reduce", s.loss_reduce, config::choices(kLossReduceNames));
+    v("ray_work_items", s.ray_work_items, 1, 256);
   }
   // Throws ConfigError naming `where` and the key.
   void validate(const std::string& where = "device_profile") const;

@@ -41,6 +41,7 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(cpu.compaction == cl::CompactionScan::Host);
   CHECK(cpu.pose_grad == cl::PoseGrad::Host);
   CHECK(cpu.loss_reduce == cl::LossReduce::Host);
+  CHECK(cpu.ray_work_items == 1);
   const auto gpu = cl::gpu_profile();
   CHECK(gpu.name == "gpu");
   CHECK(gpu.local_size == 64);
@@ -52,6 +53,7 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(gpu.compaction == cl::CompactionScan::Device);
   CHECK(gpu.pose_grad == cl::PoseGrad::Device);
   CHECK(gpu.loss_reduce == cl::LossReduce::Device);
+  CHECK(gpu.ray_work_items == 32);
   CHECK(cl::automatic_profile(device_of_type("CPU")) == cpu);
   CHECK(cl::automatic_profile(device_of_type("GPU")) == gpu);
   CHECK(cl::automatic_profile(device_of_type("accelerator")) == gpu);
@@ -139,6 +141,14 @@ TEST_CASE("device profile files: keys over a base, strictly read", "[cl][device_
                                           R"({"name": "g", "base": "gpu", "pose_grad": "host"})"),
                             cpu_dev)
             .pose_grad == cl::PoseGrad::Host);
+  CHECK_THROWS_WITH(
+      cl::resolve_profile(write_profile("rwi.json", R"({"name": "r", "ray_work_items": 24})"),
+                          cpu_dev),
+      Contains("ray_work_items") && Contains("power of two"));
+  CHECK_THROWS_WITH(cl::resolve_profile(write_profile("rwi_big.json",
+                                                      R"({"name": "r", "local_size": 32, "ray_work_items": 64})"),
+                                        cpu_dev),
+                    Contains("ray_work_items") && Contains("local_size"));
   CHECK_THROWS_WITH(
       cl::resolve_profile(write_profile("loss.json", R"({"name": "l", "loss_reduce": "gpu"})"),
                           cpu_dev),
