@@ -26,6 +26,8 @@ const char* loss_reduce_name(LossReduce l) {
   return config::choices(kLossReduceNames).name_of(l);
 }
 
+const char* chamfer_name(ChamferSearch c) { return config::choices(kChamferNames).name_of(c); }
+
 void DeviceProfile::validate(const std::string& where) const {
   if (name.empty()) throw ConfigError(where + ": 'name' must not be empty");
   config::check_fields(*this, where);
@@ -66,6 +68,7 @@ DeviceProfile gpu_profile() {
   p.compaction = CompactionScan::Device;
   p.pose_grad = PoseGrad::Device;
   p.loss_reduce = LossReduce::Device;
+  p.chamfer = ChamferSearch::Device;
   p.ray_work_items = 32;
   return p;
 }

@@ -87,6 +87,18 @@ inline constexpr std::pair<LossReduce, const char*> kLossReduceNames[] = {
 
 const char* loss_reduce_name(LossReduce l);
 
+// LiDAR4D's Chamfer losses (the ray term's and the flow supervision's): host = the predicted
+// points and the flow read back, nearest neighbours by geometry::KdTree on the host, the
+// gradients written back (3 + 4 blocking transfers a step); device = brute-force nearest
+// neighbours in local-memory tiles, the gradients and the losses' fixed-tree sums on the device
+// (kernels/render/chamfer.cl), the values read only when asked (logged steps).
+enum class ChamferSearch { Host, Device };
+
+inline constexpr std::pair<ChamferSearch, const char*> kChamferNames[] = {
+    {ChamferSearch::Host, "host"}, {ChamferSearch::Device, "device"}};
+
+const char* chamfer_name(ChamferSearch c);
+
 struct DeviceProfile {
   std::string name = "cpu";
   // Work-group size of the 1-D element-wise kernels (global size rounded up to it).
@@ -127,6 +139,8 @@ struct DeviceProfile {
   PoseGrad pose_grad = PoseGrad::Host;
   // How the loss is summed and read (above).
   LossReduce loss_reduce = LossReduce::Host;
+  // Where LiDAR4D's Chamfer losses run (above).
+  ChamferSearch chamfer = ChamferSearch::Host;
   // Work-items that share one ray in the per-ray render, sampling and compaction kernels
   // (volume rendering's sums and their backward, the ray-gradient reduction, weight carving,
   // importance and surface sampling, early termination's counts): 1 = one work-item walks the
@@ -154,6 +168,7 @@ struct DeviceProfile {
     v("compaction", s.compaction, config::choices(kCompactionNames));
     v("pose_grad", s.pose_grad, config::choices(kPoseGradNames));
     v("loss_reduce", s.loss_reduce, config::choices(kLossReduceNames));
+    v("chamfer", s.chamfer, config::choices(kChamferNames));
     v("ray_work_items", s.ray_work_items, 1, 256);
   }
   // Throws ConfigError naming `where` and the key.

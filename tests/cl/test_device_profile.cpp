@@ -41,6 +41,7 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(cpu.compaction == cl::CompactionScan::Host);
   CHECK(cpu.pose_grad == cl::PoseGrad::Host);
   CHECK(cpu.loss_reduce == cl::LossReduce::Host);
+  CHECK(cpu.chamfer == cl::ChamferSearch::Host);
   CHECK(cpu.ray_work_items == 1);
   const auto gpu = cl::gpu_profile();
   CHECK(gpu.name == "gpu");
@@ -53,6 +54,7 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(gpu.compaction == cl::CompactionScan::Device);
   CHECK(gpu.pose_grad == cl::PoseGrad::Device);
   CHECK(gpu.loss_reduce == cl::LossReduce::Device);
+  CHECK(gpu.chamfer == cl::ChamferSearch::Device);
   CHECK(gpu.ray_work_items == 32);
   CHECK(cl::automatic_profile(device_of_type("CPU")) == cpu);
   CHECK(cl::automatic_profile(device_of_type("GPU")) == gpu);
@@ -70,6 +72,8 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(cpu.to_json()["pose_grad"] == "host");
   CHECK(gpu.to_json()["loss_reduce"] == "device");
   CHECK(cpu.to_json()["loss_reduce"] == "host");
+  CHECK(gpu.to_json()["chamfer"] == "device");
+  CHECK(cpu.to_json()["chamfer"] == "host");
   CHECK(cl::DeviceProfile::from_json(gpu.to_json(), "p", cpu) == gpu);
 }
 
@@ -153,6 +157,10 @@ TEST_CASE("device profile files: keys over a base, strictly read", "[cl][device_
       cl::resolve_profile(write_profile("loss.json", R"({"name": "l", "loss_reduce": "gpu"})"),
                           cpu_dev),
       Contains("loss_reduce") && Contains("device"));
+  CHECK_THROWS_WITH(
+      cl::resolve_profile(write_profile("chamfer.json", R"({"name": "c", "chamfer": "kdtree"})"),
+                          cpu_dev),
+      Contains("chamfer") && Contains("kdtree") && Contains("device"));
   CHECK_THROWS_WITH(
       cl::resolve_profile(write_profile("pose.json", R"({"name": "p", "pose_grad": "gpu"})"),
                           cpu_dev),
