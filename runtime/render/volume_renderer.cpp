@@ -1,4 +1,4 @@
-// VolumeRenderer: launchers of kernels/render/volume.cl.
+// VolumeRenderer: launchers of kernels/render/volume.cl and volume_slices.cl.
 #include "render/volume_renderer.hpp"
 
 #include <string>
@@ -9,13 +9,24 @@ namespace sgnlf::render {
 
 VolumeRenderer::VolumeRenderer(cl::Runtime& rt, const RenderConfig& cfg, float scene_scale)
     : last_delta_(cfg.bin_width(scene_scale)),
-      fwd_k_(rt.kernel("render/volume.cl", "render_volume_fwd")),
-      weights_k_(rt.kernel("render/volume.cl", "render_volume_weights")),
-      bwd_k_(rt.kernel("render/volume.cl", "render_volume_bwd")),
+      slices_(rt.device_profile()),
+      fwd_k_(slices_.sliced() ? rt.kernel("render/volume_slices.cl", "render_volume_fwd_slices",
+                                           slices_.defines())
+                              : rt.kernel("render/volume.cl", "render_volume_fwd")),
+      weights_k_(slices_.sliced() ? rt.kernel("render/volume_slices.cl",
+                                               "render_volume_weights_slices", slices_.defines())
+                                  : rt.kernel("render/volume.cl", "render_volume_weights")),
+      bwd_k_(slices_.sliced() ? rt.kernel("render/volume_slices.cl", "render_volume_bwd_slices",
+                                           slices_.defines())
+                              : rt.kernel("render/volume.cl", "render_volume_bwd")),
       median_k_(rt.kernel("render/volume.cl", "render_median_depth")),
       spread_k_(rt.kernel("render/volume.cl", "render_depth_spread")) {
   cfg.validate("VolumeRenderer");
   require(scene_scale > 0.0f, "VolumeRenderer: scene_scale must be positive");
+}
+
+cl::Event VolumeRenderer::launch(cl::Kernel& k, int n_rays, const char* what) {
+  return slices_.sliced() ? slices_.launch(k, n_rays, what) : launch_1d(k, size_t(n_rays));
 }
 
 void VolumeRenderer::check(const char* what, const cl::Buffer& t, const cl::Buffer& h0, int n_rays,
@@ -37,7 +48,7 @@ cl::Event VolumeRenderer::forward(const cl::Buffer& t, const cl::Buffer& h0, con
   check_floats(out, 3 * size_t(n_rays), "VolumeRenderer::forward out");
   check_floats(weights, n, "VolumeRenderer::forward weights");
   fwd_k_.set_args(n_rays, n_samples, last_delta_, t, h0, head, out, weights);
-  return launch_1d(fwd_k_, size_t(n_rays));
+  return launch(fwd_k_, n_rays, "VolumeRenderer::forward");
 }
 
 cl::Event VolumeRenderer::weights(const cl::Buffer& t, const cl::Buffer& h0, int n_rays,
@@ -45,7 +56,7 @@ cl::Event VolumeRenderer::weights(const cl::Buffer& t, const cl::Buffer& h0, int
   check("weights", t, h0, n_rays, n_samples);
   check_floats(weights, size_t(n_rays) * n_samples, "VolumeRenderer::weights weights");
   weights_k_.set_args(n_rays, n_samples, last_delta_, t, h0, weights);
-  return launch_1d(weights_k_, size_t(n_rays));
+  return launch(weights_k_, n_rays, "VolumeRenderer::weights");
 }
 
 cl::Event VolumeRenderer::backward(const cl::Buffer& t, const cl::Buffer& h0,
@@ -61,7 +72,7 @@ cl::Event VolumeRenderer::backward(const cl::Buffer& t, const cl::Buffer& h0,
   check_floats(grad_head, 2 * n, "VolumeRenderer::backward grad_head");
   bwd_k_.set_args(n_rays, n_samples, last_delta_, t, h0, head, weights, grad_out, grad_h0,
                   grad_head);
-  return launch_1d(bwd_k_, size_t(n_rays));
+  return launch(bwd_k_, n_rays, "VolumeRenderer::backward");
 }
 
 cl::Event VolumeRenderer::median_depth(const cl::Buffer& t, const cl::Buffer& weights, int n_rays,

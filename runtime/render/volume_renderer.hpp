@@ -3,9 +3,14 @@
 // become per-ray (depth, return probability, intensity) (n_rays x 3), with the sample
 // weights; the backward turns dL/d(depth, prob, intensity) into dL/dh0 (N) and dL/dhead
 // (N x 2). trunc_exp and the sigmoids are applied inside. The last sample's δ is the uniform
-// bin width (far − near)/n_samples (torch-ngp / LiDAR-NeRF). Calls only enqueue.
+// bin width (far − near)/n_samples (torch-ngp / LiDAR-NeRF). The device profile's
+// ray_work_items chooses the forward's, weights' and backward's kernels when the renderer is
+// made: 1 = kernels/render/volume.cl (one work-item per ray), more = kernels/render/
+// volume_slices.cl (a slice of that many work-items per ray; render/ray_slices.hpp). The median
+// depth and the depth spread (evaluation only) run volume.cl's in both. Calls only enqueue.
 #pragma once
 #include "cl/runtime.hpp"
+#include "render/ray_slices.hpp"
 #include "render/render_config.hpp"
 
 namespace sgnlf::render {
@@ -40,7 +45,9 @@ class VolumeRenderer {
  private:
   void check(const char* what, const cl::Buffer& t, const cl::Buffer& h0, int n_rays,
              int n_samples) const;
+  cl::Event launch(cl::Kernel& k, int n_rays, const char* what);
   float last_delta_;
+  RaySlices slices_;
   cl::Kernel fwd_k_, weights_k_, bwd_k_, median_k_, spread_k_;
 };
 
