@@ -1,4 +1,4 @@
-// RayGradReducer: launcher of kernels/render/ray_grad.cl.
+// RayGradReducer: launcher of kernels/render/ray_grad.cl and ray_grad_slices.cl.
 #include "render/ray_gradient.hpp"
 
 #include "render/launch.hpp"
@@ -6,8 +6,11 @@
 namespace sgnlf::render {
 
 RayGradReducer::RayGradReducer(cl::Runtime& rt)
-    : k_(rt.kernel("render/ray_grad.cl", "render_raygrad_reduce")),
-      rows_(rt.kernel("render/ray_grad.cl", "render_raygrad_reduce_rows")) {}
+    : slices_(rt.device_profile()),
+      k_(rt.kernel("render/ray_grad.cl", "render_raygrad_reduce")),
+      rows_(slices_.sliced() ? rt.kernel("render/ray_grad_slices.cl",
+                                         "render_raygrad_reduce_rows_slices", slices_.defines())
+                             : rt.kernel("render/ray_grad.cl", "render_raygrad_reduce_rows")) {}
 
 cl::Event RayGradReducer::reduce(const cl::Buffer& t, const cl::Buffer& grad_x, int n_rays,
                                  int n_samples, cl::Buffer& grad_o, cl::Buffer& grad_d) {
@@ -39,6 +42,7 @@ cl::Event RayGradReducer::reduce_rows(const cl::Buffer* offset, const cl::Buffer
   // Without an offset table the kernel never reads it; any valid buffer fills the slot.
   rows_.set_args(n_rays, M, bound, offset ? 1 : 0, offset ? *offset : t, t, o, d, grad_x, grad_o,
                  grad_d);
+  if (slices_.sliced()) return slices_.launch(rows_, n_rays, "RayGradReducer::reduce_rows");
   return launch_1d(rows_, size_t(n_rays));
 }
 

@@ -1,8 +1,11 @@
 // Per-ray gradient of the sample positions x_i = o + t_i d (kernels/render/ray_grad.cl):
 // dL/do = Σ_i dL/dx_i and dL/dd = Σ_i t_i dL/dx_i, in a fixed order. The pipeline adds the
 // direction encoding's gradient to dL/dd and hands both to pose_gradient() (pose-free methods).
+// reduce_rows runs kernels/render/ray_grad_slices.cl under a device profile whose ray_work_items
+// is above 1 (a slice of work-items per ray; render/ray_slices.hpp), ray_grad.cl's otherwise.
 #pragma once
 #include "cl/runtime.hpp"
+#include "render/ray_slices.hpp"
 
 namespace sgnlf::render {
 
@@ -21,6 +24,7 @@ class RayGradReducer {
                         float bound, cl::Buffer& grad_o, cl::Buffer& grad_d);
 
  private:
+  RaySlices slices_;
   cl::Kernel k_, rows_;
 };
 

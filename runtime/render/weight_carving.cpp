@@ -1,4 +1,5 @@
-// WeightCarving: launcher of render_weight_carve (kernels/render/surface.cl).
+// WeightCarving: launcher of render_weight_carve (kernels/render/surface.cl) and of
+// render_weight_carve_slices (kernels/render/weight_carve_slices.cl).
 #include "render/weight_carving.hpp"
 
 #include <algorithm>
@@ -13,8 +14,11 @@ WeightCarving::WeightCarving(cl::Runtime& rt, const RenderConfig& cfg, float sce
       near_(cfg.near_m * scene_scale),
       last_delta_(cfg.bin_width(scene_scale)),
       max_rays_(max_rays),
+      slices_(rt.device_profile()),
       terms_(rt, size_t(std::max(1, max_rays)) * sizeof(float)),
-      k_(rt.kernel("render/surface.cl", "render_weight_carve")) {
+      k_(slices_.sliced() ? rt.kernel("render/weight_carve_slices.cl",
+                                      "render_weight_carve_slices", slices_.defines())
+                          : rt.kernel("render/surface.cl", "render_weight_carve")) {
   cfg_.validate("WeightCarving");
   require(scene_scale > 0.0f, "WeightCarving: scene_scale must be positive");
   require(max_rays > 0, "WeightCarving: max_rays must be positive");
@@ -35,6 +39,7 @@ cl::Event WeightCarving::add(const cl::Buffer& t, const cl::Buffer& h0, const cl
   n_rays_ = n_rays;
   const float scale = cfg_.weights.carve / float(n_rays);
   k_.set_args(n_rays, M, last_delta_, near_, half_w, scale, t, h0, weights, target, g_h0, terms_);
+  if (slices_.sliced()) return slices_.launch(k_, n_rays, "WeightCarving::add");
   return launch_1d(k_, size_t(n_rays));
 }
 

@@ -3,9 +3,12 @@
 // the surface band's half-width from the ray's return. It drives the weight of free space and
 // of the space behind the return to zero, so the field becomes opaque at the surface instead of
 // meeting the expected depth Σ w·t with weight spread around it. Rays without a return carry
-// none. Every call only enqueues; read() blocks.
+// none. Every call only enqueues; read() blocks. Under a device profile whose ray_work_items is
+// above 1 the kernel is kernels/render/weight_carve_slices.cl (a slice of work-items per ray;
+// render/ray_slices.hpp), surface.cl's render_weight_carve otherwise.
 #pragma once
 #include "cl/runtime.hpp"
+#include "render/ray_slices.hpp"
 #include "render/render_config.hpp"
 
 namespace sgnlf::render {
@@ -29,6 +32,7 @@ class WeightCarving {
   RenderConfig cfg_;
   float near_, last_delta_;
   int max_rays_, n_rays_ = 0;
+  RaySlices slices_;
   cl::Buffer terms_;
   cl::Kernel k_;
 };
