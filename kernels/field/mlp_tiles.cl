@@ -6,8 +6,10 @@
 // operands in local memory, each work-item keeping a BLK_R x BLK_C register block of scalar
 // floats (mlp.cl's work-items keep 8 x 16 floats in float16 vectors and read global memory
 // directly: right for PoCL's AVX-512 cores, spilled registers and few work-items on a GPU).
+// The register-block loop and the chunk tree are kernels/common/gemm_tile.clh's, shared with
+// kernels/conv/conv2d_tiles.cl.
 //
-// Tile defines (set by runtime/field/mlp.cpp from the profile's gemm_* keys):
+// Tile defines (runtime/cl/gemm_tiles.hpp, from the profile's gemm_* keys):
 //   TILE_K: depth of a local tile (inputs in the forward, outputs in d_in, points in the
 //   weight gradient); BLK_R, BLK_C: the register block (rows x columns); per kernel FWD_, BIN_,
 //   WGT_ + TC (columns of the work-group's tile, a multiple of 16) and LR (work-items along the
@@ -25,6 +27,7 @@
 // tower skips the other towers' inputs as mlp.cl does (TOWER_OUT, resp. TOWER_IN for d_in, a
 // multiple of the tile's TC); a tile across towers computes the dense product (the off-tower
 // weights are zero, so the results are the same, only the work is not saved).
+#include "common/gemm_tile.clh"
 #include "field/mlp_layer.clh"
 
 // mlp.cl's activations, per float.
@@ -104,17 +107,9 @@ __kernel __attribute__((reqd_work_group_size(FWD_LC, FWD_LR, 1))) void field_mlp
       w_tile[k][c] = (k < kn && c0 + c < OUT_PAD) ? W[(k0 + k) * OUT_PAD + c0 + c] : 0.0f;
     }
     barrier(CLK_LOCAL_MEM_FENCE);
-    for (int k = 0; k < kn; ++k) {
-      float bv[BLK_C];
-#pragma unroll
-      for (int b = 0; b < BLK_C; ++b) bv[b] = w_tile[k][lc + FWD_LC * b];
-#pragma unroll
-      for (int a = 0; a < BLK_R; ++a) {
-        const float x = a_tile[lr + FWD_LR * a][k];
-#pragma unroll
-        for (int b = 0; b < BLK_C; ++b) acc[a][b] = fma(x, bv[b], acc[a][b]);
-      }
-    }
+#define FWD_A(r, k) a_tile[r][k]
+#define FWD_B(k, c) w_tile[k][c]
+    GEMM_TILE_MAC(acc, kn, FWD_A, FWD_B, FWD_LR, FWD_LC, lr, lc);
     barrier(CLK_LOCAL_MEM_FENCE);
   }
   // Hidden layers (OUT_STRIDE = OUT_PAD) write their padding columns too, as mlp.cl does.
@@ -185,10 +180,7 @@ __kernel __attribute__((reqd_work_group_size(WGT_LC, WGT_LR, 1))) void field_mlp
   }
 #endif
   float acc[BLK_R][BLK_C];
-#pragma unroll
-  for (int a = 0; a < BLK_R; ++a)
-#pragma unroll
-    for (int b = 0; b < BLK_C; ++b) acc[a][b] = 0.0f;
+  GEMM_BLOCK_FILL(acc, 0.0f);
   for (int q0 = begin; q0 < end; q0 += TILE_K) {
     const int kn = min(TILE_K, end - q0);
     for (int t = lid; t < TILE_K * WGT_TR; t += WGT_WG) {
@@ -205,17 +197,9 @@ __kernel __attribute__((reqd_work_group_size(WGT_LC, WGT_LR, 1))) void field_mlp
       d_tile[k][c] = (k < kn && o < OUT_PAD) ? d_pre[(size_t)(q0 + k) * OUT_PAD + o] : 0.0f;
     }
     barrier(CLK_LOCAL_MEM_FENCE);
-    for (int k = 0; k < kn; ++k) {
-      float bv[BLK_C];
-#pragma unroll
-      for (int b = 0; b < BLK_C; ++b) bv[b] = d_tile[k][lc + WGT_LC * b];
-#pragma unroll
-      for (int a = 0; a < BLK_R; ++a) {
-        const float x = a_tile[k][lr + WGT_LR * a];
-#pragma unroll
-        for (int b = 0; b < BLK_C; ++b) acc[a][b] = fma(x, bv[b], acc[a][b]);
-      }
-    }
+#define WGT_A(r, k) a_tile[k][r]
+#define WGT_B(k, c) d_tile[k][c]
+    GEMM_TILE_MAC(acc, kn, WGT_A, WGT_B, WGT_LR, WGT_LC, lr, lc);
     barrier(CLK_LOCAL_MEM_FENCE);
   }
 #pragma unroll
@@ -229,26 +213,14 @@ __kernel __attribute__((reqd_work_group_size(WGT_LC, WGT_LR, 1))) void field_mlp
 }
 
 // Weight gradient, phase 2: grad[w_off + k] = Σ_c partial[c][k] (overwrites), in a fixed
-// order: lane l of REDUCE_LANES sums chunks l, l + REDUCE_LANES, ... in order, then the lanes
-// are added in a fixed tree. Work-groups of 16 weights x REDUCE_LANES lanes; global
-// (round_up((N_IN + 1) * OUT_PAD, 16), REDUCE_LANES).
-#define REDUCE_LANES 16
-__kernel __attribute__((reqd_work_group_size(16, REDUCE_LANES, 1))) void field_mlp_bwd_reduce(
-    const int n_chunks, __global const float* partial, __global float* grad, const uint w_off) {
-  __local float sums[REDUCE_LANES][16];
-  const int lk = get_local_id(0), lane = get_local_id(1);
-  const int k = get_global_id(0);
-  const int count = (N_IN + 1) * OUT_PAD;
-  float s = 0.0f;
-  if (k < count)
-    for (int c = lane; c < n_chunks; c += REDUCE_LANES) s += partial[(size_t)c * count + k];
-  sums[lane][lk] = s;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  for (int h = REDUCE_LANES / 2; h > 0; h /= 2) {
-    if (lane < h) sums[lane][lk] += sums[lane + h][lk];
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
-  if (lane == 0 && k < count) grad[w_off + k] = sums[0][lk];
+// order (gemm_reduce_chunks: lane l of GEMM_REDUCE_LANES sums chunks l, l + LANES, ... in
+// order, then the lanes add in a fixed tree). Global (round_up((N_IN + 1) * OUT_PAD, 16),
+// GEMM_REDUCE_LANES).
+__kernel __attribute__((reqd_work_group_size(16, GEMM_REDUCE_LANES, 1))) void
+field_mlp_bwd_reduce(const int n_chunks, __global const float* partial, __global float* grad,
+                     const uint w_off) {
+  __local float sums[GEMM_REDUCE_LANES * 16];
+  gemm_reduce_chunks(n_chunks, (N_IN + 1) * OUT_PAD, partial, grad, w_off, sums);
 }
 
 // Input backward: d_in = d_pre · W (W_t read transposed into local memory: no transpose
@@ -270,10 +242,7 @@ __kernel __attribute__((reqd_work_group_size(BIN_LC, BIN_LR, 1))) void field_mlp
   const int c0 = get_group_id(0) * BIN_TC, p0 = get_group_id(1) * BIN_TR;
   __global const float* W = params + w_off;
   float acc[BLK_R][BLK_C];
-#pragma unroll
-  for (int a = 0; a < BLK_R; ++a)
-#pragma unroll
-    for (int b = 0; b < BLK_C; ++b) acc[a][b] = 0.0f;
+  GEMM_BLOCK_FILL(acc, 0.0f);
 #if BIN_TOWER
   const int o_lo = (c0 / TOWER_IN) * TOWER_OUT, o_hi = min(OUT, o_lo + TOWER_OUT);
 #else
@@ -290,17 +259,9 @@ __kernel __attribute__((reqd_work_group_size(BIN_LC, BIN_LR, 1))) void field_mlp
       w_tile[k][c] = (k < kn && i < N_IN) ? W[i * OUT_PAD + k0 + k] : 0.0f;
     }
     barrier(CLK_LOCAL_MEM_FENCE);
-    for (int k = 0; k < kn; ++k) {
-      float bv[BLK_C];
-#pragma unroll
-      for (int b = 0; b < BLK_C; ++b) bv[b] = w_tile[k][lc + BIN_LC * b];
-#pragma unroll
-      for (int a = 0; a < BLK_R; ++a) {
-        const float x = d_tile[lr + BIN_LR * a][k];
-#pragma unroll
-        for (int b = 0; b < BLK_C; ++b) acc[a][b] = fma(x, bv[b], acc[a][b]);
-      }
-    }
+#define BIN_A(r, k) d_tile[r][k]
+#define BIN_B(k, c) w_tile[k][c]
+    GEMM_TILE_MAC(acc, kn, BIN_A, BIN_B, BIN_LR, BIN_LC, lr, lc);
     barrier(CLK_LOCAL_MEM_FENCE);
   }
 #pragma unroll

@@ -59,11 +59,22 @@ Conv2d::Conv2d(cl::Runtime& rt, const Conv2dSpec& spec)
                           d("O_PAD", spec_.out_cs()) + d("K", spec_.kernel) +
                           d("S", spec_.stride) + d("P", spec_.pad) + d("PTS", kPts) +
                           d("ROWS", kRows);
-  opt_ = d("C_IN", spec_.c_in) + d("IN_CS", spec_.input_cs()) + d("IN_PAD", pad16(spec_.c_in)) +
-         d("C_OUT", spec_.c_out) + d("O_PAD", spec_.out_cs()) + d("K", spec_.kernel) +
-         d("S", spec_.stride) + d("P", spec_.pad);
   if (tiles_) {  // local_tiles: kernels/conv/conv2d_tiles.cl (the 1 x 1 block on first use)
-    tiled(false);  // the profile's tiles checked against the device here
+    cl::GemmKernels::Source src;
+    src.what = "Conv2d";
+    src.file = "conv/conv2d_tiles.cl";
+    src.fwd = "conv2d_fwd_tiles";
+    src.bwd_in = "conv2d_bwd_in_tiles";
+    src.wgt = "conv2d_bwd_wgt_tiles";
+    src.opt = d("C_IN", spec_.c_in) + d("IN_CS", spec_.input_cs()) +
+              d("IN_PAD", pad16(spec_.c_in)) + d("C_OUT", spec_.c_out) +
+              d("O_PAD", spec_.out_cs()) + d("K", spec_.kernel) + d("S", spec_.stride) +
+              d("P", spec_.pad);
+    src.widths = {spec_.out_cs(), pad16(spec_.c_in), spec_.out_cs()};
+    src.tables = 3;  // pixel tables: image offset, y and x per tile row (per pixel slot)
+    gemm_ = cl::GemmKernels(rt_, profile_, src);
+    // The profile's tiles checked against the device here.
+    reduce_tiles_ = rt_.kernel(src.file, "conv2d_bwd_reduce_tiles", gemm_.get(false).opt);
     return;
   }
   const std::string f = "conv/conv2d.cl", fn = "conv/conv2d_narrow.cl";
@@ -82,42 +93,6 @@ Conv2d::Conv2d(cl::Runtime& rt, const Conv2dSpec& spec)
   zeros_ = cl::Buffer::from(rt_, std::vector<float>(zeros, 0.0f));
   wt_ = cl::Buffer(rt_, size_t(spec_.kernel) * spec_.kernel * spec_.c_out * pad16(spec_.c_in) *
                             sizeof(float));
-}
-
-Conv2d::Tiled& Conv2d::tiled(bool small) {
-  Tiled& t = tiled_[small ? 1 : 0];
-  if (t.built) return t;
-  t.block_rows = small ? 1 : profile_.gemm_block_rows;
-  t.block_cols = small ? 1 : profile_.gemm_block_cols;
-  const int tile = small ? 16 : profile_.gemm_tile;
-  t.f = cl::gemm_tile(profile_, spec_.out_cs(), tile, t.block_rows, t.block_cols);
-  t.b = cl::gemm_tile(profile_, pad16(spec_.c_in), tile, t.block_rows, t.block_cols);
-  t.w = cl::gemm_tile(profile_, spec_.out_cs(), tile, t.block_rows, t.block_cols);
-  // Local memory of each kernel (conv2d_tiles.cl's tiles and pixel tables), in floats.
-  const size_t k = size_t(profile_.gemm_tile_k);
-  const size_t floats = std::max({size_t(t.f.tr) * (k + 1) + k * t.f.tc + 3 * size_t(t.f.tr),
-                                  size_t(t.b.tr) * (k + 1) + k * (t.b.tc + 1) + 3 * size_t(t.b.tr),
-                                  k * (t.w.tr + 1) + k * t.w.tc + 3 * k});
-  cl::check_gemm_fit(rt_, "Conv2d", floats, t.f, t.b, t.w);
-  const auto d = cl::gemm_define;
-  const std::string opt = opt_ + d("TILE_K", profile_.gemm_tile_k) + d("BLK_R", t.block_rows) +
-                          d("BLK_C", t.block_cols) + d("FWD_TC", t.f.tc) + d("FWD_LR", t.f.lr) +
-                          d("BIN_TC", t.b.tc) + d("BIN_LR", t.b.lr) + d("WGT_TC", t.w.tc) +
-                          d("WGT_LR", t.w.lr);
-  const std::string f = "conv/conv2d_tiles.cl";
-  t.fwd = rt_.kernel(f, "conv2d_fwd_tiles", opt);
-  t.bwd_in = rt_.kernel(f, "conv2d_bwd_in_tiles", opt);
-  t.wgt = rt_.kernel(f, "conv2d_bwd_wgt_tiles", opt);
-  if (!reduce_tiles_built_) {
-    reduce_tiles_ = rt_.kernel(f, "conv2d_bwd_reduce_tiles", opt);
-    reduce_tiles_built_ = true;
-  }
-  t.built = true;
-  return t;
-}
-
-Conv2d::Tiled& Conv2d::pick(size_t work_items_main) {
-  return tiled(work_items_main < size_t(profile_.gemm_min_work_items));
 }
 
 void Conv2d::init_params(std::vector<float>& host_params, size_t offset, uint64_t seed,
@@ -168,11 +143,10 @@ void Conv2d::forward(const cl::Buffer& params, size_t offset, const cl::Buffer& 
   }
   if (tiles_) {
     const size_t pixels = size_t(n) * ho * wo, cols = size_t(spec_.out_cs());
-    Tiled& t = pick(tiled(false).f.work_items(pixels, cols));
+    auto& t = gemm_.pick(gemm_.main().f.work_items(pixels, cols));
     t.fwd.set_args(n, h, w, ho, wo, params, uint32_t(offset), in, out, int(act_out != nullptr),
                    slope, act_out ? *act_out : out);
-    const auto g = t.f.global(pixels, cols);
-    t.fwd.launch({g[0], g[1]}, {size_t(t.f.lc), size_t(t.f.lr)});
+    cl::launch_gemm(t.fwd, t.shapes.f, pixels, cols);
     return;
   }
   const size_t tiles = size_t(n) * ho * ceil_div(size_t(wo), kPts);
@@ -214,13 +188,11 @@ void Conv2d::backward(const cl::Buffer& params, size_t offset, const cl::Buffer&
     if (tiles_) {
       const size_t w_rows = size_t(spec_.kernel) * spec_.kernel * spec_.c_in + 1;  // + bias
       const size_t cols = size_t(spec_.out_cs());
-      Tiled& t = pick(tiled(false).w.work_items(w_rows, cols) * size_t(chunks));
+      auto& t = gemm_.pick(gemm_.main().w.work_items(w_rows, cols) * size_t(chunks));
       t.wgt.set_args(n, h, w, ho, wo, per, in, d_out, partial_);
-      const auto g = t.w.global(w_rows, cols);
-      t.wgt.launch({g[0], g[1], size_t(chunks)}, {size_t(t.w.lc), size_t(t.w.lr), 1});
+      cl::launch_gemm_chunks(t.wgt, t.shapes.w, w_rows, cols, size_t(chunks));
       reduce_tiles_.set_args(chunks, partial_, *grad, uint32_t(grad_offset));
-      // Work-groups of 16 weights x GEMM_REDUCE_LANES (16) lanes (kernels/common/gemm_tile.clh).
-      reduce_tiles_.launch({cl::round_up(count, 16), 16}, {16, 16});
+      cl::launch_gemm_reduce(reduce_tiles_, count);
     } else {
       const size_t rows = size_t(spec_.kernel) * spec_.kernel * spec_.c_in;
       const size_t row_blocks = ceil_div(rows, kRows) + 1;  // + the bias row block
@@ -244,11 +216,11 @@ void Conv2d::backward(const cl::Buffer& params, size_t offset, const cl::Buffer&
       // Rows: the S² residue classes of input pixels, each n · ceil(h / S) · ceil(w / S) slots.
       const size_t per_class = size_t(n) * ceil_div(size_t(h), size_t(s)) *
                                ceil_div(size_t(w), size_t(s));
-      const size_t main_items = size_t(s) * s * tiled(false).b.work_items(per_class, size_t(ip));
-      Tiled& t = pick(main_items);
+      const size_t main_items = size_t(s) * s * gemm_.main().b.work_items(per_class, size_t(ip));
+      auto& t = gemm_.pick(main_items);
       t.bwd_in.set_args(n, h, w, ho, wo, params, uint32_t(offset), d_out, *d_in);
-      const auto g = t.b.global(per_class, size_t(ip));
-      t.bwd_in.launch({g[0], size_t(s) * s * g[1]}, {size_t(t.b.lc), size_t(t.b.lr)});
+      const auto g = t.shapes.b.global(per_class, size_t(ip));
+      t.bwd_in.launch({g[0], size_t(s) * s * g[1]}, {size_t(t.shapes.b.lc), size_t(t.shapes.b.lr)});
       return;
     }
     const size_t txr = ceil_div(ceil_div(size_t(w), size_t(s)), kPts);

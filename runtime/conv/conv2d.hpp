@@ -103,23 +103,12 @@ class Conv2d {
   bool narrow_ = false;
   bool narrow_in_ = false;  // c_in <= 4: input backward vectorised over output channels
   cl::Kernel fwd_, transpose_, bwd_in_, bwd_wgt_, reduce_;
-  // local_tiles: the GEMM kernels of one register block (the profile's [0], 1 x 1 [1]), built
-  // on first use.
-  struct Tiled {
-    bool built = false;
-    int block_rows = 1, block_cols = 1;
-    cl::GemmTile f, b, w;  // forward, input backward, weight gradient
-    cl::Kernel fwd, bwd_in, wgt;
-  };
-  Tiled& tiled(bool small);
-  // The profile's block, or the 1 x 1 one when the profile's gives under gemm_min_work_items.
-  Tiled& pick(size_t work_items_main);
   bool tiles_ = false;
   cl::DeviceProfile profile_;
-  std::string opt_;  // the shape defines
-  Tiled tiled_[2];
-  cl::Kernel reduce_tiles_;  // the chunk partials' fixed tree (block-independent)
-  bool reduce_tiles_built_ = false;
+  // local_tiles: the GEMM kernels of the profile's register block and of the 1 x 1 block
+  // (cl/gemm_tiles.hpp), and the chunk partials' fixed tree (block-independent).
+  cl::GemmKernels gemm_;
+  cl::Kernel reduce_tiles_;
   cl::Buffer zeros_, wt_, partial_;
   size_t partial_floats_ = 0;
 };

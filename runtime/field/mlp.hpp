@@ -47,6 +47,7 @@
 #include <utility>
 #include <vector>
 
+#include "cl/gemm_tiles.hpp"
 #include "cl/runtime.hpp"
 #include "core/config_fwd.hpp"
 #include "field/activation.hpp"
@@ -133,37 +134,18 @@ class Mlp {
                 cl::Buffer* d_group_in = nullptr);
 
  private:
-  // A local_tiles kernel's work-group (kernels/field/mlp_tiles.cl): lc x lr work-items, the
-  // tile tr = lr x block rows by tc = lc x block columns.
-  struct TileShape {
-    int tc = 16, lc = 16, lr = 1, tr = 1;
-    size_t work_items(size_t rows, size_t cols) const;  // of a launch over rows x cols
-  };
-  // A layer's GEMM kernels with one register block (local_tiles): forward, d_in, weights.
-  struct Tiled {
-    bool built = false;
-    int block_rows = 1, block_cols = 1;
-    cl::Kernel fwd, bwd_in, wgt;
-    TileShape f, b, w;  // forward (over out_pad), d_in (over pad16(n_in)), weights (out_pad)
-  };
   struct Layer {
     int n_in, in_stride, out, out_pad, out_stride;
     int n_rows;  // parameter rows before the bias: n_in, + n_in_group for layer 0
     Activation act;
     bool store_pre;
     cl::Kernel fwd, bwd_out, wgt, reduce, transpose, bwd_in, group_sum;
-    // local_tiles: the feature defines, and the GEMM kernels of the profile's block [0] and
-    // of the 1 x 1 block [1] (in place of fwd, bwd_in, wgt and transpose above).
-    std::string opt;
-    Tiled tiled[2];
+    // local_tiles: the GEMM kernels of the profile's register block and of the 1 x 1 block
+    // (cl/gemm_tiles.hpp; in place of fwd, bwd_in, wgt and transpose above): forward over
+    // out_pad columns, d_in over pad16(n_in), the weight gradient over out_pad.
+    cl::GemmKernels gemm;
   };
   bool local_tiles() const { return profile_.gemm == cl::GemmVariant::LocalTiles; }
-  // local_tiles: the kernels for a launch of `work_items` with the profile's block, built on
-  // first use (small: the 1 x 1 block).
-  Tiled& tiled(Layer& L, bool small);
-  TileShape tile_shape(int width, int tile, int block_rows, int block_cols) const;
-  std::string tile_defines(const Tiled& t) const;
-  Tiled& pick(Layer& L, size_t work_items_main);
   size_t chunks(size_t rows) const;  // weight-gradient chunks for `rows` points
   // Whether W_t[i][o] of layer l is a structurally zero off-tower weight (never the bias row).
   bool off_tower(size_t l, int i, int o) const;
