@@ -2,6 +2,7 @@
 #include "pipeline/model/loss_terms.hpp"
 
 #include "render/chamfer_loss.hpp"
+#include "render/device_chamfer.hpp"
 
 namespace sgnlf::pipeline {
 namespace {
@@ -59,13 +60,26 @@ class PatchGradientTerm final : public LossTerm {
   int per_patch_;
 };
 
-// LiDAR4D's Chamfer term on the batch's ray endpoints (method.md §2; host: one read of the
-// outputs and the gradient, one write).
+// LiDAR4D's Chamfer term on the batch's ray endpoints (method.md §2). Host: one read of the
+// outputs and the gradient, geometry::KdTree's neighbours, one write. Device (the profile's
+// chamfer: device): render::DeviceChamfer on the model's output, target and direction buffers,
+// the gradient added there and the value left in a device float, read only by value().
 class ChamferTerm final : public LossTerm {
  public:
-  ChamferTerm(float scale, float weight) : scale_(scale), weight_(weight) {}
+  ChamferTerm(float scale, float weight, cl::Runtime* device) : scale_(scale), weight_(weight) {
+    if (!device) return;
+    device_ = std::make_unique<render::DeviceChamfer>(*device);
+    value_ = cl::Buffer(*device, sizeof(float));
+  }
   const char* name() const override { return "chamfer"; }
   void add_output_gradient(LossPass& p) override {
+    if (device_) {
+      require(p.directions != nullptr, "ChamferTerm: the pass has no device directions");
+      device_->ray(*p.directions, p.out, p.target, p.n_rays, scale_, weight_, p.grad_out, value_,
+                   0);
+      on_device_ = true;
+      return;
+    }
     const RayBatch& b = p.batch;
     const int R = b.n_rays;
     const std::vector<float> out = p.out.read_vec<float>(size_t(R) * 3);
@@ -85,11 +99,17 @@ class ChamferTerm final : public LossTerm {
     last_ = c.loss;
   }
   void read(render::LossValues&) const override {}
-  double value() const override { return last_; }
+  // Device: one blocking read of the value (a logged step's).
+  double value() const override {
+    return on_device_ ? double(value_.read_vec<float>(1)[0]) : last_;
+  }
 
  private:
   float scale_, weight_;
   double last_ = 0.0;
+  std::unique_ptr<render::DeviceChamfer> device_;
+  cl::Buffer value_;
+  bool on_device_ = false;
 };
 
 // NeuRAD's weight carving (render::WeightCarving): adds to the σ-logit gradient. Its value: the
@@ -135,13 +155,15 @@ std::vector<std::unique_ptr<LossTerm>> make_loss_terms(const TrainConfig& c, flo
                                                         render::RangeLoss& range,
                                                         const cl::Buffer& loss_buf,
                                                         render::WeightCarving* carve,
-                                                        bool device_sums) {
+                                                        bool device_sums,
+                                                        cl::Runtime* device_chamfer) {
   std::vector<std::unique_ptr<LossTerm>> terms;
   terms.push_back(std::make_unique<RangeTerm>(range, loss_buf));
   terms.push_back(std::make_unique<PatchGradientTerm>(
       range, loss_buf, c.render.patch_rows * c.render.patch_cols));
   if (c.lidar4d && c.lidar4d->chamfer_weight > 0.0)
-    terms.push_back(std::make_unique<ChamferTerm>(scene_scale, float(c.lidar4d->chamfer_weight)));
+    terms.push_back(std::make_unique<ChamferTerm>(scene_scale, float(c.lidar4d->chamfer_weight),
+                                                  device_chamfer));
   if (carve)
     terms.push_back(std::make_unique<CarveTerm>(*carve, c.render, scene_scale, range, loss_buf,
                                                 device_sums));

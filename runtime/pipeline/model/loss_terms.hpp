@@ -32,6 +32,9 @@ struct LossPass {
   const cl::Buffer &out, &target, &t, &h0, &weights;
   cl::Buffer &grad_out, &terms, &loss_buf;  // grad_out: n_rays × 3; loss_buf: kLossBufferFloats
   cl::Buffer& g_h0;                          // n_rays × per_ray, the renderer's dL/dh0
+  // The batch's world directions on the device (n_rays × 3; the Chamfer term under the device
+  // profile's chamfer: device reads them there).
+  const cl::Buffer* directions = nullptr;
 };
 
 class LossTerm {
@@ -60,11 +63,14 @@ class LossTerm {
 // `loss_buf` is the buffer the passes' loss_buf will be (the range and patch terms' values);
 // `carve` is null when the config has no carving. Both, and `range`, must outlive the terms.
 // `device_sums`: the device profile's loss_reduce is device (carving's terms summed into
-// loss_buf[kCarveSlot] on the device).
+// loss_buf[kCarveSlot] on the device). `device_chamfer`: the device profile's chamfer is device
+// (the Chamfer term's neighbours, gradient and value on that runtime's device, its value read
+// only when asked; null: on the host, 3 blocking transfers a pass).
 std::vector<std::unique_ptr<LossTerm>> make_loss_terms(const TrainConfig& c, float scene_scale,
                                                         render::RangeLoss& range,
                                                         const cl::Buffer& loss_buf,
                                                         render::WeightCarving* carve,
-                                                        bool device_sums = false);
+                                                        bool device_sums = false,
+                                                        cl::Runtime* device_chamfer = nullptr);
 
 }  // namespace sgnlf::pipeline

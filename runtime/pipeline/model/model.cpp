@@ -73,6 +73,7 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
       ray_grad_(rt),
       pose_grad_device_(rt.device_profile().pose_grad == cl::PoseGrad::Device),
       loss_device_(rt.device_profile().loss_reduce == cl::LossReduce::Device) {
+  chamfer_device_ = rt.device_profile().chamfer == cl::ChamferSearch::Device;
   if (1 + c.field.geo_features != kDensStride)
     throw ConfigError("config.field: 'geo_features' must be 15 (density output 1 + 15 = 16)");
   off_grid_ = layout_.add("hash_grid", encoder_->n_params()).offset;
@@ -152,7 +153,8 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
     surface_sampler_ = make_sampler(SampleStrategy::Surface, rc, parts, buffers, field);
     training_ = surface_sampler_.get();
   }
-  losses_ = make_loss_terms(c, scene_scale, loss_, loss_buf_, carve_.get(), loss_device_);
+  losses_ = make_loss_terms(c, scene_scale, loss_, loss_buf_, carve_.get(), loss_device_,
+                            chamfer_device_ ? &rt : nullptr);
 }
 
 void LidarNerfModel::init_params(uint64_t seed) {
@@ -248,6 +250,7 @@ void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long ste
   // inside the backward, its per-sample one.
   LossPass pass{b,  step,   R,      ctx.samples.per_ray, out_,      target_,  t_, h0_,
                 weights_, grad_out_, terms_, loss_buf_,  g_h0_};
+  pass.directions = &d_;
   for (const auto& term : losses_) term->add_output_gradient(pass);
   backward(ctx, grad_, ray_grads, &pass);
 }

@@ -60,6 +60,7 @@ class HybridEncoder;
 }
 namespace sgnlf::field {
 class Lidar4DEncoder;
+class SceneFlow;
 }
 
 namespace sgnlf::pipeline {
@@ -168,8 +169,19 @@ class LidarNerfModel {
   // Blocking (one read of the flow). Needs the 4D encoder.
   using FlowLoss = std::function<double(const std::vector<float>& flow, std::vector<float>& d_flow)>;
   double flow_supervision(const std::vector<float>& x, int n, const FlowLoss& loss);
+  // The same with the points on the device (x: n × 3, unchanged until the next update()) and
+  // the loss on the device: `loss` enqueues dL/dflow (d_flow, n × 6) from the flow (n × 6).
+  // The time is written without blocking; nothing is read back (the device profile's
+  // chamfer: device, FlowSupervisionStep).
+  using DeviceFlowLoss = std::function<void(const cl::Buffer& flow, cl::Buffer& d_flow)>;
+  void flow_supervision_device(const cl::Buffer& x, int n, const DeviceFlowLoss& loss);
+  // The device profile's chamfer is device (when the model was made): LiDAR4D's Chamfer term
+  // and flow supervision run on the device, their values read only when asked.
+  bool chamfer_on_device() const { return chamfer_device_; }
+  cl::Runtime& runtime() const { return rt_; }
   // LiDAR4D's Chamfer term (config lidar4d.chamfer_weight) of the last forward_backward, 0 when
-  // off; read back with the step (the term needs the batch's depths on the host).
+  // off; read back with the step (the term needs the batch's depths on the host), or (chamfer:
+  // device) read from the device when asked.
   double last_chamfer() const { return loss_value("chamfer"); }
   // The training loss terms in the order they run (loss_terms.hpp), and the value of the named
   // one in the last forward_backward (0 when the config has no such term). Blocking.
@@ -279,6 +291,10 @@ class LidarNerfModel {
   // Flow supervision: points, times, flow and its gradient (capacity flow_cap_ points).
   cl::Buffer fx_, ft_, fflow_, fdflow_;
   int flow_cap_ = 0;
+  cl::StagedUpload up_ft_;  // flow_supervision_device(): the times, written without blocking
+  bool chamfer_device_ = false;
+  // The flow supervision's buffers for n points and its pending gradient's slice, readied.
+  field::SceneFlow& begin_flow(int n, const char* who);
   // grad_ext_ holds only the flow slice's gradient (zero elsewhere) unless backward_external
   // wrote every slice since it was last cleared.
   bool ext_full_ = false;

@@ -5,8 +5,13 @@
 // ground points is pulled to zero (ground_weight). Its gradient is pending on the model and
 // joins the inner step's update. Neighbours are training frames only (a test frame's scan is
 // never seen in training); a missing one contributes nothing, as in LiDAR4D.
+// Under the device profile's chamfer: device (LidarNerfModel::chamfer_on_device) every frame's
+// points are uploaded once (first step), and the flow, its loss (render::DeviceSceneFlowLoss)
+// and gradient stay on the device: the step reads nothing back, and the flow loss and the
+// Chamfer term's value are read when asked (log_fields(), last_flow_loss()).
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "datasets/dataset.hpp"
@@ -19,6 +24,7 @@ class FlowSupervisionStep : public StepPolicy {
  public:
   FlowSupervisionStep(StepPolicy& inner, const Dataset& d, const Scene& scene,
                       const TrainConfig& c, uint64_t seed);
+  ~FlowSupervisionStep() override;
 
   void on_epoch(long epoch, long step) override { inner_.on_epoch(epoch, step); }
   void step(LidarNerfModel& model, uint64_t seed, long step, float lr) override;
@@ -29,7 +35,8 @@ class FlowSupervisionStep : public StepPolicy {
     inner_.load_state(ck, model);
   }
 
-  double last_flow_loss() const { return last_loss_; }
+  // The flow loss of the last flow step (0 before the first); device: one blocking read.
+  double last_flow_loss() const;
   const std::vector<FramePoints>& points() const { return points_; }
 
  private:
@@ -38,8 +45,15 @@ class FlowSupervisionStep : public StepPolicy {
   const FlowSupervisionConfig& c_;
   std::vector<FramePoints> points_;
   std::vector<bool> is_train_;
-  double last_loss_ = 0.0, last_chamfer_ = 0.0;
+  mutable double last_loss_ = 0.0;
+  double last_chamfer_ = 0.0;
   const std::vector<geometry::Point3f>* train_points(long frame) const;
+  // chamfer: device: the frames' points on the device, the loss's launcher, its pending value.
+  struct Device;
+  std::unique_ptr<Device> device_;
+  mutable bool loss_on_device_ = false;
+  LidarNerfModel* model_ = nullptr;  // the last step's (its Chamfer value, read when logged)
+  void device_step(LidarNerfModel& model, int k);
 };
 
 }  // namespace sgnlf::pipeline
