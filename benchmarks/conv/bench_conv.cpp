@@ -10,6 +10,7 @@
 
 #include "adversarial/patch_discriminator.hpp"
 #include "bench_timing.hpp"
+#include "conv_shapes.hpp"
 #include "conv/conv2d.hpp"
 
 using namespace sgnlf;
@@ -17,37 +18,9 @@ using bench::run_timed;
 using bench::uniform;
 
 namespace {
-struct Image {
-  const char* name;
-  int h, w;
-};
-constexpr Image kImages[] = {{"kitti360_66x1030", 66, 1030}, {"nuscenes_32x1080", 32, 1080}};
-
-// The default PatchGAN's layers at `scale` (input pooled `scale` times) of an h × w image.
-struct LayerCase {
-  conv::Conv2dSpec spec;
-  int h, w;
-};
-std::vector<LayerCase> patchgan_layers(int h, int w, int scale) {
-  const adversarial::PatchDiscriminatorConfig cfg;
-  std::vector<LayerCase> out;
-  h >>= scale;
-  w >>= scale;
-  int c_in = 2;
-  for (size_t l = 0; l <= cfg.channels.size(); ++l) {
-    conv::Conv2dSpec s;
-    s.c_in = c_in;
-    s.c_out = l < cfg.channels.size() ? cfg.channels[l] : 1;
-    s.kernel = cfg.kernel;
-    s.stride = l < cfg.channels.size() ? cfg.strides[l] : 1;
-    s.pad = cfg.padding;
-    out.push_back({s, h, w});
-    h = s.out_size(h);
-    w = s.out_size(w);
-    c_in = s.c_out;
-  }
-  return out;
-}
+using bench::Image;
+using bench::kImages;
+using bench::patchgan_layers;
 
 void conv_layer(benchmark::State& state, Image img, int scale, int layer, bool backward) {
   auto& rt = bench::runtime();
