@@ -18,7 +18,8 @@ __kernel void render_raygrad_reduce_rows_slices(const int n_rays, const int M, c
   const int valid = r < n_rays;
   const int first = valid ? (use_offset ? offset[r] : r * M) : 0;
   const int count = valid ? (use_offset ? offset[r + 1] - first : M) : 0;
-  const float3 orig = valid ? vload3(r, o) : (float3)(0.0f), dir = valid ? vload3(r, d) : (float3)(0.0f);
+  const float3 orig = valid ? vload3(r, o) : (float3)(0.0f);
+  const float3 dir = valid ? vload3(r, d) : (float3)(0.0f);
   int lo, hi;
   ray_slice_range(count, lane, &lo, &hi);
   float3 go = (float3)(0.0f), gd = (float3)(0.0f);

@@ -21,7 +21,11 @@
 // the device, the loss read with them: lidar-nerf 5 -> 1, lidar4d 12 -> 8, geonlf 10 -> 1,
 // sg-nlf 10 -> 1. LiDAR4D's Chamfer term and flow supervision on the device (gpu profile
 // chamfer: device; their values read only on logged steps): lidar4d 8 -> 1 (346 launches, 4
-// non-blocking writes).
+// non-blocking writes). With the per-ray render kernels in slices of the profile's
+// ray_work_items (32 work-items per ray: volume rendering's forward, weights and backward, the
+// ray-gradient reduction, weight carving; 131 072 work-items at 4096 rays) their five entries
+// left the list: lidar-nerf 83 launches, 6 narrow; lidar4d 346, 60; geonlf 72, 6; sg-nlf 74, 6
+// (with the other item-4 work then in the tree).
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -59,13 +63,8 @@ constexpr size_t kMaxBlockingTransfers = 2;
 // parameter or gradient buffer it addresses one slice of, or the step's scratch arena); item 4
 // (or the trace): let the launchers give the trace their element counts.
 const std::map<std::string, std::string> kNarrowKernels = {
-    {"render_volume_fwd", "per ray: the volume rendering sums (kernels/render/volume.cl)"},
-    {"render_volume_bwd", "per ray: its backward, the reverse sums"},
-    {"render_volume_weights", "per ray: the coarse pass's weights for importance sampling"},
     {"render_sample_importance", "per ray: inverse-CDF sampling of its coarse weights"},
     {"render_sample_surface", "per ray: the pose-free quick presets' surface samples"},
-    {"render_weight_carve", "per ray: their weight-carving term"},
-    {"render_raygrad_reduce_rows", "per ray: the ray gradients (pose-free methods) summed over the ray's samples"},
     {"pipeline_row_ray", "per ray: the sample rows of each ray (early termination's compaction)"},
     {"pipeline_live_count", "per ray: the live samples of each ray (early termination)"},
     {"field_direnc_fwd", "per ray: the direction encoding, once per ray, over its 72 features"},

@@ -89,13 +89,11 @@ void ref_carve_from_weights(int n_rays, int M, float last, float near, float hal
   }
 }
 
-}  // namespace
-
-TEST_CASE("Ray slices: the ray-gradient reduction over compact rows equals the double reference",
-          "[render][raygrad][ray_slices]") {
+// The reduction over compact rows and over the full layout for each row count of `rows`.
+void check_raygrad(std::initializer_list<int> rows, int n_rays,
+                   const std::vector<std::pair<int, int>>& shapes) {
   auto& rt = test::runtime();
-  for (const int M : {1, 24, 100}) {
-    const int n_rays = 41;
+  for (const int M : rows) {
     const float bound = 1.0f;
     const auto t = test::make_uniform(size_t(n_rays) * M, 0.f, 2.f, 11 + M);
     const auto o = test::make_uniform(3 * size_t(n_rays), -0.8f, 0.8f, 12 + M);
@@ -121,7 +119,7 @@ TEST_CASE("Ray slices: the ray-gradient reduction over compact rows equals the d
     // the sum (these cancel), so the check is normwise: |error| / Σ|term|.
     const double fl = max_abs_sum(n_rays, M, offset, t, gx),
                  fl_full = max_abs_sum(n_rays, M, full, t, gfull);
-    for (const auto& [W, local] : kShapes) {
+    for (const auto& [W, local] : shapes) {
       INFO("M = " << M << ", W = " << W << ", work-group " << local);
       test::ProfileScope scope(slice_profile(W, local));
       render::RayGradReducer red(rt);
@@ -145,15 +143,24 @@ TEST_CASE("Ray slices: the ray-gradient reduction over compact rows equals the d
   }
 }
 
-TEST_CASE("Ray slices: weight carving equals the double reference and finite differences",
-          "[render][surface][ray_slices]") {
+}  // namespace
+
+TEST_CASE("Ray slices: the ray-gradient reduction over compact rows equals the double reference",
+          "[render][raygrad][ray_slices]") {
+  check_raygrad({1, 24, 100}, 41, kShapes);
+}
+
+namespace {
+// Weight carving for each sample count of `samples`, from the same profile's forward weights;
+// with `fd_check`, the W = 32 gradient against central differences too.
+void check_carving(std::initializer_list<int> samples, int n_rays,
+                   const std::vector<std::pair<int, int>>& shapes, bool fd_check) {
   auto& rt = test::runtime();
   render::RenderConfig cfg;
   cfg.weights.carve = 3.0f;
   const float near = cfg.near_m * kScale, far = cfg.far_m * kScale;
   const float half_w = 1.0f * kScale, last = cfg.bin_width(kScale);
-  for (const int M : {1, 5, 25, 67}) {
-    const int n_rays = 29;
+  for (const int M : samples) {
     // Sorted jittered samples over [near, far], densities from clear to opaque; returns at a
     // random range, every fifth ray without one (label 0) and one return before near.
     const auto u = test::make_uniform(size_t(n_rays) * M, 0.f, 1.f, 20 + M);
@@ -178,7 +185,7 @@ TEST_CASE("Ray slices: weight carving equals the double reference and finite dif
     REQUIRE(max_ref > 1e-4);
     auto bt = cl::Buffer::from(rt, t), bh = cl::Buffer::from(rt, h0),
          bhead = cl::Buffer::from(rt, head), btg = cl::Buffer::from(rt, target);
-    for (const auto& [W, local] : kShapes) {
+    for (const auto& [W, local] : shapes) {
       INFO("M = " << M << ", W = " << W << ", work-group " << local);
       test::ProfileScope scope(slice_profile(W, local));
       render::VolumeRenderer vr(rt, cfg, kScale);
@@ -221,7 +228,7 @@ TEST_CASE("Ray slices: weight carving equals the double reference and finite dif
       const auto again = run();
       CHECK(test::same_bits(again.first, dev.first));
       CHECK(test::same_bits(again.second, dev.second));
-      if (W != 32) continue;
+      if (!fd_check || W != 32) continue;
       // Central differences of the double loss on a spread of samples.
       for (size_t i = 1; i < hd.size(); i += 7) {
         auto hp = hd, hm = hd;
@@ -236,4 +243,18 @@ TEST_CASE("Ray slices: weight carving equals the double reference and finite dif
       }
     }
   }
+}
+}  // namespace
+
+TEST_CASE("Ray slices: weight carving equals the double reference and finite differences",
+          "[render][surface][ray_slices]") {
+  check_carving({1, 5, 25, 67}, 29, kShapes, true);
+}
+
+// The Oclgrind case (tests/oclgrind/CMakeLists.txt, render_slices): the gpu profile's slice of
+// 32 in groups of 64 and 16 in groups of 48, a few rays.
+TEST_CASE("Ray slices on a small case", "[render][ray_slices][small]") {
+  const std::vector<std::pair<int, int>> shapes = {{32, 64}, {16, 48}};
+  check_raygrad({5, 37}, 7, shapes);
+  check_carving({5, 37}, 7, shapes, false);
 }

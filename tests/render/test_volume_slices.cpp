@@ -119,7 +119,8 @@ void ref_bwd_float_factors(const Rays& in, double last, const std::vector<float>
       e[i] = std::exp(-std::exp(std::min(in.h0[s], 80.f)) * delta);
       w[i] = trans * (1.0 - e[i]);
       trans *= e[i];
-      c[i] = g[3 * r] * double(in.t[s]) + g[3 * r + 1] * test::ref_sigmoid(double(in.head[2 * s])) +
+      c[i] = g[3 * r] * double(in.t[s]) +
+             g[3 * r + 1] * test::ref_sigmoid(double(in.head[2 * s])) +
              g[3 * r + 2] * test::ref_sigmoid(double(in.head[2 * s + 1]));
     }
     for (int i = in.S - 1; i >= 0; --i) after[i] = after[i + 1] + w[i] * c[i];
@@ -128,7 +129,8 @@ void ref_bwd_float_factors(const Rays& in, double last, const std::vector<float>
       const size_t s = b + i;
       const float delta = i + 1 < in.S ? in.t[s + 1] - in.t[s] : float(last);
       trans *= e[i];
-      g_h0[s] = (trans * c[i] - after[i + 1]) * delta * std::exp(std::clamp(double(in.h0[s]), -15.0, 15.0));
+      g_h0[s] = (trans * c[i] - after[i + 1]) * delta *
+                std::exp(std::clamp(double(in.h0[s]), -15.0, 15.0));
       const double sp = test::ref_sigmoid(double(in.head[2 * s])),
                    si = test::ref_sigmoid(double(in.head[2 * s + 1]));
       g_head[2 * s] = g[3 * r + 1] * w[i] * sp * (1 - sp);
@@ -167,16 +169,18 @@ double last_delta() { return render::RenderConfig{}.bin_width(kScale); }
 
 }  // namespace
 
-TEST_CASE("Volume slices: forward and weights equal the double reference at any sample count",
-          "[render][volume][volume_slices]") {
-  for (const int S : {1, 5, 31, 32, 67, 100}) {
-    const Rays in = make_kinds(23, S, 100 + S);
+namespace {
+// The forward and the weights at each sample count of `samples`, n_rays rays of make_kinds.
+void check_forward(std::initializer_list<int> samples, int n_rays,
+                   const std::vector<std::pair<int, int>>& shapes) {
+  for (const int S : samples) {
+    const Rays in = make_kinds(n_rays, S, 100 + S);
     std::vector<double> out_ff, w_ff, out_ref, w_ref;
     ref_fwd_float_factors(in, last_delta(), out_ff, w_ff);
     test::ref_volume_fwd<double>(in.n, S, last_delta(), test::cast_vec<double>(in.t),
                                  test::cast_vec<double>(in.h0), test::cast_vec<double>(in.head),
                                  out_ref, w_ref);
-    for (const auto& [W, local] : kShapes) {
+    for (const auto& [W, local] : shapes) {
       INFO("S = " << S << ", W = " << W << ", work-group " << local);
       const Fwd dev = run_fwd(slice_profile(W, local), in);
       // Measured on PoCL (all shapes, the cpu kernels alike): sums 3.6e-7, weights 1.9e-5 (thin
@@ -193,6 +197,12 @@ TEST_CASE("Volume slices: forward and weights equal the double reference at any 
       CHECK(test::same_bits(again.w, dev.w));
     }
   }
+}
+}  // namespace
+
+TEST_CASE("Volume slices: forward and weights equal the double reference at any sample count",
+          "[render][volume][volume_slices]") {
+  check_forward({1, 5, 31, 32, 67, 100}, 23, kShapes);
 }
 
 TEST_CASE("Volume slices: opaque rays put their weight on the first sample, empty rays none",
@@ -212,10 +222,12 @@ TEST_CASE("Volume slices: opaque rays put their weight on the first sample, empt
   }
 }
 
-TEST_CASE("Volume slices: backward equals the double reference and finite differences",
-          "[render][volume][volume_slices]") {
-  for (const int S : {1, 5, 21, 31, 67, 100}) {
-    const Rays in = make_kinds(23, S, 200 + S);
+namespace {
+// The backward at each sample count of `samples` from the same profile's forward weights.
+void check_backward(std::initializer_list<int> samples, int n_rays,
+                    const std::vector<std::pair<int, int>>& shapes) {
+  for (const int S : samples) {
+    const Rays in = make_kinds(n_rays, S, 200 + S);
     const auto g = test::make_uniform(3 * size_t(in.n), -1.f, 1.f, 300 + S);
     std::vector<double> h0_ref, head_ref;
     ref_bwd_float_factors(in, last_delta(), g, h0_ref, head_ref);
@@ -227,7 +239,7 @@ TEST_CASE("Volume slices: backward equals the double reference and finite differ
       return 1e-6 * m;
     };
     const double fl_h0 = floor_of(h0_ref), fl_head = floor_of(head_ref);
-    for (const auto& [W, local] : kShapes) {
+    for (const auto& [W, local] : shapes) {
       INFO("S = " << S << ", W = " << W << ", work-group " << local);
       const Fwd fwd = run_fwd(slice_profile(W, local), in);
       const Bwd dev = run_bwd(slice_profile(W, local), in, fwd.w, g);
@@ -243,6 +255,12 @@ TEST_CASE("Volume slices: backward equals the double reference and finite differ
       CHECK(test::same_bits(again.head, dev.head));
     }
   }
+}
+}  // namespace
+
+TEST_CASE("Volume slices: backward equals the double reference and finite differences",
+          "[render][volume][volume_slices]") {
+  check_backward({1, 5, 21, 31, 67, 100}, 23, kShapes);
   // Central differences of L = g · out(h0, head) in double on the random-density rays.
   const int n = 4, S = 21;
   Rays in = make_kinds(n, S, 400);
@@ -278,4 +296,12 @@ TEST_CASE("Volume slices: backward equals the double reference and finite differ
     CHECK(test::sym_rel_err(dev.h0, fd_h0, 1e-6) <= 1e-4);
     CHECK(test::sym_rel_err(dev.head, fd_head, 1e-6) <= 1e-4);
   }
+}
+
+// The Oclgrind case (tests/oclgrind/CMakeLists.txt, render_slices): the gpu profile's slice of
+// 32 in groups of 64 and 16 in groups of 48, S below, at and above a slice, a few rays.
+TEST_CASE("Volume slices on a small case", "[render][volume_slices][small]") {
+  const std::vector<std::pair<int, int>> shapes = {{32, 64}, {16, 48}};
+  check_forward({1, 5, 37}, 7, shapes);
+  check_backward({1, 5, 37}, 7, shapes);
 }
