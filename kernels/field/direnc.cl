@@ -41,6 +41,57 @@ __kernel void field_direnc_bwd(const int n_rays, __global const float* dir,
   vstore3(g, r, d_dir);
 }
 
+// The same two under the gpu profile (device profile ray_work_items > 1; DirEncoding picks
+// them): one ray's 12 frequencies are 12 work-items instead of one loop, so a batch of 4096
+// rays launches 49 152 work-items rather than 4096. The forward is one work-item per (ray,
+// frequency), the cpu kernel's loop body with f = 2^k exact. The backward is a work-group of
+// DIRENC_WG work-items holding DIRENC_WG / DIRENC_LANES rays, DIRENC_LANES (N_FREQ rounded up
+// to a power of two) lanes per ray; lane k computes frequency k's term (0 past N_FREQ) and the
+// lanes are summed in a fixed tree in local memory: deterministic, not the cpu loop's order.
+#define DIRENC_WG 64
+#define DIRENC_LANES                                                                      \
+  (N_FREQ <= 1 ? 1 : N_FREQ <= 2 ? 2 : N_FREQ <= 4 ? 4 : N_FREQ <= 8 ? 8 : N_FREQ <= 16 ? 16 \
+                                                                                         : 32)
+__kernel void field_direnc_fwd_wide(const int n_rays, __global const float* dir,
+                                    __global float* enc) {
+  const int i = get_global_id(0);
+  if (i >= n_rays * N_FREQ) return;
+  const int r = i / N_FREQ, k = i - r * N_FREQ;
+  const float3 d = vload3(r, dir);
+  const float f = (float)(1 << k);
+  float3 c;
+  const float3 s = sincos(f * d, &c);
+  vstore3(s, 0, enc + (size_t)r * ENC_DIM + k * 6);
+  vstore3(c, 0, enc + (size_t)r * ENC_DIM + k * 6 + 3);
+}
+
+// Launched as (DIRENC_LANES, rays rounded up to DIRENC_WG / DIRENC_LANES) in work-groups of
+// (DIRENC_LANES, DIRENC_WG / DIRENC_LANES).
+__kernel void field_direnc_bwd_wide(const int n_rays, __global const float* dir,
+                                    __global const float* d_enc, __global float* d_dir) {
+  __local float part[DIRENC_WG * 3];
+  const int k = get_local_id(0), slot = get_local_id(1);
+  const int r = get_global_id(1);
+  float3 g = (float3)(0.0f);
+  if (k < N_FREQ && r < n_rays) {
+    const float3 d = vload3(r, dir);
+    const float f = (float)(1 << k);
+    float3 c;
+    const float3 s = sincos(f * d, &c);
+    const float3 ds = vload3(0, d_enc + (size_t)r * ENC_DIM + k * 6);
+    const float3 dc = vload3(0, d_enc + (size_t)r * ENC_DIM + k * 6 + 3);
+    g = f * (ds * c - dc * s);
+  }
+  __local float* mine = part + slot * DIRENC_LANES * 3;
+  vstore3(g, k, mine);
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int h = DIRENC_LANES / 2; h > 0; h >>= 1) {
+    if (k < h) vstore3(vload3(k, mine) + vload3(k + h, mine), k, mine);
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (k == 0 && r < n_rays) vstore3(vload3(0, mine), r, d_dir);
+}
+
 // head_in[n] = [dens[n, geo_start .. geo_start+n_geo), enc[n / samples]] for n < n_rays·samples.
 __kernel void field_head_input_fwd(const int n, const int samples, const int n_geo,
                                    const int geo_start, const int dens_stride,

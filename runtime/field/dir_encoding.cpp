@@ -25,8 +25,10 @@ DirEncoding::DirEncoding(cl::Runtime& rt, int n_freq, int n_geo, int geo_start, 
                       std::to_string(dens_stride));
   const std::string opt = "-DN_FREQ=" + std::to_string(n_freq);
   const std::string f = "field/direnc.cl";
-  fwd_ = rt_.kernel(f, "field_direnc_fwd", opt);
-  bwd_ = rt_.kernel(f, "field_direnc_bwd", opt);
+  // Under the gpu profile (ray_work_items > 1) a work-item per (ray, frequency): direnc.cl.
+  wide_ = rt_.device_profile().ray_work_items > 1;
+  fwd_ = rt_.kernel(f, wide_ ? "field_direnc_fwd_wide" : "field_direnc_fwd", opt);
+  bwd_ = rt_.kernel(f, wide_ ? "field_direnc_bwd_wide" : "field_direnc_bwd", opt);
   head_fwd_ = rt_.kernel(f, "field_head_input_fwd", opt);
   head_bwd_geo_ = rt_.kernel(f, "field_head_input_bwd_geo", opt);
   head_bwd_dir_ = rt_.kernel(f, "field_head_input_bwd_dir", opt);
@@ -37,7 +39,7 @@ void DirEncoding::forward(const cl::Buffer& dir, int n_rays, cl::Buffer& enc) {
   check_bytes(dir, size_t(n_rays) * 3, "dir");
   check_bytes(enc, size_t(n_rays) * enc_dim(), "enc");
   fwd_.set_args(n_rays, dir, enc);
-  cl::launch_1d(fwd_, size_t(n_rays));
+  cl::launch_1d(fwd_, size_t(n_rays) * (wide_ ? size_t(n_freq_) : 1));
 }
 
 void DirEncoding::backward(const cl::Buffer& dir, int n_rays, const cl::Buffer& d_enc,
@@ -47,7 +49,16 @@ void DirEncoding::backward(const cl::Buffer& dir, int n_rays, const cl::Buffer& 
   check_bytes(d_enc, size_t(n_rays) * enc_dim(), "d_enc");
   check_bytes(d_dir, size_t(n_rays) * 3, "d_dir");
   bwd_.set_args(n_rays, dir, d_enc, d_dir);
-  cl::launch_1d(bwd_, size_t(n_rays));
+  if (!wide_) {
+    cl::launch_1d(bwd_, size_t(n_rays));
+    return;
+  }
+  // DIRENC_LANES and DIRENC_WG of direnc.cl: the frequencies rounded up to a power of two, and
+  // 64 work-items a group.
+  size_t lanes = 1;
+  while (lanes < size_t(n_freq_)) lanes *= 2;
+  const size_t rays_per_group = 64 / lanes;
+  bwd_.launch({lanes, cl::round_up(size_t(n_rays), rays_per_group)}, {lanes, rays_per_group});
 }
 
 void DirEncoding::head_input_forward(const cl::Buffer& dens, const cl::Buffer& enc, int n_rays,

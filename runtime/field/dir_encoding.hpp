@@ -19,7 +19,9 @@ class DirEncoding {
 
   // enc (R × enc_dim) from unit directions dir (R × 3). Enqueued, no wait.
   void forward(const cl::Buffer& dir, int n_rays, cl::Buffer& enc);
-  // d_dir (R × 3, overwritten) from d_enc (R × enc_dim).
+  // d_dir (R × 3, overwritten) from d_enc (R × enc_dim). Under the gpu profile (ray_work_items
+  // > 1) the frequencies' terms are summed in a fixed tree instead of in order: deterministic,
+  // within float rounding of the cpu kernel.
   void backward(const cl::Buffer& dir, int n_rays, const cl::Buffer& d_enc, cl::Buffer& d_dir);
 
   // head_in (R·S × head_width) from the density-MLP output dens (R·S × dens_stride) and enc.
@@ -34,6 +36,7 @@ class DirEncoding {
  private:
   cl::Runtime& rt_;
   int n_freq_, n_geo_, geo_start_, dens_stride_;
+  bool wide_ = false;  // the profile's ray_work_items > 1 when made: the (ray, frequency) kernels
   cl::Kernel fwd_, bwd_, head_fwd_, head_bwd_geo_, head_bwd_dir_;
 };
 

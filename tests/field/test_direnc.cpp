@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "cl/device_profile.hpp"
 #include "core/rng.hpp"
 #include "field/dir_encoding.hpp"
 #include "reference.hpp"
@@ -26,6 +27,8 @@ std::vector<float> unit_dirs(int n, uint64_t seed) {
 }
 }  // namespace
 
+// Under the runtime's profile: the cpu profile's per-ray loops in `field`, the gpu profile's
+// (ray, frequency) kernels (ray_work_items > 1) in `field_direnc_gpu_profile` and Oclgrind.
 TEST_CASE("direction encoding matches the reference and finite differences",
           "[field][direnc]") {
   auto& rt = test::runtime();
@@ -73,6 +76,51 @@ TEST_CASE("direction encoding matches the reference and finite differences",
   }
   // Truncation h²/6·Σ 8³ ≈ 1e-4, rounding of L (~1e-5 abs) / h ≈ 1e-2 absolute.
   CHECK(test::max_sym_rel_err(fd, an, 1.0) < 1e-2);
+}
+
+// The gpu profile's kernels against the cpu profile's on one device, at frequency counts whose
+// lanes are 1, 4, 16 and 32 and ray counts that leave a work-group part empty: the forward is
+// the same sincos of the same exact arguments (within the host tolerance of the reference
+// test: a device may vectorise them differently), the backward the same terms summed in a tree
+// rather than in order, so within float rounding of the sum (a few ulp of Σ|term| ≤ 2^F·6);
+// and each is the same bits from run to run.
+TEST_CASE("direction encoding's wide kernels match the per-ray ones and repeat bit for bit",
+          "[field][direnc][direnc_wide]") {
+  auto& rt = test::runtime();
+  for (const int n_freq : {1, 3, 12, 20}) {
+    for (const int r : {1, 37, 130}) {
+      INFO("n_freq " << n_freq << ", rays " << r);
+      const int ed = 6 * n_freq;
+      const auto dir = unit_dirs(r, 7);
+      const auto d_enc = uniform(size_t(r) * ed, -1.0f, 1.0f, 8);
+      auto b_dir = cl::Buffer::from(rt, dir), b_denc = cl::Buffer::from(rt, d_enc);
+      cl::Buffer b_enc(rt, size_t(r) * ed * 4), b_ddir(rt, size_t(r) * 12);
+      auto run = [&](const cl::DeviceProfile& p) {
+        test::ProfileScope scope(p);
+        field::DirEncoding de(rt, n_freq);
+        b_enc.write_vec(std::vector<float>(size_t(r) * ed, std::nanf("")));
+        b_ddir.write_vec(std::vector<float>(size_t(r) * 3, std::nanf("")));
+        de.forward(b_dir, r, b_enc);
+        de.backward(b_dir, r, b_denc, b_ddir);
+        return std::make_pair(b_enc.read_vec<float>(size_t(r) * ed),
+                              b_ddir.read_vec<float>(size_t(r) * 3));
+      };
+      const auto cpu = run(cl::cpu_profile());
+      const auto gpu = run(cl::gpu_profile());
+      const auto again = run(cl::gpu_profile());
+      CHECK(test::same_bits(gpu.first, again.first));
+      CHECK(test::same_bits(gpu.second, again.second));
+      // The same exact arguments: sin/cos within OpenCL's 4 ulp of each other at worst.
+      CHECK(test::sym_rel_err(gpu.first, cpu.first, 1.0) <= 1e-6);
+      // Term k is at most 2^k·2 in magnitude, so Σ|term| < 2^F·2 = floor: the two orders' sums
+      // differ by at most (F − 1 + log2 lanes)·2^-24 of it (< 1.5e-6 at F = 20), the
+      // reference (double) by that plus 4 ulp of each term.
+      const double floor = std::ldexp(1.0, n_freq) * 2.0;
+      CHECK(test::sym_rel_err(gpu.second, cpu.second, floor) <= 2e-6);
+      CHECK(test::sym_rel_err(gpu.second, test::ref::direnc_bwd(dir, n_freq, d_enc), floor) <=
+            3e-6);
+    }
+  }
 }
 
 TEST_CASE("head input assembly and its backward split", "[field][direnc]") {
