@@ -31,6 +31,56 @@ __kernel void pipeline_live_count(const int n_rays, const int S, const int M, co
   count[r] = c;
 }
 
+// The same counts under the gpu profile (ray_work_items > 1): RAY_WI work-items per ray,
+// work-groups of RAY_WG (both set by SampleCompaction from the profile). The stop index stays
+// one work-item's serial float sum (lane 0), in pipeline_stop_index's order, since it must
+// equal the cpu kernel's and pipeline_wave_done's exactly; the merged samples, the longer walk
+// (M per ray), are split across the lanes: lane l finds the first s ≡ l (mod RAY_WI) with
+// !(t[s] ≤ t_stop), and the count is the least of the lanes' (a local min tree). Integers: the
+// same count as pipeline_live_count's walk on any device, also for unsorted t.
+#ifdef RAY_WI
+__kernel void pipeline_live_count_wide(const int n_rays, const int S, const int M,
+                                       const float eps, __global const float* t_c,
+                                       __global const float* w_c, __global const float* t,
+                                       __global int* count) {
+  __local int stop_l[RAY_WG / RAY_WI];
+  __local int first[RAY_WG];
+  const int lid = get_local_id(0), lane = lid % RAY_WI, slot = lid / RAY_WI;
+  const int r = get_group_id(0) * (RAY_WG / RAY_WI) + slot;
+  if (lane == 0) stop_l[slot] = r < n_rays ? pipeline_stop_index(w_c + (size_t)r * S, S, eps) : -1;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  const int stop = stop_l[slot];
+  int c = M;
+  if (r < n_rays && stop >= 0) {
+    const float t_stop = t_c[(size_t)r * S + stop];
+    __global const float* tr = t + (size_t)r * M;
+    for (int s = lane; s < M; s += RAY_WI)
+      if (!(tr[s] <= t_stop)) {
+        c = s;
+        break;
+      }
+  }
+  first[lid] = c;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int h = RAY_WI / 2; h > 0; h >>= 1) {
+    if (lane < h) first[lid] = min(first[lid], first[lid + h]);
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (lane == 0 && r < n_rays) count[r] = first[lid];
+}
+
+// pipeline_row_ray with RAY_WI work-items per ray: lane l writes rows offset[r] + l,
+// + l + RAY_WI, ... of ray r. The same words.
+__kernel void pipeline_row_ray_wide(const int n_rays, __global const int* offset,
+                                    __global int* ray) {
+  const int i = get_global_id(0);
+  const int r = i / RAY_WI, lane = i - r * RAY_WI;
+  if (r >= n_rays) return;
+  const int end = offset[r + 1];
+  for (int k = offset[r] + lane; k < end; k += RAY_WI) ray[k] = r;
+}
+#endif
+
 // The per-ray offsets from the live counts on the device (device profile compaction: device):
 // offset holds count[0..n_rays) on entry (pipeline_live_count wrote it there) and gets
 // offset[r] = Σ_{q<r} count[q] for r ≤ n_rays, so offset[n_rays] is the live rows' total. One

@@ -1,7 +1,8 @@
 // Device-vs-reference tests of kernels/pipeline/sample_compaction.cl (pipeline::SampleCompaction):
 // live counts of early ray termination, the device scan of the per-ray offsets, the row → ray
 // map, row compaction and the expansion of the field outputs; and the launcher itself, with the
-// host and the device scan. Bit equality, exact by construction on any device:
+// host and the device scan; the gpu profile's ray lanes against the per-ray kernels. Bit
+// equality, exact by construction on any device:
 // the counts compare a running sum of additions in the kernel's order, the rest are index maps
 // and copies.
 #include <catch2/catch.hpp>
@@ -315,4 +316,65 @@ TEST_CASE("SampleCompaction gives the same offsets with the host and the device 
       }
     }
   }
+}
+
+// The gpu profile's ray_work_items lanes per ray (pipeline_live_count_wide, whose lanes split
+// the merged samples and take the least first dead sample; pipeline_row_ray_wide): integers, so
+// the offsets and each live row's ray equal the per-ray kernels' (the cpu profile's) and the
+// host reference bit for bit on any device, at lane counts 2, 32 (the gpu profile's) and 64 (a
+// whole work-group per ray), ray counts that leave a work-group part empty, M below and above
+// the lanes, and merged samples out of order (the walk stops at the first one past t_stop).
+namespace {
+void check_ray_lanes(const std::vector<int>& Ms, const std::vector<int>& Rs,
+                     const std::vector<int>& lane_counts) {
+  auto& rt = test::runtime();
+  const int S = 12;
+  const float eps = 1e-3f;
+  for (const int M : Ms) {
+    for (const int R : Rs) {
+      Rng rng(uint64_t(67 + M + R));
+      Termination d = make_termination(R, S, M, eps, rng);
+      // Every 4th ray's merged samples reversed in their second half: not sorted any more.
+      for (int r = 0; r < R; r += 4)
+        std::reverse(d.t.begin() + size_t(r) * M + M / 2, d.t.begin() + size_t(r + 1) * M);
+      std::vector<float> x(size_t(R) * M * 3);
+      for (auto& v : x) v = rng.uniform(-1, 1);
+      auto btc = cl::Buffer::from(rt, d.t_c), bwc = cl::Buffer::from(rt, d.w_c);
+      auto bt = cl::Buffer::from(rt, d.t), bx = cl::Buffer::from(rt, x);
+      auto run = [&](const cl::DeviceProfile& p) {
+        test::ProfileScope scope(p);
+        pipeline::SampleCompaction live(rt, R, M, S, 3, eps);
+        const long rows = live.select(R, M, btc, bwc, bt, bx);
+        return std::make_pair(live.offsets().read_vec<int32_t>(size_t(R) + 1),
+                              live.index(R).point_group->read_vec<int32_t>(size_t(rows)));
+      };
+      const auto cpu = run(cl::cpu_profile());
+      // The cpu kernels against the host reference: each row's ray from their offsets, and the
+      // counts of the rays left sorted (the others' are d.count's no more).
+      std::vector<int32_t> ray_ref;
+      for (int r = 0; r < R; ++r)
+        for (int k = cpu.first[size_t(r)]; k < cpu.first[size_t(r) + 1]; ++k) ray_ref.push_back(r);
+      CHECK(cpu.second == ray_ref);
+      for (int r = 1; r < R; r += 4)
+        CHECK(cpu.first[size_t(r) + 1] - cpu.first[size_t(r)] == d.count[size_t(r)]);
+      for (const int lanes : lane_counts) {
+        CAPTURE(M, R, lanes);
+        cl::DeviceProfile p = cl::gpu_profile();
+        p.ray_work_items = lanes;
+        CHECK(run(p) == cpu);
+      }
+    }
+  }
+}
+}  // namespace
+
+TEST_CASE("SampleCompaction's per-ray lanes give the per-ray kernels' offsets and rows",
+          "[pipeline][sample-compaction][ray_lanes][device]") {
+  check_ray_lanes({18, 75}, {1, 3, 301}, {2, 32, 64});
+}
+
+// The same at the gpu profile's 32 lanes on a few rays (oclgrind_pipeline).
+TEST_CASE("SampleCompaction's per-ray lanes on a small case",
+          "[pipeline][sample-compaction][ray_lanes][small][device]") {
+  check_ray_lanes({40}, {3}, {32});
 }

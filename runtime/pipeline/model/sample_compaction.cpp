@@ -2,6 +2,7 @@
 #include "pipeline/model/sample_compaction.hpp"
 
 #include <cstdint>
+#include <string>
 
 #include "pipeline/model/model_detail.hpp"
 
@@ -21,8 +22,18 @@ SampleCompaction::SampleCompaction(cl::Runtime& rt, int max_rays, int max_sample
       compact_rows_(rt.kernel("pipeline/sample_compaction.cl", "pipeline_compact_rows")),
       expand_(rt.kernel("pipeline/sample_compaction.cl", "pipeline_expand_outputs")),
       row_ray_k_(rt.kernel("pipeline/sample_compaction.cl", "pipeline_row_ray")),
-      device_scan_(rt.device_profile().compaction == cl::CompactionScan::Device) {
+      device_scan_(rt.device_profile().compaction == cl::CompactionScan::Device),
+      ray_wi_(rt.device_profile().ray_work_items),
+      ray_wg_(rt.device_profile().local_size) {
   if (device_scan_) scan_k_ = rt.kernel("pipeline/sample_compaction.cl", "pipeline_offsets_scan");
+  if (ray_wi_ > 1) {
+    // The gpu profile's ray_work_items work-items per ray for the counts and the row → ray map
+    // (integer results, the same as the per-ray kernels'), in work-groups of local_size.
+    const std::string opt =
+        "-DRAY_WI=" + std::to_string(ray_wi_) + " -DRAY_WG=" + std::to_string(ray_wg_);
+    live_count_ = rt.kernel("pipeline/sample_compaction.cl", "pipeline_live_count_wide", opt);
+    row_ray_k_ = rt.kernel("pipeline/sample_compaction.cl", "pipeline_row_ray_wide", opt);
+  }
   const size_t R = size_t(max_rays), N = R * size_t(max_samples);
   count_ = floats(rt, R), offset_ = floats(rt, R + 1), row_ray_ = floats(rt, N);
   x_l_ = floats(rt, N * 3), enc_l_ = floats(rt, N * size_t(width)), head_l_ = floats(rt, N * 2);
@@ -35,7 +46,7 @@ long SampleCompaction::select(int n_rays, int M, const cl::Buffer& t_c, const cl
     // The counts straight into the offsets, scanned there; the one host sync of the step before
     // the loss is the total (4 bytes): the kernel sizes below depend on it.
     live_count_.set_args(n_rays, S_, M, eps_, t_c, w_c, t, offset_);
-    live_count_.launch({cl::round_up(size_t(n_rays), 64)}, {64});
+    launch_live_count(n_rays);
     scan_k_.set_args(n_rays, offset_);
     scan_k_.launch({kOffsetsWg}, {kOffsetsWg});
     int32_t total = 0;
@@ -43,7 +54,7 @@ long SampleCompaction::select(int n_rays, int M, const cl::Buffer& t_c, const cl
     rows_ = total;
   } else {
     live_count_.set_args(n_rays, S_, M, eps_, t_c, w_c, t, count_);
-    live_count_.launch({cl::round_up(size_t(n_rays), 64)}, {64});
+    launch_live_count(n_rays);
     // The one host sync of the step before the loss: kernel sizes below depend on the total.
     const std::vector<int32_t> count = count_.read_vec<int32_t>(size_t(n_rays));
     std::vector<int32_t> offset(size_t(n_rays) + 1, 0);
@@ -83,9 +94,19 @@ void SampleCompaction::gather_gradients(int n_rays, int M, const cl::Buffer& g_h
   }
 }
 
+void SampleCompaction::launch_live_count(int n_rays) {
+  if (ray_wi_ == 1) {
+    live_count_.launch({cl::round_up(size_t(n_rays), 64)}, {64});
+    return;
+  }
+  const size_t wg = size_t(ray_wg_), rays_per_group = wg / size_t(ray_wi_);
+  live_count_.launch({(size_t(n_rays) + rays_per_group - 1) / rays_per_group * wg}, {wg});
+}
+
 void SampleCompaction::row_rays(int n_rays, const cl::Buffer& offset, cl::Buffer& ray) {
   row_ray_k_.set_args(n_rays, offset, ray);
-  row_ray_k_.launch({cl::round_up(size_t(n_rays), 64)}, {64});
+  const size_t n = size_t(n_rays) * size_t(ray_wi_);
+  row_ray_k_.launch({cl::round_up(n, 64)}, {64});
 }
 
 std::vector<int> SampleCompaction::counts(int n_rays) const {

@@ -64,6 +64,10 @@ class SampleCompaction {
   long rows_ = 0;
   cl::Kernel live_count_, compact_rows_, expand_, row_ray_k_, scan_k_;
   bool device_scan_;  // the profile's compaction: device (read when made)
+  // The profile's ray_work_items and local_size when made: above 1, the counts and the row →
+  // ray map run ray_wi_ work-items per ray (pipeline_live_count_wide, pipeline_row_ray_wide).
+  int ray_wi_, ray_wg_;
+  void launch_live_count(int n_rays);
   // Per-ray live counts and offsets (int32), each live row's ray, and the live rows' positions,
   // encodings, head outputs and their gradients.
   cl::Buffer count_, offset_, row_ray_, x_l_, enc_l_, head_l_, g_h0_l_, g_head_l_;
