@@ -132,6 +132,125 @@ __kernel void render_sample_importance(const int n_rays, const int n_coarse, con
   }
 }
 
+// render_sample_importance under the gpu profile (ray_work_items > 1): RAY_WI work-items per
+// ray, RAY_WG per work-group (RaySampler sets both), one work-item per output sample in three
+// passes over local memory (`lm`: per ray n_coarse + 1 CDF words, then n_fine fine samples):
+//  1. the CDF: each lane sums a contiguous chunk of the bins' w_k + 1e-5 in order, lane 0 scans
+//     the chunk sums in order, each lane rewrites its chunk as running sums from its offset;
+//     cdf[m] = Σ_{k<m} (w_k + 1e-5) / total. Every word is a float sum of positive terms
+//     continued from the one before it (within a chunk, or a chunk's offset, which is the
+//     previous chunk's offset plus its whole sum), so the CDF never decreases;
+//  2. fine sample j (u_j as in the per-ray kernel): its bin k = #{1 ≤ m < n_coarse : cdf[m] ≤ u}
+//     by binary search, where the per-ray walk stops (it advances while cdf_lo + p_k ≤ u), then
+//     the same interpolation, capped at the bin's upper edge (the walk's value can pass it by
+//     an ulp); with sorted coarse samples the fine ones then never decrease;
+//  3. the merge: coarse sample i goes to i + #{j : t_f[j] < t_c[i]}, fine sample j to
+//     j + #{i : t_c[i] ≤ t_f[j]} (ties: coarse first, as the walk), both by binary search.
+// The CDF's sums are in another order than the walk's running sum, so a fine sample differs
+// from the per-ray kernel's by the CDF's rounding (a few ulp of 1) over its bin's probability,
+// times the bin's width (tests/render/test_sampler_wide.cpp). The coarse samples must be
+// sorted per ray (every caller's are: uniform or surface samples); deterministic per device.
+#ifdef RAY_WI
+inline int render_count_le(__local const float* v, int n, float x) {  // #{i : v[i] <= x}
+  int lo = 0, hi = n;
+  while (lo < hi) {
+    const int mid = (lo + hi) >> 1;
+    if (v[mid] <= x) lo = mid + 1; else hi = mid;
+  }
+  return lo;
+}
+inline int render_count_lt(__local const float* v, int n, float x) {  // #{i : v[i] < x}
+  int lo = 0, hi = n;
+  while (lo < hi) {
+    const int mid = (lo + hi) >> 1;
+    if (v[mid] < x) lo = mid + 1; else hi = mid;
+  }
+  return lo;
+}
+inline int render_count_le_global(__global const float* v, int n, float x) {
+  int lo = 0, hi = n;
+  while (lo < hi) {
+    const int mid = (lo + hi) >> 1;
+    if (v[mid] <= x) lo = mid + 1; else hi = mid;
+  }
+  return lo;
+}
+
+__kernel void render_sample_importance_wide(
+    const int n_rays, const int n_coarse, const int n_fine, const float near, const float far,
+    const int jitter, const uint seed_lo, const uint seed_hi, const uint step,
+    __global const float* o, __global const float* d, __global const float* t_coarse,
+    __global const float* w_coarse, __global float* t_out, __global float* x_out,
+    __global int* src_out, __local float* lm) {
+  __local float chunk_off[RAY_WG];
+  const int lid = get_local_id(0), lane = lid % RAY_WI, slot = lid / RAY_WI;
+  const int r = get_group_id(0) * (RAY_WG / RAY_WI) + slot;
+  const int live = r < n_rays;
+  __local float* cdf = lm + slot * (n_coarse + 1 + n_fine);
+  __local float* fine = cdf + n_coarse + 1;
+  __global const float* tc = t_coarse + (size_t)(live ? r : 0) * n_coarse;
+  __global const float* wc = w_coarse + (size_t)(live ? r : 0) * n_coarse;
+  // 1. The CDF, chunk by chunk.
+  const int per = (n_coarse + RAY_WI - 1) / RAY_WI;
+  const int lo = min(n_coarse, lane * per), hi = min(n_coarse, lo + per);
+  float s = 0.0f;
+  if (live)
+    for (int k = lo; k < hi; ++k) s += wc[k] + 1e-5f;
+  chunk_off[lid] = s;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (lane == 0) {
+    float acc = 0.0f;
+    for (int c = 0; c < RAY_WI; ++c) {
+      const float v = chunk_off[lid + c];
+      chunk_off[lid + c] = acc;
+      acc += v;
+    }
+    cdf[n_coarse] = acc;  // the total
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  const float total = cdf[n_coarse];
+  const float inv_total = 1.0f / total;
+  float run = chunk_off[lid];
+  for (int k = lo; k < hi; ++k) {
+    cdf[k] = run * inv_total;
+    if (live) run += wc[k] + 1e-5f;
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  // 2. The fine samples.
+  if (live)
+    for (int j = lane; j < n_fine; j += RAY_WI) {
+      const float xi = jitter ? render_jitter(seed_lo, seed_hi, RENDER_STREAM_IMPORTANCE, step,
+                                              (uint)(r * n_fine + j))
+                              : 0.5f;
+      const float u = ((float)j + xi) / (float)n_fine;
+      const int k = render_count_le(cdf + 1, n_coarse - 1, u);
+      const float p_k = (wc[k] + 1e-5f) * inv_total;
+      const float e_lo = k > 0 ? 0.5f * (tc[k - 1] + tc[k]) : near;
+      const float e_hi = k < n_coarse - 1 ? 0.5f * (tc[k] + tc[k + 1]) : far;
+      const float f = clamp((u - cdf[k]) / p_k, 0.0f, 1.0f);
+      fine[j] = fmin(e_lo + f * (e_hi - e_lo), e_hi);
+    }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (!live) return;
+  // 3. The merge.
+  const int obase = r * (n_coarse + n_fine);
+  for (int i = lane; i < n_coarse; i += RAY_WI) {
+    const float t = tc[i];
+    const int out = obase + i + render_count_lt(fine, n_fine, t);
+    t_out[out] = t;
+    src_out[out] = i;
+    render_store_point(o, d, r, t, out, x_out);
+  }
+  for (int j = lane; j < n_fine; j += RAY_WI) {
+    const float t = fine[j];
+    const int out = obase + j + render_count_le_global(tc, n_coarse, t);
+    t_out[out] = t;
+    src_out[out] = n_coarse + j;
+    render_store_point(o, d, r, t, out, x_out);
+  }
+}
+#endif
+
 // The clamp of sample positions to the normalised scene box [-bound, bound]^3 (LiDAR-NeRF /
 // torch-ngp clamp xyzs to the aabb), applied by pipeline::LidarNerfModel to every sample set:
 // x[k] = clamp(x[k], -bound, bound) for k < n (n = 3 x points), in place.

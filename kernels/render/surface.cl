@@ -2,7 +2,8 @@
 // the rendered weights there (render/surface_sampler.hpp, render/weight_carving.hpp). Rays are
 // given as origins o and unit directions d (n_rays x 3, normalised frame); the targets are
 // n_rays x 3 (range in normalised units, intensity, return label 0/1). Samples are ray-major,
-// M = F + B + K per ray, sorted. One work-item per ray, fixed order: deterministic.
+// M = F + B + K per ray, sorted. One work-item per ray (per sample for the gpu profile's
+// sampler), fixed order: deterministic.
 // Host references: tests/render/surface_reference.hpp.
 #include "common/philox.clh"
 
@@ -63,6 +64,42 @@ __kernel void render_sample_surface(const int n_rays, const int F, const int B, 
     t_out[s] = t;
     vstore3(o3 + t * d3, s, x_out);
   }
+}
+
+// The same samples under the gpu profile (ray_work_items > 1; SurfaceSampler picks it): one
+// work-item per (ray, sample) instead of per ray, each the loop body above for its i. The same
+// operations on the same values: the per-ray kernel's samples.
+__kernel void render_sample_surface_wide(const int n_rays, const int F, const int B, const int K,
+                                         const float near, const float far, const float half_w,
+                                         const float behind, const int jitter,
+                                         const uint seed_lo, const uint seed_hi, const uint step,
+                                         __global const float* o, __global const float* d,
+                                         __global const float* target, __global float* t_out,
+                                         __global float* x_out) {
+  const int M = F + B + K;
+  const int s = get_global_id(0);
+  if (s >= n_rays * M) return;
+  const int r = s / M, i = s - r * M;
+  const float3 o3 = vload3(r, o), d3 = vload3(r, d);
+  const int ret = render_has_return(target, r, near);
+  const float rr = target[3 * r];
+  const float a = clamp(rr - half_w, near, far), b = clamp(rr + half_w, near, far),
+              c = clamp(rr + half_w + behind, near, far);
+  const float xi = render_surface_xi(jitter, seed_lo, seed_hi, step, r, i, M);
+  float t;
+  if (!ret) {
+    t = near + ((float)i + xi) * ((far - near) / (float)M);
+  } else if (i < F) {
+    t = near + ((float)i + xi) * ((a - near) / (float)F);
+  } else if (i < F + B) {
+    t = a + ((float)(i - F) + xi) * ((b - a) / (float)B);
+  } else if (i < M - 1) {
+    t = b + ((float)(i - F - B) + xi) * ((c - b) / (float)(K - 1));
+  } else {
+    t = (K > 1 ? c : b) + xi * (far - (K > 1 ? c : b));
+  }
+  t_out[s] = t;
+  vstore3(o3 + t * d3, s, x_out);
 }
 
 // Weight carving (NeuRAD's L_w): per ray with a return, scale · sum_i m_i w_i^2 where m_i = 1

@@ -26,6 +26,8 @@ class RaySampler {
   // cfg.n_importance samples per ray drawn from w_coarse (n_rays x n_coarse, e.g. from
   // VolumeRenderer::weights) and merged with t_coarse: n_coarse + n_importance per ray.
   // src_out (int per merged sample): k for coarse sample k, n_coarse + j for fine sample j.
+  // t_coarse sorted per ray. Under the gpu profile (ray_work_items > 1) one work-item per
+  // output sample (render_sample_importance_wide): the same samples within the CDF's rounding.
   cl::Event importance(const cl::Buffer& origins, const cl::Buffer& dirs, int n_rays, int n_coarse,
                        const cl::Buffer& t_coarse, const cl::Buffer& w_coarse, bool jitter,
                        uint64_t seed, uint32_t step, cl::Buffer& t_out, cl::Buffer& x_out,
@@ -35,6 +37,9 @@ class RaySampler {
   RenderConfig cfg_;
   float near_, far_;
   cl::Kernel uniform_k_, importance_k_;
+  // The profile's ray_work_items and local_size when made (1: the per-ray kernel).
+  int ray_wi_, ray_wg_;
+  size_t local_mem_bytes_;
 };
 
 }  // namespace sgnlf::render

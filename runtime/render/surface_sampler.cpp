@@ -10,7 +10,10 @@ SurfaceSampler::SurfaceSampler(cl::Runtime& rt, const RenderConfig& cfg, float s
       scale_(scene_scale),
       near_(cfg.near_m * scene_scale),
       far_(cfg.far_m * scene_scale),
-      k_(rt.kernel("render/surface.cl", "render_sample_surface")) {
+      // Under the gpu profile (ray_work_items > 1) one work-item per sample: the same samples.
+      wide_(rt.device_profile().ray_work_items > 1),
+      k_(rt.kernel("render/surface.cl",
+                   wide_ ? "render_sample_surface_wide" : "render_sample_surface")) {
   cfg_.validate("SurfaceSampler");
   require(scene_scale > 0.0f, "SurfaceSampler: scene_scale must be positive");
   require(cfg_.surface_sampling(), "SurfaceSampler: render.surface_band_samples is 0");
@@ -30,7 +33,7 @@ cl::Event SurfaceSampler::sample(const cl::Buffer& origins, const cl::Buffer& di
               cfg_.surface_behind_samples, near_, far_, half_width(step),
               cfg_.surface_behind_m * scale_, int(jitter), uint32_t(seed), uint32_t(seed >> 32),
               step, origins, dirs, target, t, x);
-  return launch_1d(k_, size_t(n_rays));
+  return launch_1d(k_, wide_ ? n : size_t(n_rays));
 }
 
 }  // namespace sgnlf::render

@@ -32,6 +32,7 @@ class SurfaceSampler {
  private:
   RenderConfig cfg_;
   float scale_, near_, far_;
+  bool wide_;  // the profile's ray_work_items > 1 when made: one work-item per sample
   cl::Kernel k_;
 };
 
