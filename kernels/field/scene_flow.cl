@@ -45,3 +45,30 @@ __kernel void field_scene_flow_time_bwd(const int n, __global const float* t,
     for (int j = 0; j < BASIS; ++j)
       for (int g = 0; g < GROUP; ++g) o[l * FEATURES + j * GROUP + g] = w[j] * d[l * GROUP + g];
 }
+
+// The same two under the gpu profile (device profile ray_work_items > 1; SceneFlow picks them):
+// one work-item per output word instead of per point (a flow batch is a few thousand points),
+// each computing the basis weights it needs and the same products and sum order as above.
+__kernel void field_scene_flow_time_fwd_wide(const int n, __global const float* t,
+                                             __global const float* in, __global float* out) {
+  const int q = get_global_id(0);
+  if (q >= n * LEVELS * GROUP) return;
+  const int i = q / (LEVELS * GROUP), lg = q - i * (LEVELS * GROUP);
+  const int l = lg / GROUP, g = lg - l * GROUP;
+  float w[BASIS];
+  for (int j = 0; j < BASIS; ++j) w[j] = lagrange_basis(j, t[i]);
+  __global const float* row = in + (size_t)i * LEVELS * FEATURES;
+  float s = 0.0f;
+  for (int j = 0; j < BASIS; ++j) s += w[j] * row[l * FEATURES + j * GROUP + g];
+  out[q] = s;
+}
+
+__kernel void field_scene_flow_time_bwd_wide(const int n, __global const float* t,
+                                             __global const float* d_out, __global float* d_in) {
+  const int q = get_global_id(0);
+  if (q >= n * LEVELS * FEATURES) return;
+  const int i = q / (LEVELS * FEATURES), lf = q - i * (LEVELS * FEATURES);
+  const int l = lf / FEATURES, jg = lf - l * FEATURES;
+  const int j = jg / GROUP, g = jg - j * GROUP;
+  d_in[q] = lagrange_basis(j, t[i]) * d_out[(size_t)i * LEVELS * GROUP + l * GROUP + g];
+}

@@ -70,6 +70,7 @@ DeviceProfile gpu_profile() {
   p.loss_reduce = LossReduce::Device;
   p.chamfer = ChamferSearch::Device;
   p.ray_work_items = 32;
+  p.radix_min_work_items = 16384;
   return p;
 }
 

@@ -147,7 +147,21 @@ struct DeviceProfile {
   // ray's samples in order (the cpu profile's kernels); a power of two above 1 = a work-group
   // slice of that many work-items per ray that splits the samples and combines them with
   // local-memory scans and fixed-tree sums (deterministic per device, not the cpu kernels' bits).
+  // Above 1 it also selects the other per-ray or per-point loops' per-element kernels: the
+  // direction encoding's (a work-item per (ray, frequency)) and the scene flow's time
+  // interpolation (one per output word).
   int ray_work_items = 1;
+  // Pairs per work-item of the deterministic parallel backward's radix sort (entry_radix_hist
+  // and entry_radix_scatter, kernels/field/entry_reduce.cl RADIX_TILE): each work-item counts
+  // and then scatters one tile of a unit's pairs in order; the histogram (16 words a tile) is
+  // scanned by one work-group per unit. radix_tile is the largest tile; a sort whose tiles
+  // would give fewer than radix_min_work_items work-items halves its tile until they do (or
+  // the tile is 1). cpu: 256 and 0 (always 256); gpu: 256 and 16 384, so that the big sorts
+  // (the hash grid's millions of pairs) keep 256 and a small histogram while LiDAR4D's time hash
+  // grid, K-Planes and scene flow sorts (1.5-2.6e5 pairs) get 16384-18432 work-items instead
+  // of 576-1024. The sort is stable at any tile: the same order and gradient bits.
+  int radix_tile = 256;
+  int radix_min_work_items = 0;
 
   template <class Self, class V>
   static void fields(Self& s, V& v) {
@@ -170,6 +184,8 @@ struct DeviceProfile {
     v("loss_reduce", s.loss_reduce, config::choices(kLossReduceNames));
     v("chamfer", s.chamfer, config::choices(kChamferNames));
     v("ray_work_items", s.ray_work_items, 1, 256);
+    v("radix_tile", s.radix_tile, 1, 4096);
+    v("radix_min_work_items", s.radix_min_work_items, 0, 1 << 30);
   }
   // Throws ConfigError naming `where` and the key.
   void validate(const std::string& where = "device_profile") const;

@@ -15,16 +15,16 @@ inline size_t element_local_size(const Kernel& k) {
   return size_t(k.runtime()->device_profile().local_size);
 }
 
-// One work-item per element i < n.
-inline Event launch_1d(Kernel& k, size_t n) {
+// One work-item per element i < n. trace_elements: as Kernel::launch's (0 = not given).
+inline Event launch_1d(Kernel& k, size_t n, size_t trace_elements = 0) {
   const size_t ls = element_local_size(k);
-  return k.launch({round_up(n, ls)}, {ls});
+  return k.launch({round_up(n, ls)}, {ls}, trace_elements);
 }
 
 // One work-item per (element i < n, row r < rows); rows are whole work-group columns.
-inline Event launch_rows(Kernel& k, size_t n, size_t rows) {
+inline Event launch_rows(Kernel& k, size_t n, size_t rows, size_t trace_elements = 0) {
   const size_t ls = element_local_size(k);
-  return k.launch({round_up(n, ls), rows}, {ls, 1});
+  return k.launch({round_up(n, ls), rows}, {ls, 1}, trace_elements);
 }
 
 }  // namespace sgnlf::cl

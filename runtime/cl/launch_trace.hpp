@@ -17,6 +17,12 @@ struct TracedLaunch {
   std::string kernel;
   size_t work_items = 0;            // product of the global sizes
   size_t largest_buffer_bytes = 0;  // the largest buffer argument bound at the launch
+  // The elements (4-byte words) the launch works on when its launcher says
+  // (Kernel::launch's trace_elements): a kernel addressing a slice of a larger buffer (a
+  // module's entries of the flat gradient, a scratch arena) gives its own count; 0 when not
+  // given, where the largest buffer argument stands for it.
+  size_t elements = 0;
+  size_t element_count() const { return elements ? elements : largest_buffer_bytes / 4; }
 };
 
 struct TracedTransfer {

@@ -107,7 +107,8 @@ void Kernel::set_raw(cl_uint i, size_t size, const void* value) {
         name_ + " argument " + std::to_string(i));
 }
 
-Event Kernel::launch(std::vector<size_t> global, std::vector<size_t> local) {
+Event Kernel::launch(std::vector<size_t> global, std::vector<size_t> local,
+                     size_t trace_elements) {
   if (global.empty() || global.size() > 3) throw Error("Kernel::launch: 1 to 3 dimensions");
   for (size_t g : global)
     if (g == 0) return Event();  // nothing to do
@@ -122,7 +123,8 @@ Event Kernel::launch(std::vector<size_t> global, std::vector<size_t> local) {
   if (LaunchTrace* t = rt_->trace())
     t->launches.push_back(
         {name_, std::accumulate(global.begin(), global.end(), size_t(1), std::multiplies<>()),
-         buffer_bytes_.empty() ? 0 : *std::max_element(buffer_bytes_.begin(), buffer_bytes_.end())});
+         buffer_bytes_.empty() ? 0 : *std::max_element(buffer_bytes_.begin(), buffer_bytes_.end()),
+         trace_elements});
   if (rt_->profiling()) {
     ev.wait();
     rt_->record(name_, ev.elapsed_ms());

@@ -137,7 +137,10 @@ class Kernel {
   }
 
   // Enqueues over an N-d range (global sizes rounded up by the caller); local may be empty.
-  Event launch(std::vector<size_t> global, std::vector<size_t> local = {});
+  // trace_elements: the 4-byte words the launch works on, for the launch trace (TracedLaunch::
+  // elements) where its largest buffer argument over-counts them; 0 = not given.
+  Event launch(std::vector<size_t> global, std::vector<size_t> local = {},
+               size_t trace_elements = 0);
 
  private:
   void set_raw(cl_uint i, size_t size, const void* value);

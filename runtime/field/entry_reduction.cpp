@@ -10,7 +10,6 @@
 
 namespace sgnlf::field {
 namespace {
-constexpr uint32_t kTile = 256;   // = RADIX_TILE
 constexpr size_t kScanWg = 64;    // = SCAN_WG
 constexpr uint32_t kRadixBits = 4;
 }  // namespace
@@ -18,7 +17,8 @@ constexpr uint32_t kRadixBits = 4;
 EntryReduction::EntryReduction(cl::Runtime& rt, int features, int units, int pairs_per_point,
                                int pairs_per_vector, std::vector<EntryRange> ranges)
     : rt_(rt), features_(features), units_(units), pairs_(pairs_per_point),
-      per_vector_(pairs_per_vector) {
+      per_vector_(pairs_per_vector), tile_(uint32_t(rt.device_profile().radix_tile)),
+      min_work_items_(size_t(rt.device_profile().radix_min_work_items)) {
   if (units < 1 || pairs_per_point < 1 || pairs_per_vector < 1 ||
       pairs_per_point % pairs_per_vector != 0)
     throw Error("EntryReduction: " + std::to_string(units) + " units, " +
@@ -51,14 +51,30 @@ EntryReduction::EntryReduction(cl::Runtime& rt, int features, int units, int pai
   while (bits < 32 && (uint64_t(1) << bits) < top) ++bits;  // keys < top ≤ 2^bits
   passes_ = (bits + int(kRadixBits) - 1) / int(kRadixBits);
   const std::string opt = "-DFEATURES=" + std::to_string(features) +
-                          " -DRADIX_TILE=" + std::to_string(kTile) +
+                          " -DRADIX_TILE=" + std::to_string(tile_) +
                           " -DSCAN_WG=" + std::to_string(kScanWg);
   const std::string file = "field/entry_reduce.cl";
-  hist_k_ = rt_.kernel(file, "entry_radix_hist", opt);
+  tile_kernels(tile_);
   scan_k_ = rt_.kernel(file, "entry_radix_scan", opt);
-  scatter_k_ = rt_.kernel(file, "entry_radix_scatter", opt);
   reduce_k_ = rt_.kernel(file, "entry_reduce", opt);
   zero_k_ = rt_.kernel(file, "entry_zero", opt);
+}
+
+EntryReduction::TileKernels& EntryReduction::tile_kernels(uint32_t tile) {
+  auto it = by_tile_.find(tile);
+  if (it != by_tile_.end()) return it->second;
+  const std::string opt = "-DFEATURES=" + std::to_string(features_) +
+                          " -DRADIX_TILE=" + std::to_string(tile) +
+                          " -DSCAN_WG=" + std::to_string(kScanWg);
+  const std::string file = "field/entry_reduce.cl";
+  return by_tile_[tile] = {rt_.kernel(file, "entry_radix_hist", opt),
+                           rt_.kernel(file, "entry_radix_scatter", opt)};
+}
+
+uint32_t EntryReduction::tile_for(uint64_t m) const {
+  uint32_t tile = tile_;
+  while (tile > 1 && (m + tile - 1) / tile * uint64_t(units_) < min_work_items_) tile /= 2;
+  return tile;
 }
 
 void EntryReduction::reserve(int n) {
@@ -69,7 +85,11 @@ void EntryReduction::reserve(int n) {
     throw Error("EntryReduction: " + std::to_string(n) + " points × " + std::to_string(pairs_) +
                 " pairs exceed 32-bit pair indices");
   const size_t total = size_t(m) * size_t(units_);
-  const size_t tiles = (size_t(m) + kTile - 1) / kTile;
+  // The most tiles a sort of up to m pairs a unit makes: ⌈m / radix_tile⌉ at the full tile;
+  // a halved tile (tile_for) had under min_work_items_ / units tiles at twice its size, so it
+  // has at most 2 min_work_items_ / units + 1.
+  const size_t tiles =
+      std::max((size_t(m) + tile_ - 1) / tile_, 2 * min_work_items_ / size_t(units_) + 1);
   for (int b = 0; b < 2; ++b) {
     keys_[b] = cl::Buffer(rt_, total * sizeof(uint32_t));
     vals_[b] = cl::Buffer(rt_, total * sizeof(uint32_t));
@@ -85,19 +105,24 @@ void EntryReduction::reduce(int n, cl::Buffer& grad, size_t grad_offset, bool ac
     throw Error("EntryReduction::reduce: " + std::to_string(n) + " points, buffers for " +
                 std::to_string(points_) + " (reserve first)");
   const uint32_t m = uint32_t(size_t(n) * size_t(pairs_));
-  const uint32_t tiles = (m + kTile - 1) / kTile;
+  const uint32_t tile = tile_for(m);
+  const uint32_t tiles = (m + tile - 1) / tile;
+  TileKernels& tk = tile_kernels(tile);
   if (!accumulate) zero(grad, grad_offset);
   if (m == 0) return;
   int cur = 0;
   for (int p = 0; p < passes_; ++p) {
     const uint32_t shift = uint32_t(p) * kRadixBits;
-    hist_k_.set_args(m, tiles, shift, keys_[cur], hist_);
-    cl::launch_rows(hist_k_, tiles, size_t(units_));
+    // The trace's element counts: the pairs sorted and the histogram words scanned (keys_ and
+    // hist_ are sized for reserve()'s points, which may be more).
+    const size_t pairs = size_t(m) * size_t(units_);
+    tk.hist.set_args(m, tiles, shift, keys_[cur], hist_);
+    cl::launch_rows(tk.hist, tiles, size_t(units_), pairs);
     scan_k_.set_args(uint32_t(16 * tiles), hist_);
-    scan_k_.launch({kScanWg * size_t(units_)}, {kScanWg});
-    scatter_k_.set_args(m, tiles, shift, keys_[cur], vals_[cur], hist_, keys_[1 - cur],
+    scan_k_.launch({kScanWg * size_t(units_)}, {kScanWg}, size_t(16) * tiles * size_t(units_));
+    tk.scatter.set_args(m, tiles, shift, keys_[cur], vals_[cur], hist_, keys_[1 - cur],
                         vals_[1 - cur]);
-    cl::launch_rows(scatter_k_, tiles, size_t(units_));
+    cl::launch_rows(tk.scatter, tiles, size_t(units_), pairs);
     cur = 1 - cur;
   }
   reduce_k_.set_args(m, uint32_t(per_vector_), keys_[cur], vals_[cur], coef_, vec_, grad,
@@ -107,7 +132,8 @@ void EntryReduction::reduce(int n, cl::Buffer& grad, size_t grad_offset, bool ac
 
 void EntryReduction::zero(cl::Buffer& grad, size_t grad_offset) {
   zero_k_.set_args(uint32_t(entries_), n_ranges_, ranges_, grad, uint32_t(grad_offset));
-  cl::launch_1d(zero_k_, entries_);
+  // The trace's element count: the ranges' floats, not the flat gradient they lie in.
+  cl::launch_1d(zero_k_, entries_, entries_ * size_t(features_));
 }
 
 }  // namespace sgnlf::field

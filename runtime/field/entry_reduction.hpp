@@ -6,14 +6,16 @@
 // each unit's pairs by entry (stable radix sort, ⌈bits/4⌉ passes of histogram, scan and
 // scatter) and writes each entry the fma-sum of coef · vec over its pairs in pair order (the
 // first pair of each entry's run sums the run): the serial kernels' summation order, so the
-// result is bit-identical to them, with one work-item per tile of pairs or per pair instead of
-// one per unit.
+// result is bit-identical to them, with one work-item per tile of pairs (the device profile's
+// radix_tile, halved for small sorts down to radix_min_work_items work-items; the stable sort's
+// order is the same at any tile) or per pair instead of one per unit.
 //
 // The ranges say which entries each unit owns, and every key a unit's pair kernel writes must
 // be one of them: reduce() then writes every one of them (zero, or the old value when
 // accumulating, where no pair names it) and nothing else.
 #pragma once
 #include <cstdint>
+#include <map>
 #include <vector>
 
 #include "cl/runtime.hpp"
@@ -53,13 +55,23 @@ class EntryReduction {
  private:
   cl::Runtime& rt_;
   int features_, units_, pairs_, per_vector_;
+  // The device profile's radix_tile and radix_min_work_items when made: a sort of m pairs a
+  // unit runs at tile_for(m) (RADIX_TILE), whose hist/scatter kernels are built on first use.
+  uint32_t tile_;
+  size_t min_work_items_;
+  struct TileKernels {
+    cl::Kernel hist, scatter;
+  };
+  std::map<uint32_t, TileKernels> by_tile_;
+  TileKernels& tile_kernels(uint32_t tile);
+  uint32_t tile_for(uint64_t m) const;
   int passes_ = 0;
   size_t entries_ = 0;
   uint32_t n_ranges_ = 0;
   cl::Buffer ranges_;
   cl::Buffer keys_[2], vals_[2], coef_, vec_, hist_;
   size_t points_ = 0;
-  cl::Kernel hist_k_, scan_k_, scatter_k_, reduce_k_, zero_k_;
+  cl::Kernel scan_k_, reduce_k_, zero_k_;
 };
 
 }  // namespace sgnlf::field

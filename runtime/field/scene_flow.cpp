@@ -23,8 +23,12 @@ SceneFlow::SceneFlow(cl::Runtime& rt, const SceneFlowConfig& cfg)
   const std::string opt = "-DLEVELS=" + std::to_string(cfg_.levels) +
                           " -DFEATURES=" + std::to_string(cfg_.features) +
                           " -DBASIS=" + std::to_string(cfg_.time_nodes);
-  time_fwd_ = rt_.kernel("field/scene_flow.cl", "field_scene_flow_time_fwd", opt);
-  time_bwd_ = rt_.kernel("field/scene_flow.cl", "field_scene_flow_time_bwd", opt);
+  // Under the gpu profile (ray_work_items > 1) a work-item per output word: scene_flow.cl.
+  wide_ = rt_.device_profile().ray_work_items > 1;
+  time_fwd_ = rt_.kernel("field/scene_flow.cl",
+                         wide_ ? "field_scene_flow_time_fwd_wide" : "field_scene_flow_time_fwd", opt);
+  time_bwd_ = rt_.kernel("field/scene_flow.cl",
+                         wide_ ? "field_scene_flow_time_bwd_wide" : "field_scene_flow_time_bwd", opt);
 }
 
 void SceneFlow::init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) const {
@@ -65,7 +69,10 @@ void SceneFlow::forward(const cl::Buffer& params, size_t offset, const cl::Buffe
   ensure(n);
   grid_.forward(params, offset, x, n, grid_out_);
   time_fwd_.set_args(n, t, grid_out_, mlp_in_);
-  cl::launch_1d(time_fwd_, size_t(n));
+  // The trace's element count: the grid features read (grid_out_ may be sized for more points).
+  const size_t lf = size_t(cfg_.levels) * size_t(cfg_.features);
+  cl::launch_1d(time_fwd_, wide_ ? size_t(n) * (lf / size_t(cfg_.time_nodes)) : size_t(n),
+                size_t(n) * lf);
   mlp_.forward(params, offset + mlp_offset(), mlp_in_, n, flow, ctx_);
 }
 
@@ -78,7 +85,8 @@ void SceneFlow::backward(const cl::Buffer& params, size_t offset, const cl::Buff
   mlp_.backward(params, offset + mlp_offset(), ctx_, flow, d_flow, grad,
                 grad_offset + mlp_offset(), &d_mlp_in_);
   time_bwd_.set_args(n, t, d_mlp_in_, d_grid_out_);
-  cl::launch_1d(time_bwd_, size_t(n));
+  const size_t lf = size_t(cfg_.levels) * size_t(cfg_.features);
+  cl::launch_1d(time_bwd_, wide_ ? size_t(n) * lf : size_t(n), size_t(n) * lf);
   grid_.backward(params, offset, x, n, d_grid_out_, grad, grad_offset, d_x);
 }
 

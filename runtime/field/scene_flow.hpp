@@ -52,6 +52,7 @@ class SceneFlow {
   Mlp mlp_;
   MlpContext ctx_;
   cl::Kernel time_fwd_, time_bwd_;
+  bool wide_ = false;  // the profile's ray_work_items > 1 when made: a work-item per output word
   cl::Buffer grid_out_, mlp_in_, d_mlp_in_, d_grid_out_;
   size_t capacity_ = 0;
   void ensure(int n);

@@ -43,6 +43,8 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(cpu.loss_reduce == cl::LossReduce::Host);
   CHECK(cpu.chamfer == cl::ChamferSearch::Host);
   CHECK(cpu.ray_work_items == 1);
+  CHECK(cpu.radix_tile == 256);
+  CHECK(cpu.radix_min_work_items == 0);
   const auto gpu = cl::gpu_profile();
   CHECK(gpu.name == "gpu");
   CHECK(gpu.local_size == 64);
@@ -56,6 +58,8 @@ TEST_CASE("built-in device profiles and the choice by device type", "[cl][device
   CHECK(gpu.loss_reduce == cl::LossReduce::Device);
   CHECK(gpu.chamfer == cl::ChamferSearch::Device);
   CHECK(gpu.ray_work_items == 32);
+  CHECK(gpu.radix_tile == 256);
+  CHECK(gpu.radix_min_work_items == 16384);
   CHECK(cl::automatic_profile(device_of_type("CPU")) == cpu);
   CHECK(cl::automatic_profile(device_of_type("GPU")) == gpu);
   CHECK(cl::automatic_profile(device_of_type("accelerator")) == gpu);
@@ -153,6 +157,9 @@ TEST_CASE("device profile files: keys over a base, strictly read", "[cl][device_
                                                       R"({"name": "r", "local_size": 32, "ray_work_items": 64})"),
                                         cpu_dev),
                     Contains("ray_work_items") && Contains("local_size"));
+  CHECK_THROWS_WITH(
+      cl::resolve_profile(write_profile("tile.json", R"({"name": "t", "radix_tile": 0})"), cpu_dev),
+      Contains("radix_tile"));
   CHECK_THROWS_WITH(
       cl::resolve_profile(write_profile("loss.json", R"({"name": "l", "loss_reduce": "gpu"})"),
                           cpu_dev),

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 #include "core/rng.hpp"
 #include "fd_4d.hpp"
@@ -62,11 +63,50 @@ field::KPlanesConfig planes_config() {
 }
 }  // namespace
 
+namespace {
+void check_entry_reduction(int n = 700);
+}
+
+// At the profile's radix tile (256 under the cpu profile, 16 under the gpu one: Oclgrind's).
 TEST_CASE("entry reduction sums each entry's pairs in pair order", "[field][parallel_bwd]") {
+  check_entry_reduction();
+}
+
+// At the cpu profile's radix tile (256), 16, one pair per work-item and an odd tile, and with a
+// minimum of work-items that halves the tile (to 32 and to 4 here: 4200 pairs a unit): the sort
+// is stable at any tile, so each gives the host's in-order sums bit for bit.
+TEST_CASE("entry reduction gives the same sums at any radix tile",
+          "[field][parallel_bwd][radix_tiles]") {
+  const auto [tile, min_wi] =
+      GENERATE(std::make_pair(256, 0), std::make_pair(16, 0), std::make_pair(1, 0),
+               std::make_pair(37, 0), std::make_pair(256, 200), std::make_pair(256, 3000));
+  INFO("radix_tile " << tile << ", radix_min_work_items " << min_wi);
+  cl::DeviceProfile profile = test::runtime().device_profile();
+  profile.radix_tile = tile;
+  profile.radix_min_work_items = min_wi;
+  test::ProfileScope scope(profile);
+  check_entry_reduction();
+}
+
+// Halved tiles on fewer points (oclgrind_field_parallel, which runs the encoders' cases at the
+// full tile: at 16 they took 177 s there instead of 84): 360 pairs a unit, tiles of 16 and 2.
+TEST_CASE("entry reduction at small radix tiles on a small case",
+          "[field][parallel_bwd][radix_tiles][small]") {
+  const int min_wi = GENERATE(60, 500);
+  INFO("radix_min_work_items " << min_wi);
+  cl::DeviceProfile profile = test::runtime().device_profile();
+  profile.radix_tile = 256;
+  profile.radix_min_work_items = min_wi;
+  test::ProfileScope scope(profile);
+  check_entry_reduction(60);
+}
+
+namespace {
+void check_entry_reduction(const int n) {
   auto& rt = test::runtime();
   // 3 units; unit u owns entries [u·40 + 5, +30) and unit 1 also [200, 210); 6 pairs per point
   // in vectors of 3; keys drawn from few entries (long runs) and others (short ones).
-  const int units = 3, P = 6, PV = 3, F = 4, n = 700;
+  const int units = 3, P = 6, PV = 3, F = 4;
   std::vector<field::EntryRange> ranges = {{0, 5, 30}, {1, 45, 30}, {2, 85, 30}, {1, 200, 10}};
   field::EntryReduction red(rt, F, units, P, PV, ranges);
   CHECK(red.entries() == 100);
@@ -132,6 +172,7 @@ TEST_CASE("entry reduction sums each entry's pairs in pair order", "[field][para
   CHECK_THROWS_WITH(red.reduce(n + 1, b_grad, goff, false),
                     Catch::Matchers::Contains("reserve first"));
 }
+}  // namespace
 
 TEST_CASE("hash grid parallel backwards: deterministic = serial bit for bit, atomic within "
           "rounding, both match the host reference",

@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "core/config.hpp"
 #include "core/error.hpp"
@@ -149,4 +151,61 @@ TEST_CASE("scene flow gradients agree with finite differences of the device forw
   }
   // Trilinear corners and ReLUs are only piecewise smooth: a step may cross a cell face.
   CHECK(agree >= int(x.size()) * 9 / 10);
+}
+
+// The gpu profile's time interpolation (field_scene_flow_time_*_wide: a work-item per output
+// word) against the per-point kernels on one device: the same basis weights, products and sum
+// order, so within a few ulp (a device may contract them differently; measured bit-equal on
+// PoCL); and run to run the same bits. LiDAR4D's 8 levels x 8 features at 4 time nodes and a
+// small 2 x 4 at 2, with point counts that leave a work-group part empty.
+namespace {
+struct FlowShape {
+  int levels, features, basis;
+};
+void check_flow_wide(const std::vector<FlowShape>& shapes, const std::vector<int>& counts) {
+  auto& rt = test::runtime();
+  for (const FlowShape sh : shapes) {
+    for (const int n : counts) {
+      CAPTURE(sh.levels, sh.features, sh.basis, n);
+      const std::string opt = "-DLEVELS=" + std::to_string(sh.levels) +
+                              " -DFEATURES=" + std::to_string(sh.features) +
+                              " -DBASIS=" + std::to_string(sh.basis);
+      const size_t lf = size_t(sh.levels) * size_t(sh.features), lg = lf / size_t(sh.basis);
+      const auto t = uniform(size_t(n), 0.0f, 1.0f, 21);
+      const auto in = uniform(size_t(n) * lf, -1.0f, 1.0f, 22);
+      const auto d_out = uniform(size_t(n) * lg, -1.0f, 1.0f, 23);
+      auto b_t = cl::Buffer::from(rt, t), b_in = cl::Buffer::from(rt, in);
+      auto b_dout = cl::Buffer::from(rt, d_out);
+      auto run = [&](bool wide) {
+        auto fwd = rt.kernel("field/scene_flow.cl",
+                             wide ? "field_scene_flow_time_fwd_wide" : "field_scene_flow_time_fwd",
+                             opt);
+        auto bwd = rt.kernel("field/scene_flow.cl",
+                             wide ? "field_scene_flow_time_bwd_wide" : "field_scene_flow_time_bwd",
+                             opt);
+        auto b_out = cl::Buffer::from(rt, std::vector<float>(size_t(n) * lg, std::nanf("")));
+        auto b_din = cl::Buffer::from(rt, std::vector<float>(size_t(n) * lf, std::nanf("")));
+        fwd.set_args(n, b_t, b_in, b_out).launch({cl::round_up(size_t(n) * (wide ? lg : 1), 64)}, {64});
+        bwd.set_args(n, b_t, b_dout, b_din).launch({cl::round_up(size_t(n) * (wide ? lf : 1), 64)}, {64});
+        return std::make_pair(b_out.read_vec<float>(size_t(n) * lg),
+                              b_din.read_vec<float>(size_t(n) * lf));
+      };
+      const auto point = run(false), wide = run(true), again = run(true);
+      CHECK(test::same_bits(wide.first, again.first));
+      CHECK(test::same_bits(wide.second, again.second));
+      // |ℓ_j| ≤ 1.2 on [0, 1] for 4 nodes; terms of order 1: 1e-6 of a floor of 1 is ~8 ulp.
+      CHECK(test::sym_rel_err(wide.first, point.first, 1.0) <= 1e-6);
+      CHECK(test::sym_rel_err(wide.second, point.second, 1.0) <= 1e-6);
+    }
+  }
+}
+}  // namespace
+
+TEST_CASE("scene flow's wide time kernels match the per-point ones", "[field][flow][flow_wide]") {
+  check_flow_wide({{8, 8, 4}, {2, 4, 2}}, {1, 37, 301});
+}
+
+// LiDAR4D's shape on a few points (oclgrind_field).
+TEST_CASE("scene flow's wide time kernels on a small case", "[field][flow][flow_wide][small]") {
+  check_flow_wide({{8, 8, 4}}, {37});
 }
