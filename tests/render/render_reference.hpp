@@ -290,4 +290,34 @@ Vec<To> cast_vec(const Vec<From>& v) {
   return Vec<To>(v.begin(), v.end());
 }
 
+// Central differences in double of L = g · out(h0, head), out from ref_volume_fwd: dL/dh0 (one
+// per sample) and dL/dhead (two per sample), for the volume backward's gradient tests.
+inline void fd_volume_grads(int n_rays, int S, double last_delta, const Vec<float>& t,
+                            const Vec<float>& h0, const Vec<float>& head, const Vec<float>& g,
+                            Vec<float>& fd_h0, Vec<float>& fd_head) {
+  using D = Vec<double>;
+  const D td = cast_vec<double>(t), gd = cast_vec<double>(g);
+  D hd = cast_vec<double>(h0), headd = cast_vec<double>(head);
+  auto loss = [&]() {
+    D out, w;
+    ref_volume_fwd<double>(n_rays, S, last_delta, td, hd, headd, out, w);
+    double l = 0;
+    for (size_t i = 0; i < out.size(); ++i) l += gd[i] * out[i];
+    return l;
+  };
+  auto fd = [&](D& v, size_t i) {
+    const double eps = 1e-6, keep = v[i];
+    v[i] = keep + eps;
+    const double lp = loss();
+    v[i] = keep - eps;
+    const double lm = loss();
+    v[i] = keep;
+    return float((lp - lm) / (2 * eps));
+  };
+  fd_h0.assign(td.size(), 0.0f);
+  fd_head.assign(2 * td.size(), 0.0f);
+  for (size_t i = 0; i < td.size(); ++i) fd_h0[i] = fd(hd, i);
+  for (size_t i = 0; i < 2 * td.size(); ++i) fd_head[i] = fd(headd, i);
+}
+
 }  // namespace sgnlf::test

@@ -14,6 +14,7 @@
 #include "render/weight_carving.hpp"
 #include "render_reference.hpp"
 #include "render_test_data.hpp"
+#include "slice_profiles.hpp"
 #include "support/test_device.hpp"
 #include "surface_reference.hpp"
 
@@ -23,19 +24,8 @@ using namespace sgnlf;
 namespace {
 const float kScale = 0.0125f;  // 1 / 80 m
 
-cl::DeviceProfile slice_profile(int w, int local = 64) {
-  cl::DeviceProfile p = cl::cpu_profile();
-  p.name = "slices";
-  p.ray_work_items = w;
-  p.local_size = local;
-  p.validate();
-  return p;
-}
-
-// W = 1 (the cpu kernels), 2, 8, the gpu profile's 32, a slice as wide as the group, 16 in
-// groups of 48.
-const std::vector<std::pair<int, int>> kShapes = {{1, 64},  {2, 64},  {8, 64},
-                                                  {32, 64}, {64, 64}, {16, 48}};
+using test::slice_profile;
+const auto& kShapes = test::kSliceShapes;
 
 std::vector<float> to_float(const std::vector<double>& v) { return {v.begin(), v.end()}; }
 

@@ -323,29 +323,8 @@ TEST_CASE("Volume backward equals the reference and finite differences", "[rende
   CHECK(test::max_sym_rel_err(dev_head, ref_head, 1e-7) < 1e-4);
 
   // Central differences of L = g · out(h0, head) in double.
-  using D = std::vector<double>;
-  const D td = test::cast_vec<double>(t), gd = test::cast_vec<double>(g);
-  D hd = test::cast_vec<double>(h0), headd = test::cast_vec<double>(head);
-  const double last = vr.last_delta();
-  auto loss = [&]() {
-    D out, w;
-    test::ref_volume_fwd<double>(n_rays, S, last, td, hd, headd, out, w);
-    double l = 0;
-    for (size_t i = 0; i < out.size(); ++i) l += gd[i] * out[i];
-    return l;
-  };
-  auto fd = [&](D& v, size_t i) {
-    const double eps = 1e-6, keep = v[i];
-    v[i] = keep + eps;
-    const double lp = loss();
-    v[i] = keep - eps;
-    const double lm = loss();
-    v[i] = keep;
-    return float((lp - lm) / (2 * eps));
-  };
-  std::vector<float> fd_h0(t.size()), fd_head(2 * t.size());
-  for (size_t i = 0; i < t.size(); ++i) fd_h0[i] = fd(hd, i);
-  for (size_t i = 0; i < 2 * t.size(); ++i) fd_head[i] = fd(headd, i);
+  std::vector<float> fd_h0, fd_head;
+  test::fd_volume_grads(n_rays, S, vr.last_delta(), t, h0, head, g, fd_h0, fd_head);
   // Floors at 1e-4 of the largest gradient: the central differences of a loss of size ~1
   // carry ~1e-10 of rounding noise, which entries far below the largest cannot resolve.
   auto floor_of = [](const std::vector<float>& v) {

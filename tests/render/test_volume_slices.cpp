@@ -14,6 +14,7 @@
 #include "render/weight_carving.hpp"
 #include "render_reference.hpp"
 #include "render_test_data.hpp"
+#include "slice_profiles.hpp"
 #include "support/test_device.hpp"
 #include "surface_reference.hpp"
 
@@ -23,20 +24,8 @@ using namespace sgnlf;
 namespace {
 const float kScale = 0.0125f;  // 1 / 80 m
 
-// The cpu profile with `w` work-items per ray in work-groups of `local` (w = 1: the cpu kernels).
-cl::DeviceProfile slice_profile(int w, int local = 64) {
-  cl::DeviceProfile p = cl::cpu_profile();
-  p.name = "slices";
-  p.ray_work_items = w;
-  p.local_size = local;
-  p.validate();
-  return p;
-}
-
-// Slice widths and work-groups: 2, 8, the gpu profile's 32, a slice as wide as the group, and
-// 16 in groups of 48 (three rays a group); first 1, the cpu kernels, held to the same bounds.
-const std::vector<std::pair<int, int>> kShapes = {{1, 64},  {2, 64},  {8, 64},
-                                                  {32, 64}, {64, 64}, {16, 48}};
+using test::slice_profile;
+const auto& kShapes = test::kSliceShapes;
 
 // Rays of five kinds (ray r: kind r % 5): random densities; opaque from the first sample; empty
 // (h0 = -15, σ ≈ 3e-7); a wall half way; dense enough that T underflows float.
@@ -267,28 +256,8 @@ TEST_CASE("Volume slices: backward equals the double reference and finite differ
   for (int r = 0; r < n; ++r)  // every ray translucent: all its samples carry gradient
     for (int i = 0; i < S; ++i) in.h0[size_t(r) * S + i] = 0.5f + 0.1f * float((r * S + i) % 7);
   const auto g = test::make_uniform(3 * size_t(n), -1.f, 1.f, 401);
-  using D = std::vector<double>;
-  const D td = test::cast_vec<double>(in.t), gd = test::cast_vec<double>(g);
-  D hd = test::cast_vec<double>(in.h0), headd = test::cast_vec<double>(in.head);
-  auto loss = [&]() {
-    D out, w;
-    test::ref_volume_fwd<double>(n, S, last_delta(), td, hd, headd, out, w);
-    double l = 0;
-    for (size_t i = 0; i < out.size(); ++i) l += gd[i] * out[i];
-    return l;
-  };
-  auto fd = [&](D& v, size_t i) {
-    const double eps = 1e-6, keep = v[i];
-    v[i] = keep + eps;
-    const double lp = loss();
-    v[i] = keep - eps;
-    const double lm = loss();
-    v[i] = keep;
-    return float((lp - lm) / (2 * eps));
-  };
-  std::vector<float> fd_h0(td.size()), fd_head(2 * td.size());
-  for (size_t i = 0; i < td.size(); ++i) fd_h0[i] = fd(hd, i);
-  for (size_t i = 0; i < 2 * td.size(); ++i) fd_head[i] = fd(headd, i);
+  std::vector<float> fd_h0, fd_head;
+  test::fd_volume_grads(n, S, last_delta(), in.t, in.h0, in.head, g, fd_h0, fd_head);
   for (const int W : {8, 32}) {
     INFO("W = " << W);
     const Fwd fwd = run_fwd(slice_profile(W), in);
