@@ -5,29 +5,24 @@
 // vector; the gradient of an entry is Σ coef · vec over its pairs in pair order, which is the
 // serial kernels' order (point by point, corner by corner). These kernels sort each unit's
 // pairs by key with a stable LSD radix sort (4-bit digits; per pass a histogram per tile of
-// RADIX_TILE pairs, an exclusive scan per unit, a scatter that walks each tile in order); then
-// the first pair of each entry's run sums the run in the sorted (= pair) order with the serial
-// kernels' fma, after entry_zero cleared the units' entries (unless accumulating). No float
-// atomics: the result is bit-identical to the serial kernels'.
+// RADIX_TILE pairs, an exclusive scan per unit (kernels/field/radix_scan.cl), a scatter that
+// walks each tile in order); then the first pair of each entry's run sums the run in the sorted
+// (= pair) order with the serial kernels' fma, after entry_zero cleared the units' entries
+// (unless accumulating). No float atomics: the result is bit-identical to the serial kernels'.
 //
 // Layouts: keys/vals/coef[u·m + j] (m = n·P pairs per unit; vals start as j), vec[(u·m + j)/PV]
 // (FEATURES floats each), hist[(u·16 + digit)·tiles + tile]. ranges[r] = (unit, first entry,
 // entries, first work-item): the entries unit r.x owns (entry_zero's work-items).
 //
-// Defines: FEATURES (1, 2, 4, 8), RADIX_TILE (pairs per work-item of hist and scatter),
-// SCAN_WG (work-group size of the scan).
+// Defines: FEATURES (1, 2, 4, 8), RADIX_TILE (pairs per work-item of hist and scatter).
 #ifndef FEATURES
 #error "FEATURES must be defined"
 #endif
 #ifndef RADIX_TILE
 #define RADIX_TILE 256
 #endif
-#ifndef SCAN_WG
-#define SCAN_WG 64
-#endif
 #define HALF_TABLE 0
 #include "field/hashgrid.clh"
-#include "common/scan.clh"
 
 #define RADIX 16
 
@@ -42,14 +37,6 @@ __kernel void entry_radix_hist(const uint m, const uint tiles, const uint shift,
   const uint end = min(m, (g + 1u) * RADIX_TILE);
   for (uint j = g * RADIX_TILE; j < end; ++j) ++c[(k[j] >> shift) & (RADIX - 1)];
   for (int d = 0; d < RADIX; ++d) hist[((size_t)u * RADIX + d) * tiles + g] = c[d];
-}
-
-// In-place exclusive scan of each unit's count = 16·tiles histogram words (digit-major, so a
-// (digit, tile) word becomes the first output position of that tile's pairs of that digit).
-// One work-group of SCAN_WG per unit (common/scan.clh).
-__kernel void entry_radix_scan(const uint count, __global uint* hist) {
-  __local uint part[SCAN_WG];
-  group_exclusive_scan(count, hist + (size_t)get_group_id(0) * count, part);
 }
 
 // Stable scatter of one pass: tile g of unit u walks its pairs in order and moves each to the

@@ -154,12 +154,14 @@ struct DeviceProfile {
   // Pairs per work-item of the deterministic parallel backward's radix sort (entry_radix_hist
   // and entry_radix_scatter, kernels/field/entry_reduce.cl RADIX_TILE): each work-item counts
   // and then scatters one tile of a unit's pairs in order; the histogram (16 words a tile) is
-  // scanned by one work-group per unit. radix_tile is the largest tile; a sort whose tiles
+  // scanned per unit. radix_tile is the largest tile; a sort whose tiles
   // would give fewer than radix_min_work_items work-items halves its tile until they do (or
   // the tile is 1). cpu: 256 and 0 (always 256); gpu: 256 and 16 384, so that the big sorts
   // (the hash grid's millions of pairs) keep 256 and a small histogram while LiDAR4D's time hash
   // grid, K-Planes and scene flow sorts (1.5-2.6e5 pairs) get 16384-18432 work-items instead
-  // of 576-1024. The sort is stable at any tile: the same order and gradient bits.
+  // of 576-1024. The sort is stable at any tile: the same order and gradient bits. Above 0 the
+  // scan too runs in blocks of 64 work-items, enough for radix_min_work_items (field::RadixScan:
+  // reduce-then-scan; at 0 one work-group per unit); integer sums, the same words either way.
   int radix_tile = 256;
   int radix_min_work_items = 0;
 

@@ -10,7 +10,6 @@
 
 namespace sgnlf::field {
 namespace {
-constexpr size_t kScanWg = 64;    // = SCAN_WG
 constexpr uint32_t kRadixBits = 4;
 }  // namespace
 
@@ -18,7 +17,8 @@ EntryReduction::EntryReduction(cl::Runtime& rt, int features, int units, int pai
                                int pairs_per_vector, std::vector<EntryRange> ranges)
     : rt_(rt), features_(features), units_(units), pairs_(pairs_per_point),
       per_vector_(pairs_per_vector), tile_(uint32_t(rt.device_profile().radix_tile)),
-      min_work_items_(size_t(rt.device_profile().radix_min_work_items)) {
+      min_work_items_(size_t(rt.device_profile().radix_min_work_items)),
+      scan_(rt, min_work_items_) {
   if (units < 1 || pairs_per_point < 1 || pairs_per_vector < 1 ||
       pairs_per_point % pairs_per_vector != 0)
     throw Error("EntryReduction: " + std::to_string(units) + " units, " +
@@ -51,11 +51,9 @@ EntryReduction::EntryReduction(cl::Runtime& rt, int features, int units, int pai
   while (bits < 32 && (uint64_t(1) << bits) < top) ++bits;  // keys < top ≤ 2^bits
   passes_ = (bits + int(kRadixBits) - 1) / int(kRadixBits);
   const std::string opt = "-DFEATURES=" + std::to_string(features) +
-                          " -DRADIX_TILE=" + std::to_string(tile_) +
-                          " -DSCAN_WG=" + std::to_string(kScanWg);
+                          " -DRADIX_TILE=" + std::to_string(tile_);
   const std::string file = "field/entry_reduce.cl";
   tile_kernels(tile_);
-  scan_k_ = rt_.kernel(file, "entry_radix_scan", opt);
   reduce_k_ = rt_.kernel(file, "entry_reduce", opt);
   zero_k_ = rt_.kernel(file, "entry_zero", opt);
 }
@@ -64,8 +62,7 @@ EntryReduction::TileKernels& EntryReduction::tile_kernels(uint32_t tile) {
   auto it = by_tile_.find(tile);
   if (it != by_tile_.end()) return it->second;
   const std::string opt = "-DFEATURES=" + std::to_string(features_) +
-                          " -DRADIX_TILE=" + std::to_string(tile) +
-                          " -DSCAN_WG=" + std::to_string(kScanWg);
+                          " -DRADIX_TILE=" + std::to_string(tile);
   const std::string file = "field/entry_reduce.cl";
   return by_tile_[tile] = {rt_.kernel(file, "entry_radix_hist", opt),
                            rt_.kernel(file, "entry_radix_scatter", opt)};
@@ -113,13 +110,12 @@ void EntryReduction::reduce(int n, cl::Buffer& grad, size_t grad_offset, bool ac
   int cur = 0;
   for (int p = 0; p < passes_; ++p) {
     const uint32_t shift = uint32_t(p) * kRadixBits;
-    // The trace's element counts: the pairs sorted and the histogram words scanned (keys_ and
-    // hist_ are sized for reserve()'s points, which may be more).
+    // The trace's element counts: the pairs sorted (keys_ is sized for reserve()'s points,
+    // which may be more; RadixScan gives the histogram words it scans).
     const size_t pairs = size_t(m) * size_t(units_);
     tk.hist.set_args(m, tiles, shift, keys_[cur], hist_);
     cl::launch_rows(tk.hist, tiles, size_t(units_), pairs);
-    scan_k_.set_args(uint32_t(16 * tiles), hist_);
-    scan_k_.launch({kScanWg * size_t(units_)}, {kScanWg}, size_t(16) * tiles * size_t(units_));
+    scan_.scan(hist_, uint32_t(units_), 16 * tiles);
     tk.scatter.set_args(m, tiles, shift, keys_[cur], vals_[cur], hist_, keys_[1 - cur],
                         vals_[1 - cur]);
     cl::launch_rows(tk.scatter, tiles, size_t(units_), pairs);

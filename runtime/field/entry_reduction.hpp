@@ -8,7 +8,8 @@
 // first pair of each entry's run sums the run): the serial kernels' summation order, so the
 // result is bit-identical to them, with one work-item per tile of pairs (the device profile's
 // radix_tile, halved for small sorts down to radix_min_work_items work-items; the stable sort's
-// order is the same at any tile) or per pair instead of one per unit.
+// order is the same at any tile; its histogram scanned in blocks of many work-groups under
+// radix_min_work_items > 0, field::RadixScan) or per pair instead of one per unit.
 //
 // The ranges say which entries each unit owns, and every key a unit's pair kernel writes must
 // be one of them: reduce() then writes every one of them (zero, or the old value when
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "cl/runtime.hpp"
+#include "field/radix_scan.hpp"
 
 namespace sgnlf::field {
 
@@ -59,6 +61,7 @@ class EntryReduction {
   // unit runs at tile_for(m) (RADIX_TILE), whose hist/scatter kernels are built on first use.
   uint32_t tile_;
   size_t min_work_items_;
+  RadixScan scan_;  // the histogram scan (in blocks under radix_min_work_items > 0)
   struct TileKernels {
     cl::Kernel hist, scatter;
   };
@@ -71,7 +74,7 @@ class EntryReduction {
   cl::Buffer ranges_;
   cl::Buffer keys_[2], vals_[2], coef_, vec_, hist_;
   size_t points_ = 0;
-  cl::Kernel scan_k_, reduce_k_, zero_k_;
+  cl::Kernel reduce_k_, zero_k_;
 };
 
 }  // namespace sgnlf::field

@@ -73,8 +73,9 @@ TEST_CASE("entry reduction sums each entry's pairs in pair order", "[field][para
 }
 
 // At the cpu profile's radix tile (256), 16, one pair per work-item and an odd tile, and with a
-// minimum of work-items that halves the tile (to 32 and to 4 here: 4200 pairs a unit): the sort
-// is stable at any tile, so each gives the host's in-order sums bit for bit.
+// minimum of work-items that halves the tile (to 32 and to 4 here: 4200 pairs a unit; the
+// histogram then scanned in 2 and 16 blocks, field::RadixScan): the sort is stable at any tile
+// and the scan's sums are integers, so each gives the host's in-order sums bit for bit.
 TEST_CASE("entry reduction gives the same sums at any radix tile",
           "[field][parallel_bwd][radix_tiles]") {
   const auto [tile, min_wi] =
