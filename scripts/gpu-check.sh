@@ -51,7 +51,7 @@ PARTS=${SGNLF_GPU_CHECK_PARTS:-"icd build devices tests bench train"}
 BENCH=${SGNLF_GPU_CHECK_BENCH:-"bench_roofline:BM_Roofline(Fma|Triad) \
 bench_field:BM_HashGridFwd/|BM_HashGridBwdDeterministic/|BM_(HashGrid|TimeHashGrid|KPlanes)BwdVariant|BM_MlpDensityFwd/262144|BM_MlpHeadBwd/262144|BM_MlpGemmHeadBwd/262144/|BM_Adam \
 bench_render:BM_SampleUniform|BM_VolumeForward|BM_VolumeBackward|BM_RangeLoss \
-bench_conv:BM_ConvGemm \
+bench_conv:BM_ConvGemm(Fwd|BwdIn|BwdWgt)/(patchgan1|unet_up0a)/ \
 bench_pipeline:BM_TrainStep/quick/|BM_PoseFreeStep"}
 T_BUILD=${T_BUILD:-300} T_DEVICES=${T_DEVICES:-60} T_TEST=${T_TEST:-120}
 T_BENCH=${T_BENCH:-90} T_SIM=${T_SIM:-120} T_TRAIN=${T_TRAIN:-120}
