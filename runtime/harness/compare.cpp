@@ -105,9 +105,18 @@ struct Comparer {
         }
       }
       const MetricInfo* info = metric_info(k);
-      const double worse = info ? (info->lower_better ? n - b : b - n) : std::fabs(n - b);
       const std::string detail = "new " + fmt(n) + " vs baseline " + fmt(b) + " (diff " +
                                  fmt(n - b) + ", tolerance " + fmt(tol) + spread_note + ")";
+      if (!info || !info->judged()) {
+        // No direction (a diagnostic, or a metric tables.json does not describe): a change
+        // beyond the tolerance is reported, never a regression (a stale baseline under --strict).
+        if (std::fabs(n - b) > tol)
+          add("changed", opt.strict, w,
+              std::string(info ? "a diagnostic without a better direction" : "a metric tables.json does not describe") +
+                  ", changed beyond tolerance: " + detail);
+        continue;
+      }
+      const double worse = info->lower_better ? n - b : b - n;
       if (worse > tol)
         add("regression", true, w, "worse: " + detail);
       else if (-worse > tol)
@@ -194,7 +203,14 @@ bool CompareReport::regression() const {
 
 double metric_tolerance(const std::string& metric, const std::string& mode, double base) {
   const Json& tab = tolerance_table().at(mode);
-  const Json& t = tab.contains(metric) ? tab[metric] : tab["default"];
+  // A part without a tolerance of its own takes its metric's (tables.hpp MetricInfo::part_of).
+  std::string key = metric;
+  for (int depth = 0; depth < 4 && !tab.contains(key); ++depth) {
+    const MetricInfo* info = metric_info(key);
+    if (!info || info->part_of.empty()) break;
+    key = info->part_of;
+  }
+  const Json& t = tab.contains(key) ? tab[key] : tab["default"];
   return t.value("abs", 0.0) + t.value("rel", 0.0) * std::fabs(base);
 }
 

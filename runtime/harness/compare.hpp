@@ -36,7 +36,7 @@ struct CompareOptions {
 };
 
 struct Finding {
-  std::string kind;   // regression | improved | missing | timing | note
+  std::string kind;   // regression | improved | changed (no direction) | missing | timing | note
   bool fails = false; // counts as a regression
   std::string where;  // "lidar-nerf / kitti360-1538 / cd"
   std::string message;

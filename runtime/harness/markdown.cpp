@@ -14,7 +14,7 @@ std::string header(const std::string& key) {
   if (!m) return key;
   std::string h = m->label;
   if (!m->unit.empty()) h += " (" + m->unit + ")";
-  return h + (m->lower_better ? " ↓" : " ↑");
+  return h + m->arrow();
 }
 
 std::string signed_fmt(const std::string& key, double v) {

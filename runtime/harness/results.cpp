@@ -77,7 +77,7 @@ Json diff_vs_paper(const Json& ours, const Json& paper) {
       e["diff"] = o - p;
       e["rel_diff"] = p != 0 ? Json((o - p) / std::fabs(p)) : Json(nullptr);
       const MetricInfo* info = metric_info(k);
-      e["better"] = info ? Json(info->lower_better ? o < p : o > p) : Json(nullptr);
+      e["better"] = info && info->judged() ? Json(info->lower_better ? o < p : o > p) : Json(nullptr);
     } else {
       e["ours"] = nullptr;
       e["diff"] = nullptr;

@@ -152,14 +152,42 @@ const MetricInfo* metric_info(const std::string& key) {
     for (auto it = metrics.begin(); it != metrics.end(); ++it) {
       MetricInfo info;
       info.key = it.key();
-      std::string better;
+      info.better.clear();
       ConfigReader r(it.value(), "tables.json: metrics." + it.key());
-      r.require("label", info.label).get("unit", info.unit).require("better", better);
-      r.get("digits", info.digits);
+      r.require("label", info.label).get("unit", info.unit).get("better", info.better);
+      r.get("part_of", info.part_of).get("digits", info.digits);
       r.finish();
-      info.lower_better = better == "lower";
       m[it.key()] = info;
     }
+    // Directions: a part without its own takes its metric's (parts of parts resolve in turn).
+    for (int pass = 0; pass < 4; ++pass)
+      for (auto& [k, info] : m)
+        if (info.better.empty() && !info.part_of.empty() && m.count(info.part_of))
+          info.better = m[info.part_of].better;
+    for (auto& [k, info] : m) {
+      if (!info.part_of.empty() && !m.count(info.part_of))
+        throw ConfigError("tables.json: metrics." + k + ".part_of: '" + info.part_of +
+                          "' is not a metric of tables.json");
+      if (info.better != "lower" && info.better != "higher" && info.better != "none")
+        throw ConfigError("tables.json: metrics." + k + ".better: '" + info.better +
+                          "' is not lower|higher|none (or give part_of)");
+      info.lower_better = info.better == "lower";
+    }
+    // Variants: "<prefix><m>" for every metric m above, a part of m.
+    const Json& variants = tables_root().value("metric_variants", Json::object());
+    std::map<std::string, MetricInfo> derived;
+    for (auto v = variants.begin(); v != variants.end(); ++v) {
+      if (!v.value().is_string())
+        throw ConfigError("tables.json: metric_variants." + v.key() + " is not a string");
+      for (const auto& [k, base] : m) {
+        MetricInfo info = base;
+        info.key = v.key() + k;
+        info.label = base.label + " (" + v.value().get<std::string>() + ")";
+        info.part_of = k;
+        if (!m.count(info.key)) derived[info.key] = info;
+      }
+    }
+    m.insert(derived.begin(), derived.end());
     return m;
   }();
   const auto it = infos.find(key);

@@ -13,10 +13,20 @@ namespace sgnlf::harness {
 const std::string& tables_json();        // embedded runtime/harness/tables.json
 const std::string& paper_tables_json();  // embedded results/paper_tables.json
 
+// A metric's direction: "lower" or "higher" is better, or "none" for a diagnostic that is
+// reported and compared but never a regression (opacity_mean, mix_median_fraction). A part of
+// a metric (`part_of`: CD's two directions, a variant such as median_cd) takes the direction
+// of the metric it belongs to when it names none, and its loose tolerance when tables.json has
+// none of its own (metric_tolerance).
 struct MetricInfo {
   std::string key, label, unit;
-  bool lower_better = true;
+  std::string better = "lower";  // lower | higher | none
+  bool lower_better = true;      // better == "lower"
+  std::string part_of;           // "" = a metric of its own
   int digits = 4;
+  bool judged() const { return better != "none"; }
+  // " ↓" (lower is better), " ↑" (higher), "" (a diagnostic): for column headers.
+  const char* arrow() const { return better == "lower" ? " ↓" : better == "higher" ? " ↑" : ""; }
 };
 
 struct RowDef {
@@ -65,7 +75,9 @@ TableDef table_def(const std::string& name);
 // The sequences a run uses: the scale's synthetic twins, or the real windows.
 std::vector<SequenceDef> table_sequences(const TableDef& t, const std::string& scale, bool real);
 
-// Metric metadata; nullptr for a metric the table file does not describe.
+// Metric metadata; nullptr for a metric the table file does not describe. A variant
+// "<prefix><m>" of tables.json "metric_variants" (median_cd, mix_fscore, ...) is described
+// when <m> is: a part of <m>, with its direction and unit.
 const MetricInfo* metric_info(const std::string& key);
 // The paper's numbers for one row: {metric: value}; empty object when the paper has none.
 Json paper_numbers(const std::string& table, const std::string& method);

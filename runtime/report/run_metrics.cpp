@@ -41,6 +41,7 @@ std::vector<std::string> metric_keys(const Json& m) {
 std::string compare_class(const std::string& key, const Json& a, const Json& b) {
   if (!a.is_number() || !b.is_number() || a.get<double>() == b.get<double>()) return "";
   const harness::MetricInfo* m = harness::metric_info(key);
+  if (m && !m->judged()) return "";  // a diagnostic: neither better nor worse
   const bool lower = m ? m->lower_better : true;
   return (a.get<double>() < b.get<double>()) == lower ? " class=\"better\"" : " class=\"worse\"";
 }
@@ -130,7 +131,7 @@ std::string scored(const Json& m, const Json& fast, const std::string& file) {
 std::string metric_header(const std::string& key) {
   const harness::MetricInfo* m = harness::metric_info(key);
   if (!m) return key;
-  return m->label + (m->unit.empty() ? "" : " (" + m->unit + ")") + (m->lower_better ? " ↓" : " ↑");
+  return m->label + (m->unit.empty() ? "" : " (" + m->unit + ")") + m->arrow();
 }
 
 std::string metric_value(const std::string& key, const Json& v) {
