@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "core/config.hpp"
+#include "harness/claims.hpp"
 #include "harness/tables.hpp"
 
 namespace sgnlf::harness {
@@ -104,6 +105,9 @@ std::string summary_tables(const std::string& root, const std::string& scale,
     out += (out.empty() ? "" : "\n") +
            summary_markdown(load_json_file(file), link_root + "/" + name + "/" + scale + "/table.md");
   }
+  // The paper's claims beside ours (harness/claims.hpp), with the second seed's tables of
+  // <root>-seed2 where they exist.
+  if (!out.empty()) out += "\n" + claims_markdown(root, scale, root + "-seed2");
   return out;
 }
 

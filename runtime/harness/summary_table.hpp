@@ -15,7 +15,8 @@ namespace sgnlf::harness {
 std::string summary_markdown(const Json& results, const std::string& link);
 
 // Every <root>/<table>/<scale>/results.json of the tables `sgnlf bench --list` defines, in that
-// order, with links under `link_root` (e.g. "results/tables").
+// order, with links under `link_root` (e.g. "results/tables"), then the paper's claims beside
+// ours (harness/claims.hpp; a second seed's tables from <root>-seed2 where they exist).
 std::string summary_tables(const std::string& root, const std::string& scale,
                            const std::string& link_root);
 

@@ -1,0 +1,187 @@
+#include "harness/claims.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+
+#include "core/config.hpp"
+#include "core/json_lookup.hpp"
+#include "harness/tables.hpp"
+
+namespace sgnlf::harness {
+namespace {
+
+constexpr auto at = &member_or_null;
+
+std::string percent(double v) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%+.1f %%", 100.0 * v);
+  std::string s = buf;
+  if (s[0] == '-') s = "−" + s.substr(1);  // the paper's minus sign
+  return s;
+}
+
+// The row's value of `metric` per sequence it ran (status ok, a number), by sequence name.
+std::map<std::string, double> row_values(const Json& results, const std::string& method,
+                                         const std::string& metric) {
+  std::map<std::string, double> v;
+  if (!at(results, "rows").is_array()) return v;
+  for (const auto& row : results["rows"]) {
+    if (at(row, "method") != Json(method) || at(row, "status") != Json("ok")) continue;
+    if (!at(row, "sequences").is_array()) continue;
+    for (const auto& s : row["sequences"]) {
+      for (const char* block : {"metrics", "pose_metrics"}) {
+        const Json& x = at(at(s, block), metric);
+        if (x.is_number() && at(s, "sequence").is_string())
+          v[s["sequence"].get<std::string>()] = x.get<double>();
+      }
+    }
+  }
+  return v;
+}
+
+// The scale's twins (real sequences, averaged apart in the tables, left out).
+std::vector<std::string> twin_names(const std::string& table, const std::string& scale) {
+  std::vector<std::string> names;
+  const TableDef t = table_def(table);
+  const auto it = t.scales.find(scale);
+  if (it == t.scales.end()) return names;
+  for (const auto& s : it->second)
+    if (!s.is_real_dir()) names.push_back(s.name);
+  return names;
+}
+
+Json change_over(const Claim& c, const std::string& scale, const std::map<std::string, double>& a,
+                 const std::map<std::string, double>& b) {
+  const auto twins = twin_names(c.table, scale);
+  double sa = 0, sb = 0;
+  int n = 0;
+  for (const auto& name : twins) {
+    const auto ia = a.find(name), ib = b.find(name);
+    if (ia == a.end() || ib == b.end()) continue;
+    sa += ia->second;
+    sb += ib->second;
+    ++n;
+  }
+  Json out{{"sequences", n}, {"of", twins.size()}, {"change", nullptr}};
+  if (n == 0)
+    out["status"] = a.empty() ? c.row + " not run" : b.empty() ? c.against + " not run" : "no sequence in common";
+  else if (sb == 0)
+    out["status"] = "the reference row's mean is 0";
+  else
+    out["change"] = (sa - sb) / sb;
+  return out;
+}
+
+std::string scale_of(const Json& results) {
+  return at(results, "scale").is_string() ? results["scale"].get<std::string>() : "quick";
+}
+
+Json load_if_there(const std::string& path) {
+  if (path.empty() || !std::filesystem::is_regular_file(path)) return nullptr;
+  return load_json_file(path);
+}
+
+}  // namespace
+
+std::vector<Claim> parse_claims(const Json& claims, const std::string& where) {
+  if (!claims.is_array()) throw ConfigError(where + ": not an array of claims");
+  std::vector<Claim> out;
+  const auto tables = table_names();
+  for (size_t i = 0; i < claims.size(); ++i) {
+    const std::string w = where + "[" + std::to_string(i) + "]";
+    Claim c;
+    ConfigReader r(claims[i], w);
+    r.require("text", c.text).require("table", c.table).require("metric", c.metric);
+    r.require("row", c.row).require("against", c.against).require("paper_change", c.paper_change);
+    r.require("source", c.source).get("note", c.note);
+    r.finish();
+    const TableDef t = table_def(c.table);  // ConfigError naming the known tables
+    for (const auto* m : {&c.row, &c.against}) {
+      bool found = false;
+      for (const auto& row : t.rows) found |= row.method == *m;
+      if (!found)
+        throw ConfigError(w + ": row '" + *m + "' is not a row of table '" + c.table + "'");
+    }
+    const MetricInfo* info = metric_info(c.metric);
+    if (!info || !info->judged())
+      throw ConfigError(w + ".metric: '" + c.metric + "' is not a metric with a direction");
+    if (!std::isfinite(c.paper_change) || c.paper_change <= -1.0)
+      throw ConfigError(w + ".paper_change: " + std::to_string(c.paper_change) +
+                        " is not a relative change (> -1)");
+    out.push_back(c);
+  }
+  return out;
+}
+
+std::vector<Claim> paper_claims() {
+  static const std::vector<Claim> claims = [] {
+    Json root;
+    try {
+      root = Json::parse(paper_tables_json());
+    } catch (const std::exception& e) {
+      throw ConfigError(std::string("results/paper_tables.json (embedded): ") + e.what());
+    }
+    return parse_claims(root.contains("claims") ? root["claims"] : Json::array(),
+                        "results/paper_tables.json: claims");
+  }();
+  return claims;
+}
+
+Json claim_change(const Claim& c, const Json& results) {
+  return change_over(c, scale_of(results), row_values(results, c.row, c.metric),
+                     row_values(results, c.against, c.metric));
+}
+
+Json claim_change_mixed(const Claim& c, const Json& seed1, const Json& seed2) {
+  auto a = row_values(seed1, c.row, c.metric), b = row_values(seed1, c.against, c.metric);
+  for (const auto& [k, v] : row_values(seed2, c.row, c.metric)) a[k] = v;
+  for (const auto& [k, v] : row_values(seed2, c.against, c.metric)) b[k] = v;
+  return change_over(c, scale_of(seed1), a, b);
+}
+
+std::string claims_markdown(const std::string& root, const std::string& scale,
+                            const std::string& seed2_root) {
+  std::string md =
+      "**The paper's claims beside ours** (relative change of the row's mean against the "
+      "other row's, over the twins both ran; generated from the tables above and, where it "
+      "holds either row, the second seed's table)\n\n"
+      "| claim | paper | ours, seed 1 | with seed 2 | agrees |\n|---|---:|---:|---:|---|\n";
+  std::string notes;
+  for (const auto& c : paper_claims()) {
+    const Json seed1 = load_if_there(root + "/" + c.table + "/" + scale + "/results.json");
+    const Json seed2 = seed2_root.empty()
+                           ? Json(nullptr)
+                           : load_if_there(seed2_root + "/" + c.table + "/" + scale + "/results.json");
+    std::string ours = "not run", with2, agrees = "—";
+    if (!seed1.is_null()) {
+      const Json ch = claim_change(c, seed1);
+      if (ch["change"].is_number()) {
+        const double v = ch["change"].get<double>();
+        ours = percent(v);
+        if (ch["sequences"] != ch["of"])
+          ours += " (" + ch["sequences"].dump() + " of " + ch["of"].dump() + ")";
+        if (!seed2.is_null()) {
+          const Json ch2 = claim_change_mixed(c, seed1, seed2);
+          const bool differs = ch2["change"].is_number() && ch2["change"] != ch["change"];
+          if (differs) with2 = percent(ch2["change"].get<double>());
+        }
+        const bool same_sign = (v < 0) == (c.paper_change < 0);
+        char ratio[64];
+        std::snprintf(ratio, sizeof ratio, "%.2f", c.paper_change != 0 ? v / c.paper_change : 0.0);
+        agrees = same_sign ? std::string("in sign (") + ratio + " × the paper's)"
+                           : "no: the opposite sign";
+      } else {
+        ours = ch.value("status", std::string("not run"));
+      }
+    }
+    md += "| " + c.text + " | " + percent(c.paper_change) + " | " + ours + " | " + with2 + " | " +
+          agrees + " |\n";
+    if (!c.note.empty()) notes += "- " + c.text + ": " + c.note + "\n";
+  }
+  if (!notes.empty()) md += "\n" + notes;
+  return md;
+}
+
+}  // namespace sgnlf::harness
