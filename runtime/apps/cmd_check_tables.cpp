@@ -4,7 +4,11 @@
 // (runtime/harness/table_check.hpp). Exit 4 when a table differs. `--render` first rewrites
 // every table.md from its results.json (a change of the markdown renderer). `--readme FILE`
 // also checks FILE's generated tables section (runtime/harness/summary_table.hpp) against the
-// committed quick tables; with `--render` it rewrites that section.
+// committed quick tables; with `--render` it rewrites that section. The plan of the tables
+// (ROOT/plan.json, ROOT/PLAN.md: runtime/harness/tables_plan_page.hpp) is checked too: PLAN.md
+// must be the rendering of the tables and plan.json, and plan.json must name only cells of the
+// table definitions and no running cell that is done; `--render` rewrites PLAN.md; `--no-plan`
+// leaves the plan out (a folder of tables without one).
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -15,6 +19,7 @@
 #include "harness/markdown.hpp"
 #include "harness/summary_table.hpp"
 #include "harness/table_check.hpp"
+#include "harness/tables_plan_page.hpp"
 #include "harness/wiring.hpp"
 
 namespace sgnlf::app {
@@ -30,6 +35,8 @@ const Registrar reg("check-tables",
   sub.add_option("ROOT", *root, "Folder of <table>/<scale>/ tables")->capture_default_str();
   sub.add_flag("--render", *render, "Rewrite every table.md from its results.json first");
   auto readme = std::make_shared<std::string>();
+  auto no_plan = std::make_shared<bool>(false);
+  sub.add_flag("--no-plan", *no_plan, "Do not check (or render) ROOT/PLAN.md and ROOT/plan.json");
   sub.add_option("--readme", *readme,
                  "Also check this file's generated tables section (the quick tables' means) "
                  "against ROOT; with --render, rewrite it");
@@ -41,8 +48,16 @@ const Registrar reg("check-tables",
           write_text_file(md.string(), harness::render_markdown(load_json_file(e.path().string())));
           std::cout << "rendered " << md.string() << "\n";
         }
+    const harness::BenchHooks hooks = harness::default_hooks();
+    if (*render && !*no_plan) {
+      const std::string page = harness::plan_page_path(*root);
+      write_text_file(page, harness::render_plan_page(*root, hooks));
+      std::cout << "rendered " << page << "\n";
+    }
     size_t n = 0;
-    auto problems = harness::check_committed_tables(*root, harness::default_hooks(), &n);
+    auto problems = harness::check_committed_tables(*root, hooks, &n);
+    if (!*no_plan)
+      for (auto& p : harness::check_tables_plan(*root, hooks)) problems.push_back(std::move(p));
     if (!readme->empty()) {
       std::ifstream in(*readme, std::ios::binary);
       if (!in) throw IoError(*readme + ": cannot open for reading");

@@ -8,6 +8,9 @@
 //     row of the table, "not run" where no input ran it, each run's source and staleness.
 //     `--later-wins` lets a later input replace an earlier one's different result.
 // The kind is read from the first input; the others must be of the same kind.
+// `--keep-run-files` copies the small files of every run taken from a new input (metrics.json,
+// summary.json, the KITTI trajectories) to DIR/runs/<method>/<sequence>/seed<k>/
+// (runtime/harness/run_files.hpp).
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -16,6 +19,7 @@
 #include "core/config.hpp"
 #include "harness/cells.hpp"
 #include "harness/combine.hpp"
+#include "harness/run_files.hpp"
 #include "harness/runner.hpp"
 #include "harness/wiring.hpp"
 
@@ -30,6 +34,7 @@ const Registrar reg("merge",
   auto inputs = std::make_shared<std::vector<std::string>>();
   auto expect = std::make_shared<std::string>();
   auto later_wins = std::make_shared<bool>(false);
+  auto keep_files = std::make_shared<bool>(false);
   sub.add_option("--out", *out, "Output folder (results.json, table.md)")->required();
   sub.add_option("INPUT", *inputs,
                  "Cell files or folders holding cell.json; or results.json files (or folders "
@@ -42,6 +47,9 @@ const Registrar reg("merge",
                "results.json inputs: where two inputs have different runs of the same row and "
                "sequence, the later input (in the order given) replaces the earlier; without "
                "it such a conflict is refused");
+  sub.add_flag("--keep-run-files", *keep_files,
+               "Copy each new run's metrics.json, summary.json and KITTI trajectories from its run "
+               "folder to OUT/runs/<method>/<sequence>/seed<k>/ (files over 200 KB left out)");
   return std::function<int()>([=] {
     std::vector<std::pair<std::string, Json>> files;
     std::string command = "sgnlf merge --out " + *out + (*later_wins ? " --later-wins" : "");
@@ -71,6 +79,11 @@ const Registrar reg("merge",
         tables ? harness::combine_tables(files, harness::CombineOptions{*later_wins},
                                          harness::default_hooks(), command, *out)
                : harness::merge_cells(files, command, *out);
+    if (*keep_files) {
+      const auto kept = harness::keep_run_files(results, files, *out);
+      for (const auto& n : kept.notes) std::cout << "note: " << n << "\n";
+      std::cout << "kept " << kept.copied.size() << " run file(s) under " << *out << "/runs\n";
+    }
     const auto [json_path, md_path] = harness::write_outputs(results, *out);
     int failed = 0, stale = 0, not_run = 0;
     for (const auto& row : results["rows"]) {

@@ -30,20 +30,6 @@ std::vector<uint64_t> seeds_of(const Json& r) {
   return {c.value("seed", uint64_t(1))};
 }
 
-// Where one input's runs come from: enough to find the commit and command that made them.
-Json describe(const std::string& path, const Json& r) {
-  return Json{{"file", path},
-              {"command", r.value("command", "")},
-              {"created_utc", r.value("created_utc", "")},
-              {"config_hash", r.value("config_hash", "")},
-              {"git", Json{{"sha", at_path(r, {"context", "git", "sha"})},
-                           {"dirty", at_path(r, {"context", "git", "dirty"})}}},
-              {"build_git_sha", at_path(r, {"context", "build", "git", "sha"})},
-              {"build_git_dirty", at_path(r, {"context", "build", "git", "dirty"})},
-              {"opencl", Json{{"device", at_path(r, {"context", "opencl", "device"})},
-                              {"driver_version", at_path(r, {"context", "opencl", "driver_version"})}}}};
-}
-
 // A run entry without what may differ between two equal runs, nor its provenance.
 Json comparable_entry(const Json& e) {
   const Json wrapped{{"rows", Json::array({Json{{"sequences", Json::array({e})}}})}};
@@ -72,6 +58,19 @@ std::vector<Json> run_hashes(const Json& e) {
 bool is_results_table(const Json& r) {
   return r.is_object() && r.value("schema", Json()) == Json(kSchemaName) &&
          r.value("kind", Json()) == Json("table");
+}
+
+Json source_description(const std::string& path, const Json& r) {
+  return Json{{"file", path},
+              {"command", r.value("command", "")},
+              {"created_utc", r.value("created_utc", "")},
+              {"config_hash", r.value("config_hash", "")},
+              {"git", Json{{"sha", at_path(r, {"context", "git", "sha"})},
+                           {"dirty", at_path(r, {"context", "git", "dirty"})}}},
+              {"build_git_sha", at_path(r, {"context", "build", "git", "sha"})},
+              {"build_git_dirty", at_path(r, {"context", "build", "git", "dirty"})},
+              {"opencl", Json{{"device", at_path(r, {"context", "opencl", "device"})},
+                              {"driver_version", at_path(r, {"context", "opencl", "driver_version"})}}}};
 }
 
 Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
@@ -129,7 +128,7 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
     std::vector<size_t> local;
     if (earlier.is_array())
       for (const auto& d : earlier) local.push_back(add_source(d));
-    const size_t own = earlier.is_array() ? 0 : add_source(describe(path, r));
+    const size_t own = earlier.is_array() ? 0 : add_source(source_description(path, r));
     const auto source_of = [&](const Json& j) {
       if (!earlier.is_array()) return own;
       const size_t k = j.value("source", size_t(0));

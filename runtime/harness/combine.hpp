@@ -24,6 +24,11 @@ struct CombineOptions {
 // True when `results` is an sgnlf.results table (a `sgnlf bench` or combined output).
 bool is_results_table(const Json& results);
 
+// Where a results table's runs come from, as combined_from.files[] records it: {file, command,
+// created_utc, config_hash, git {sha, dirty}, build_git_sha, build_git_dirty,
+// opencl {device, driver_version}}.
+Json source_description(const std::string& path, const Json& results);
+
 // Combines results tables ({path, json}). Uses hooks.implemented (rows no input ran) and
 // hooks.config_hash (stale runs; unset or "" = unknown, stale is then null). ConfigError naming
 // the files when they differ in table, scale, data or seeds, when a row or sequence is not in

@@ -21,19 +21,6 @@ std::string join(const std::vector<std::string>& v) {
   return s;
 }
 
-// The first line where two texts differ, for the message.
-std::string first_difference(const std::string& a, const std::string& b) {
-  std::istringstream sa(a), sb(b);
-  std::string la, lb;
-  for (int n = 1;; ++n) {
-    const bool ea = !std::getline(sa, la), eb = !std::getline(sb, lb);
-    if (ea && eb) return "";
-    if (ea != eb || la != lb)
-      return "line " + std::to_string(n) + ": rendered '" + (ea ? "<end>" : la) + "', committed '" +
-             (eb ? "<end>" : lb) + "'";
-  }
-}
-
 void check_rows(const Json& r, const TableDef& def, const BenchHooks& hooks,
                 std::vector<std::string>& p) {
   std::vector<std::string> got, want;
@@ -135,6 +122,18 @@ void check_combined(const Json& r, const std::vector<SequenceDef>& defs, const B
 }
 
 }  // namespace
+
+std::string first_difference(const std::string& a, const std::string& b) {
+  std::istringstream sa(a), sb(b);
+  std::string la, lb;
+  for (int n = 1;; ++n) {
+    const bool ea = !std::getline(sa, la), eb = !std::getline(sb, lb);
+    if (ea && eb) return "";
+    if (ea != eb || la != lb)
+      return "line " + std::to_string(n) + ": rendered '" + (ea ? "<end>" : la) + "', committed '" +
+             (eb ? "<end>" : lb) + "'";
+  }
+}
 
 std::vector<std::string> check_committed_table(const Json& r, const std::string& markdown,
                                                const std::string& table_dir,

@@ -12,6 +12,10 @@
 
 namespace sgnlf::harness {
 
+// The first line where a rendering and a committed text differ ("line N: rendered '...',
+// committed '...'"), "" when they are equal: the message of a generated file edited by hand.
+std::string first_difference(const std::string& rendered, const std::string& committed);
+
 // Problems of one committed table (empty = fine). `table_dir` / `scale_dir` are the folder
 // names it is committed under; `markdown` the committed table.md. Uses hooks.implemented and
 // hooks.config_hash when set.
