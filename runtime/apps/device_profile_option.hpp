@@ -1,5 +1,5 @@
 // `--device-profile cpu|gpu|auto|FILE`, beside `--device` on every command that opens an OpenCL
-// runtime (train, eval, render, reconstruct, bench, spectral, devices): the launch shapes and
+// runtime (train, eval, render, anatomy, reconstruct, bench, spectral, devices): the launch shapes and
 // kernel variants (cl/device_profile.hpp); default $SGNLF_DEVICE_PROFILE, else auto (cpu on CPU
 // devices, gpu on the others). A bad name or file fails when the runtime opens (exit 2).
 #pragma once

@@ -50,6 +50,11 @@ std::array<uint8_t, 3> turbo(double t) {
   return {q(r), q(g), q(b)};
 }
 
+std::array<uint8_t, 3> depth_colour(double range_m, const RangePictureOptions& opt) {
+  return turbo(opt.log_depth ? std::log1p(range_m) / std::log1p(opt.max_range_m)
+                             : range_m / opt.max_range_m);
+}
+
 RgbImage range_image_picture(const RangeImage& img, const RangePictureOptions& opt) {
   const int rep = std::max(1, opt.row_repeat);
   const int panel = img.height * rep;
@@ -67,8 +72,7 @@ RgbImage range_image_picture(const RangeImage& img, const RangePictureOptions& o
     for (int c = 0; c < img.width; ++c) {
       const size_t i = img.idx(r, c);
       const bool ret = img.range[i] > 0.f;
-      const auto depth = ret ? turbo(opt.log_depth ? std::log1p(double(img.range[i])) / std::log1p(opt.max_range_m)
-                                                    : img.range[i] / opt.max_range_m) : std::array<uint8_t, 3>{0, 0, 0};
+      const auto depth = ret ? depth_colour(double(img.range[i]), opt) : std::array<uint8_t, 3>{0, 0, 0};
       const uint8_t g = uint8_t(std::lround(std::clamp(double(img.intensity[i]), 0.0, 1.0) * 255.0));
       const uint8_t m = img.ray_drop[i] > 0.5f ? 255 : 0;
       for (int k = 0; k < rep; ++k) {

@@ -29,6 +29,9 @@ struct RangePictureOptions {
   int gap = 4;                // black rows between the panels
 };
 
+// A returning pixel's depth colour as range_image_picture draws it (turbo on the scale above).
+std::array<uint8_t, 3> depth_colour(double range_m, const RangePictureOptions& opt);
+
 // Depth (turbo, no return = black), intensity (grey), mask (white = return), stacked.
 RgbImage range_image_picture(const RangeImage& img, const RangePictureOptions& opt = {});
 

@@ -25,6 +25,18 @@ void summarize(const std::vector<float>& d, double threshold_sq, double& mean, d
 
 }  // namespace
 
+NearestSquaredDistances nearest_squared_distances(const std::vector<geometry::Point3f>& pred,
+                                                  const std::vector<geometry::Point3f>& gt) {
+  require(!pred.empty() && !gt.empty(),
+          "nearest_squared_distances: " + std::to_string(pred.size()) + " predicted and " +
+              std::to_string(gt.size()) + " ground-truth points; both must be non-empty");
+  const geometry::KdTree tree_gt(gt), tree_pred(pred);
+  NearestSquaredDistances d;
+  tree_gt.nearest_all(pred, d.pred_to_gt);
+  tree_pred.nearest_all(gt, d.gt_to_pred);
+  return d;
+}
+
 ChamferResult chamfer_fscore(const std::vector<geometry::Point3f>& pred,
                              const std::vector<geometry::Point3f>& gt,
                              double threshold_sq) {
@@ -38,12 +50,9 @@ ChamferResult chamfer_fscore(const std::vector<geometry::Point3f>& pred,
     r.cd = r.cd_pred_to_gt = r.cd_gt_to_pred = std::numeric_limits<double>::quiet_NaN();
     return r;
   }
-  const geometry::KdTree tree_gt(gt), tree_pred(pred);
-  std::vector<float> d1, d2;
-  tree_gt.nearest_all(pred, d1);
-  tree_pred.nearest_all(gt, d2);
-  summarize(d1, threshold_sq, r.cd_pred_to_gt, r.precision);
-  summarize(d2, threshold_sq, r.cd_gt_to_pred, r.recall);
+  const NearestSquaredDistances d = nearest_squared_distances(pred, gt);
+  summarize(d.pred_to_gt, threshold_sq, r.cd_pred_to_gt, r.precision);
+  summarize(d.gt_to_pred, threshold_sq, r.cd_gt_to_pred, r.recall);
   r.cd = r.cd_pred_to_gt + r.cd_gt_to_pred;
   const double s = r.precision + r.recall;
   r.fscore = s > 0.0 ? 2.0 * r.precision * r.recall / s : 0.0;

@@ -24,6 +24,14 @@ struct ChamferResult {
   size_t n_pred = 0, n_gt = 0;
 };
 
+// Every point's squared NN distance to the other set (float, as the peers' kernel): d1 per
+// predicted point (pred → gt), d2 per ground-truth point (gt → pred). Both sets non-empty.
+struct NearestSquaredDistances {
+  std::vector<float> pred_to_gt, gt_to_pred;
+};
+NearestSquaredDistances nearest_squared_distances(const std::vector<geometry::Point3f>& pred,
+                                                  const std::vector<geometry::Point3f>& gt);
+
 ChamferResult chamfer_fscore(const std::vector<geometry::Point3f>& pred,
                              const std::vector<geometry::Point3f>& gt,
                              double threshold_sq = kFscoreThresholdSq);

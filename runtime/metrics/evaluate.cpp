@@ -8,42 +8,13 @@
 #include "core/log.hpp"
 #include "metrics/chamfer.hpp"
 #include "metrics/image_metrics.hpp"
+#include "metrics/masked_view.hpp"
 #include "metrics/pose_errors.hpp"
 
 namespace sgnlf::metrics {
 namespace {
 
 Json number_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
-
-void check_image(const Sensor& s, const RangeImage& img, const char* which) {
-  const size_t n = size_t(s.height) * s.width;
-  require(img.height == s.height && img.width == s.width,
-          std::string("evaluate_view: ") + which + " image is " + std::to_string(img.height) +
-              "x" + std::to_string(img.width) + ", sensor '" + s.name + "' is " +
-              std::to_string(s.height) + "x" + std::to_string(s.width));
-  require(img.range.size() == n && img.intensity.size() == n && img.ray_drop.size() == n,
-          std::string("evaluate_view: ") + which + " channels have " +
-              std::to_string(img.range.size()) + "/" + std::to_string(img.intensity.size()) +
-              "/" + std::to_string(img.ray_drop.size()) + " pixels (range/intensity/ray_drop), " +
-              "expected " + std::to_string(n));
-  for (size_t i = 0; i < n; ++i)
-    if (!std::isfinite(img.range[i]) || !std::isfinite(img.intensity[i]) ||
-        !std::isfinite(img.ray_drop[i]))
-      throw Error(std::string("evaluate_view: ") + which +
-                  " image has a non-finite value at pixel " + std::to_string(i));
-}
-
-// Pixels with range ≠ 0 → points in the LiDAR frame (protocol §1; the peers' pano_to_lidar
-// keeps every non-zero range).
-std::vector<geometry::Point3f> to_points(const Sensor& s, const std::vector<float>& range) {
-  std::vector<geometry::Point3f> pts;
-  for (int r = 0; r < s.height; ++r)
-    for (int c = 0; c < s.width; ++c) {
-      const float d = range[size_t(r) * s.width + c];
-      if (d != 0.f) pts.push_back(pixel_direction(s, r, c) * d);
-    }
-  return pts;
-}
 
 }  // namespace
 
@@ -58,27 +29,16 @@ const std::vector<std::string>& view_metric_keys() {
 }
 
 Json evaluate_view(const Sensor& sensor, const RangeImage& pred, const RangeImage& gt) {
-  check_image(sensor, pred, "predicted");
-  check_image(sensor, gt, "ground-truth");
-  const size_t n = pred.size();
-  // LiDAR4D's eval_step: gt depth and intensity are multiplied by the gt label, the prediction
-  // by its own mask (probability > 0.5).
-  std::vector<float> depth(n), intensity(n), gt_depth(n), gt_intensity(n);
-  for (size_t i = 0; i < n; ++i) {
-    const float mask = pred.ray_drop[i] > float(kRaydropThreshold) ? 1.f : 0.f;
-    depth[i] = pred.range[i] * mask;
-    intensity[i] = pred.intensity[i] * mask;
-    gt_depth[i] = gt.range[i] * gt.ray_drop[i];
-    gt_intensity[i] = gt.intensity[i] * gt.ray_drop[i];
-  }
+  const MaskedView v = mask_view(sensor, pred, gt, "evaluate_view");
   const RaydropMetrics rm = raydrop_metrics(pred.ray_drop, gt.ray_drop);  // checks labels 0/1
-  const ChamferResult ch = chamfer_fscore(to_points(sensor, depth), to_points(sensor, gt_depth));
+  const ChamferResult ch = chamfer_fscore(to_points_lidar(sensor, v.depth),
+                                          to_points_lidar(sensor, v.gt_depth));
   if (ch.n_pred == 0 || ch.n_gt == 0)
     log::warn("evaluate_view: empty point cloud (", ch.n_pred, " predicted, ", ch.n_gt,
               " ground-truth points): cd = null, fscore = 0");
-  const DepthMetrics dm = depth_metrics(depth, gt_depth, gt.height, gt.width);
-  const DepthErrorParts parts = depth_error_parts(depth, gt_depth, pred.ray_drop, gt.ray_drop);
-  const IntensityMetrics im = intensity_metrics(intensity, gt_intensity, gt.height, gt.width);
+  const DepthMetrics dm = depth_metrics(v.depth, v.gt_depth, gt.height, gt.width);
+  const DepthErrorParts parts = depth_error_parts(v.depth, v.gt_depth, pred.ray_drop, gt.ray_drop);
+  const IntensityMetrics im = intensity_metrics(v.intensity, v.gt_intensity, gt.height, gt.width);
 
   Json j = Json::object();
   j["cd"] = number_or_null(ch.cd);

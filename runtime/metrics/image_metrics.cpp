@@ -92,19 +92,14 @@ DepthErrorParts depth_error_parts(const std::vector<float>& pred, const std::vec
   double se[3] = {0.0, 0.0, 0.0};  // returns, missed, false
   size_t missed = 0, false_return = 0;
   for (size_t i = 0; i < gt.size(); ++i) {
-    const double d = std::clamp(double(gt[i]), kDepthMin, kDepthMax) -
-                     std::clamp(double(pred[i]), kDepthMin, kDepthMax);
-    const bool hit = double(prob[i]) > kRaydropThreshold, truth = label[i] == 1.f;
-    if (hit && truth) {
-      se[0] += d * d;
-    } else if (truth) {
-      se[1] += d * d;
-      ++missed;
-    } else if (hit) {
-      se[2] += d * d;
-      ++false_return;
+    const double e = depth_sq_error(pred[i], gt[i]);
+    switch (return_case(prob[i], label[i])) {
+      case ReturnCase::both: se[0] += e; break;
+      case ReturnCase::missed: se[1] += e, ++missed; break;
+      case ReturnCase::false_return: se[2] += e, ++false_return; break;
+      // Both dropped: both sides are masked to 0, clipped alike, and contribute nothing.
+      case ReturnCase::neither: break;
     }
-    // Both dropped: both sides are masked to 0, clipped alike, and contribute nothing.
   }
   const double n = double(gt.size());
   return {se[0] / n, se[1] / n, se[2] / n, double(missed) / n, double(false_return) / n};

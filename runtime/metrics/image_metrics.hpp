@@ -8,6 +8,7 @@
 // Values that are undefined (PSNR of identical images, F1 without positives) are NaN; the
 // JSON layer writes them as null.
 #pragma once
+#include <algorithm>
 #include <vector>
 
 namespace sgnlf::metrics {
@@ -35,6 +36,23 @@ struct RaydropMetrics {
 struct DepthErrorParts {
   double mse_returns = 0, mse_missed = 0, mse_false = 0, missed_frac = 0, false_frac = 0;
 };
+
+// One pixel's return decisions: the prediction's (probability > 0.5) against the label.
+enum class ReturnCase { both, missed, false_return, neither };
+inline ReturnCase return_case(float prob, float label) {
+  const bool hit = double(prob) > kRaydropThreshold, truth = label == 1.f;
+  return hit && truth ? ReturnCase::both
+         : truth      ? ReturnCase::missed
+         : hit        ? ReturnCase::false_return
+                      : ReturnCase::neither;
+}
+// One pixel's squared depth error as depth_metrics and depth_error_parts count it: masked
+// depths clipped to [kDepthMin, kDepthMax] m (0 when both are masked).
+inline double depth_sq_error(float pred, float gt) {
+  const double d = std::clamp(double(gt), kDepthMin, kDepthMax) -
+                   std::clamp(double(pred), kDepthMin, kDepthMax);
+  return d * d;
+}
 
 // Median as numpy: the mean of the two middle values for an even count.
 double median(std::vector<double> v);

@@ -26,6 +26,10 @@ std::string data_uri(const std::string& mime, std::string_view bytes) {
   return "data:" + mime + ";base64," + base64_encode(bytes);
 }
 
+std::string embedded_img(const std::string& path, const std::string& mime, const std::string& alt) {
+  return "<img src=\"" + data_uri(mime, read_bytes(path)) + "\" alt=\"" + escape(alt) + "\">";
+}
+
 std::string read_bytes(const std::string& path) {
   const std::vector<char> b = io::read_file_bytes(path);
   return std::string(b.begin(), b.end());

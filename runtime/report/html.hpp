@@ -15,6 +15,9 @@ std::string escape(std::string_view text);
 // "data:<mime>;base64,<bytes in base64>".
 std::string data_uri(const std::string& mime, std::string_view bytes);
 
+// <img> of the file at `path` as a data: URI with `alt` text (IoError when it cannot be read).
+std::string embedded_img(const std::string& path, const std::string& mime, const std::string& alt);
+
 // The whole file as bytes; IoError naming the path when it cannot be read.
 std::string read_bytes(const std::string& path);
 

@@ -20,8 +20,9 @@ FolderKind folder_kind(const std::string& dir) {
 }
 
 std::string run_body(const RunFolder& run, const std::string& renders_dir, int max_images) {
-  return context_section(run) + metrics_section(run) + curves_section(run) +
-         trajectory_section(run) + renders_section(run, renders_dir, max_images);
+  return context_section(run) + metrics_section(run) + anatomy_section(run, max_images) +
+         curves_section(run) + trajectory_section(run) +
+         renders_section(run, renders_dir, max_images);
 }
 
 std::string build_report(const std::string& dir, const ReportOptions& opt) {

@@ -36,6 +36,7 @@ RunFolder load_run_folder(const std::string& path) {
   r.metrics = optional_json(r.file("metrics.json"));
   r.metrics_fast = optional_json(r.file("metrics-fast.json"));
   r.reconstruct = optional_json(r.file("reconstruct.json"));
+  r.anatomy = optional_json(r.file("anatomy.json"));
   return r;
 }
 

@@ -1,6 +1,6 @@
 // What the report reads from a run folder (docs/training-and-run-folders.md,
 // pipeline/run/run_dir.hpp): run.json (required), summary.json and metrics.json /
-// metrics-fast.json when present, reconstruct.json in a `sgnlf reconstruct` folder, and the
+// metrics-fast.json and anatomy.json when present, reconstruct.json in a `sgnlf reconstruct` folder, and the
 // JSON-lines logs.
 #pragma once
 #include <string>
@@ -17,6 +17,7 @@ struct RunFolder {
   Json metrics = nullptr;             // metrics.json (after `sgnlf eval`), else null
   Json metrics_fast = nullptr;        // metrics-fast.json (`sgnlf eval --renderer fast`), else null
   Json reconstruct = nullptr;         // reconstruct.json (`sgnlf reconstruct`), else null
+  Json anatomy = nullptr;             // anatomy.json (`sgnlf anatomy`), else null
   std::string file(const std::string& name) const;  // path/name
 };
 

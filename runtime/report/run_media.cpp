@@ -13,10 +13,6 @@ namespace sgnlf::report {
 namespace fs = std::filesystem;
 namespace {
 
-std::string img(const std::string& path, const std::string& mime, const std::string& alt) {
-  return "<img src=\"" + data_uri(mime, read_bytes(path)) + "\" alt=\"" + escape(alt) + "\">";
-}
-
 // Files of `dir` ending in `ext`, sorted by their numeric stem when both are numbers, else by name.
 std::vector<fs::path> files_with(const std::string& dir, const std::string& ext) {
   std::vector<fs::path> v;
@@ -74,7 +70,7 @@ std::string pose_graph_summary(const std::string& path) {
 std::string trajectory_section(const RunFolder& r) {
   std::string o = "<section><h2>Trajectories and pose graph</h2>\n";
   const std::string top = r.file("trajectories/top_view.svg");
-  if (fs::exists(top)) o += "<figure>" + img(top, "image/svg+xml", "trajectories from above") +
+  if (fs::exists(top)) o += "<figure>" + embedded_img(top, "image/svg+xml", "trajectories from above") +
                             "<figcaption>trajectories/top_view.svg</figcaption></figure>\n";
   else if (std::string d = drawn_top_view(r); !d.empty()) o += d;
   else o += "<p class=\"note\">No trajectories in the run folder.</p>\n";
@@ -84,7 +80,7 @@ std::string trajectory_section(const RunFolder& r) {
     const fs::path& last = graphs.back();
     const fs::path json = fs::path(last).replace_extension(".json");
     if (fs::exists(json)) o += pose_graph_summary(json.string());
-    o += "<figure>" + img(last.string(), "image/svg+xml", "pose graph") + "<figcaption>pose_graph/" +
+    o += "<figure>" + embedded_img(last.string(), "image/svg+xml", "pose graph") + "<figcaption>pose_graph/" +
          escape(last.filename().string()) + " (latest of " + std::to_string(graphs.size()) +
          ")</figcaption></figure>\n";
   } else {
@@ -117,7 +113,7 @@ std::string renders_section(const RunFolder& r, const std::string& renders_dir, 
       if (f.value("frame", Json()).dump() == stem)
         caption += ": depth PSNR " + metric_value("depth_psnr", f.value("depth_psnr", Json())) +
                    " dB, CD " + metric_value("cd", f.value("cd", Json())) + " m²";
-    o += "<figure><div class=\"pair\">" + img(p.string(), "image/png", p.filename().string());
+    o += "<figure><div class=\"pair\">" + embedded_img(p.string(), "image/png", p.filename().string());
     if (pair) o += "<span class=\"tag top\">rendered</span><span class=\"tag bottom\">observed</span>";
     o += "</div><figcaption>" + escape(caption) + "</figcaption></figure>\n";
   }

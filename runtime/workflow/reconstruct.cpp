@@ -21,6 +21,7 @@
 #include "odometry/trajectory.hpp"
 #include "pipeline/config/presets.hpp"
 #include "pipeline/methods/registry.hpp"
+#include "pipeline/run/anatomy_run.hpp"
 #include "pipeline/run/session.hpp"
 #include "report/report.hpp"
 #include "workflow/job_record.hpp"
@@ -34,9 +35,9 @@ namespace {
 // The progress line's stages: the record's (kReconstructStages) with the training's coarse
 // geometric alignment ("align": the training's loading and its first geometric stage, before
 // step 1; minutes on a few dozen scans) shown as a stage of its own.
-enum Stage : size_t { kOdometry, kAlign, kTrain, kEvaluate, kRender, kCloud, kReport };
-const std::vector<std::string> kProgressStages{"odometry", "align", "train", "evaluate",
-                                               "render", "cloud", "report"};
+enum Stage : size_t { kOdometry, kAlign, kTrain, kEvaluate, kAnatomy, kRender, kCloud, kReport };
+const std::vector<std::string> kProgressStages{"odometry", "align", "train",  "evaluate",
+                                               "anatomy",  "render", "cloud", "report"};
 
 Json pose_errors_json(const std::vector<Pose>& est, const std::vector<Pose>& ref, const Dataset& d) {
   Json j = metrics::pose_metrics(est, ref, d.planar_reference ? metrics::PoseReference::horizontal
@@ -232,6 +233,9 @@ Json reconstruct(cl::Runtime& rt, const ReconstructRequest& req) {
     const double r = render_estimate_s(cfg, d.sensor, views, train_summary.value("samples_per_s", 0.0));
     if (!record.done("evaluate")) progress.estimate(kEvaluate, r);
     if (!record.done("render")) progress.estimate(kRender, r);
+    // The anatomy renders only when the evaluation's views are not in memory (a resumed job).
+    if (!record.done("anatomy"))
+      progress.estimate(kAnatomy, record.done("evaluate") ? r : 2.0 + 0.5 * double(views));
   }
 
   // 3–5 share the loaded run.
@@ -242,10 +246,13 @@ Json reconstruct(cl::Runtime& rt, const ReconstructRequest& req) {
           pipeline::load_run(rt, req.run_dir, "", pipeline::RenderSampling{}, nullptr));
     return *run;
   };
+  pipeline::TestViewImages scored;  // the evaluation's views, for the anatomy
+  bool have_scored = false;
   if (!record.done("evaluate")) {
     progress.begin(kEvaluate);
     const auto t0 = std::chrono::steady_clock::now();
-    const Json m = pipeline::eval_run(loaded(), req.run_dir);
+    const Json m = pipeline::eval_run(loaded(), req.run_dir, nullptr, &scored);
+    have_scored = true;
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     Json j{{"metrics", m.at("metrics")},
            {"naive_baseline", m.at("naive_baseline").at("metrics")},
@@ -256,6 +263,17 @@ Json reconstruct(cl::Runtime& rt, const ReconstructRequest& req) {
     record.finish("evaluate", j);
     progress.end();
     if (!record.done("render")) progress.estimate(kRender, s);
+  }
+  if (!record.done("anatomy")) {
+    progress.begin(kAnatomy);
+    const Json a = pipeline::anatomy_run(loaded(), req.run_dir, have_scored ? &scored : nullptr);
+    const Json& mean = a.at("model").at("mean");
+    record.finish("anatomy", Json{{"file", (fs::path(req.run_dir) / "anatomy.json").string()},
+                                  {"pictures", a.at("pictures").size()},
+                                  {"cd_pred_to_gt_false", mean.at("cd_pred_to_gt/cause/false")},
+                                  {"cd_gt_to_pred_missed", mean.at("cd_gt_to_pred/cause/missed")},
+                                  {"depth_mse_false", mean.at("depth_mse/cause/false")}});
+    progress.end();
   }
   if (!record.done("render")) {
     progress.begin(kRender);

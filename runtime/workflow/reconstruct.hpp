@@ -10,10 +10,12 @@
 //                against the views rendered at their optimised poses, with the protocol's
 //                renderer: RUN/metrics.json (the naive baseline moves the training scans with
 //                the same poses when there is no reference)
-//   4. render    the held-out views beside the observed scans (fast renderer): RUN/renders/
-//   5. cloud     every scan in the world frame under the optimised poses: RUN/scene.ply and
+//   4. anatomy   the evaluated views' errors by cause and band beside the nearest scan's
+//                (pipeline/run/anatomy_run.hpp, docs/anatomy.md): RUN/anatomy.json, RUN/anatomy/
+//   5. render    the held-out views beside the observed scans (fast renderer): RUN/renders/
+//   6. cloud     every scan in the world frame under the optimised poses: RUN/scene.ply and
 //                RUN/scene.pcd (binary; x y z intensity float32, world = the first scan's frame)
-//   6. report    RUN/report.html (report/report.hpp)
+//   7. report    RUN/report.html (report/report.hpp)
 // RUN/reconstruct.json records the request and each finished stage; a rerun with the same
 // request skips them (the training resumes from its checkpoint), another request is refused.
 // Pose errors (ATE/RPE, protocol §4) are reported only against reference poses: a layout that
@@ -47,8 +49,8 @@ struct ReconstructRequest {
   Json to_json() const;
 };
 
-inline constexpr const char* kReconstructStages[] = {"odometry", "train",  "evaluate",
-                                                    "render",   "cloud",  "report"};
+inline constexpr const char* kReconstructStages[] = {"odometry", "train", "evaluate", "anatomy",
+                                                    "render",   "cloud", "report"};
 
 // Runs (or resumes) the job; returns the contents of RUN/reconstruct.json. ConfigError for a
 // method that is not pose-free, a bad config or a request that differs from the folder's;

@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "io/cloud_writers.hpp"
+#include "io/marked_depth_picture.hpp"
 #include "io/png_writer.hpp"
 #include "io/range_array.hpp"
 #include "io/scan_io.hpp"
@@ -106,6 +107,38 @@ TEST_CASE("PNG range picture: three stacked panels, turbo colormap", "[io]") {
   CHECK(std::memcmp(b.data(), "\x89PNG\r\n\x1a\n", 8) == 0);
   CHECK(uint8_t(b[19]) == 6);   // IHDR width (big-endian)
   CHECK(uint8_t(b[23]) == 26);  // IHDR height
+}
+
+TEST_CASE("marked depth picture: panels stacked, false and missed returns coloured", "[io]") {
+  RangeImage pred(2, 3), gt(2, 3);
+  pred.range[pred.idx(0, 0)] = 5.f;   // a return with its depth colour
+  pred.range[pred.idx(0, 1)] = 30.f;  // a false return
+  gt.range[gt.idx(0, 0)] = 5.f;
+  gt.range[gt.idx(1, 2)] = 12.f;      // missed by the prediction
+  io::DepthPanel top{&pred, std::vector<uint8_t>(6, io::kMarkNone)};
+  top.marks[pred.idx(0, 1)] = io::kMarkFalseReturn;
+  top.marks[pred.idx(1, 2)] = io::kMarkMissedReturn;
+  io::RangePictureOptions o;
+  o.row_repeat = 2;
+  o.gap = 1;
+  const auto pic = io::marked_depth_picture({top, io::DepthPanel{&gt, {}}}, o);
+  CHECK(pic.height == 2 * 4 + 1);
+  CHECK(pic.width == 3);
+  auto px = [&](int y, int x) {
+    const uint8_t* p = &pic.rgb[(size_t(y) * pic.width + x) * 3];
+    return std::array<uint8_t, 3>{p[0], p[1], p[2]};
+  };
+  CHECK(px(0, 0) == io::depth_colour(5.0, o));
+  CHECK(px(1, 1) == io::kFalseReturnColour);
+  CHECK(px(3, 2) == io::kMissedReturnColour);
+  CHECK(px(2, 0) == std::array<uint8_t, 3>{0, 0, 0});   // no return, no mark
+  CHECK(px(4, 1) == std::array<uint8_t, 3>{0, 0, 0});   // the gap
+  CHECK(px(5 + 2, 2) == io::depth_colour(12.0, o));     // the ground truth, unmarked
+  RangeImage other(3, 3);
+  CHECK_THROWS_WITH(io::marked_depth_picture({top, io::DepthPanel{&other, {}}}, o),
+                    Catch::Contains("panel 1 is 3x3, panel 0 2x3"));
+  CHECK_THROWS_WITH(io::marked_depth_picture({io::DepthPanel{&gt, {1, 2}}}, o),
+                    Catch::Contains("2 marks for 6 pixels"));
 }
 
 TEST_CASE("trajectory SVG: one polyline per trajectory, links, errors", "[io][svg]") {

@@ -9,6 +9,7 @@
 #include "core/config.hpp"
 #include "datasets/simulate.hpp"
 #include "io/range_array.hpp"
+#include "pipeline/run/anatomy_run.hpp"
 #include "pipeline/run/evaluate.hpp"
 #include "pipeline/model/render_view.hpp"
 #include "pipeline/run/session.hpp"
@@ -52,6 +53,28 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
   CHECK(mx.at("opacity_mean").get<double>() > 0.0);
   CHECK(mx.at("opacity_mean").get<double>() <= 1.0 + 1e-5);
   CHECK_FALSE(m.at("naive_baseline").at("metrics").contains("median_cd"));
+
+  // The error anatomy of the same views (pipeline/run/anatomy_run.hpp): from eval_run's scored
+  // views or rendered afresh, the same; its totals are metrics.json's CD terms.
+  TestViewImages scored;
+  eval_run(run, run_dir, nullptr, &scored);
+  REQUIRE(scored.model.size() == 1);
+  const Json anat = anatomy_run(run, run_dir, &scored);
+  const Json fresh = anatomy_run(run, run_dir + "/anatomy_fresh");
+  CHECK(fresh.at("model").at("mean") == anat.at("model").at("mean"));
+  CHECK(fresh.at("naive_baseline").at("mean") == anat.at("naive_baseline").at("mean"));
+  for (const char* k : {"cd_pred_to_gt", "cd_gt_to_pred"}) {
+    CHECK(anat.at("model").at("mean").at(std::string(k) + "/total").get<double>() ==
+          Approx(m.at("metrics").at(k).get<double>()).epsilon(1e-9));
+    CHECK(anat.at("naive_baseline").at("mean").at(std::string(k) + "/total").get<double>() ==
+          Approx(m.at("naive_baseline").at("metrics").at(k).get<double>()).epsilon(1e-9));
+  }
+  CHECK(anat.at("train_poses") == "reference");
+  CHECK(fs::exists(run_dir + "/anatomy.json"));
+  CHECK(fs::file_size(run_dir + "/" + anat.at("pictures")[0].get<std::string>()) > 100);
+  TestViewImages short_set = scored;
+  short_set.naive.clear();
+  CHECK_THROWS_WITH(anatomy_run(run, run_dir, &short_set), Catch::Contains("0 naive views for 1 test frames"));
 
   const Json files = render_run(run, run_dir + "/renders");
   REQUIRE(files.size() == 1);

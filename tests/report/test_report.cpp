@@ -8,6 +8,9 @@
 
 #include "core/config.hpp"
 #include "core/error.hpp"
+#include "geometry/range_image.hpp"
+#include "metrics/anatomy.hpp"
+#include "metrics/anatomy_json.hpp"
 #include "report/base64.hpp"
 #include "report/report.hpp"
 #include "report/run_folder.hpp"
@@ -161,6 +164,49 @@ TEST_CASE("report: the top view is drawn from the TUM files; missing renders are
   REQUIRE(test::img_sources(one).size() == 2);
   CHECK(decode_data_uri(test::img_sources(one)[1], "image/png") == test::file_contents(pngs[0]));
   CHECK(contains(one, "1 more pictures not embedded"));
+}
+
+TEST_CASE("report of a run with anatomy.json: the shares beside the nearest scan's, its pictures",
+          "[report][anatomy]") {
+  const std::string dir = test::temp_dir("report_anatomy");
+  test::write_run_fixture(dir);
+  // Without anatomy.json the page has no anatomy section.
+  CHECK_FALSE(contains(report::build_report(dir), "Error anatomy"));
+  // One view: ours with a false return at 30 m (all of its depth error), the nearest scan's
+  // with a missed return (all of its).
+  Sensor s = sensor_preset("kitti360");
+  s.height = 4;
+  s.width = 16;
+  RangeImage gt(s.height, s.width);
+  for (size_t i = 1; i < gt.size(); ++i) gt.range[i] = 12.f, gt.ray_drop[i] = 1.f;
+  RangeImage ours = gt, nearest = gt;
+  for (size_t i = 0; i < gt.size(); ++i) ours.ray_drop[i] = nearest.ray_drop[i] = gt.ray_drop[i];
+  ours.range[0] = 30.f, ours.ray_drop[0] = 1.f;
+  nearest.ray_drop[5] = 0.f;
+  const Json ja = metrics::anatomy_json(metrics::view_anatomy(s, ours, gt));
+  const Json jn = metrics::anatomy_json(metrics::view_anatomy(s, nearest, gt));
+  Json fa = ja, fn = jn;
+  fa["frame"] = fn["frame"] = 3;
+  write_json_file(dir + "/anatomy.json",
+                  Json{{"model", {{"mean", ja}, {"per_frame", {fa}}}},
+                       {"naive_baseline", {{"mean", jn}, {"per_frame", {fn}}}}});
+  io::RgbImage pic;
+  pic.height = 2, pic.width = 3, pic.rgb.assign(18, 200);
+  io::write_png(dir + "/anatomy/3.png", pic);
+  const std::string html = report::build_report(dir);
+  REQUIRE(contains(html, "<h2>Error anatomy</h2>"));
+  const std::string section = html.substr(html.find("<h2>Error anatomy</h2>"));
+  // Columns: CD pred→GT, CD GT→pred, depth MSE, each ours then the nearest scan's. Ours: all
+  // of pred→GT and of the depth MSE is the false return, GT→pred is 0 (its share undefined);
+  // the nearest scan's: all of GT→pred and of the depth MSE is the missed return; a cause a
+  // direction does not have is "—".
+  CHECK(contains(section, "<td>cause</td><td>false</td><td>100.0 %</td><td>—</td><td>—</td><td>—</td><td>100.0 %</td><td>0.0 %</td>"));
+  CHECK(contains(section, "<td>cause</td><td>missed</td><td>—</td><td>—</td><td>—</td><td>100.0 %</td><td>0.0 %</td><td>100.0 %</td>"));
+  CHECK(contains(section, "<td>range</td><td>20-40m</td><td>100.0 %</td>"));
+  CHECK(contains(section, "frame 3: ours, the nearest scan, the observed scan"));
+  const auto srcs = test::img_sources(section);
+  REQUIRE_FALSE(srcs.empty());
+  CHECK(decode_data_uri(srcs[0], "image/png") == test::file_contents(dir + "/anatomy/3.png"));
 }
 
 TEST_CASE("report: write_report writes <dir>/report.html or --out", "[report]") {

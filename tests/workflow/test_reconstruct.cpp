@@ -122,6 +122,28 @@ TEST_CASE("reconstruct: scans to poses, field, metrics, renders, cloud and repor
   CHECK_FALSE(metrics.contains("pose_metrics"));
   CHECK(metrics.at("reference_poses") == false);
   CHECK(metrics.at("metrics").at("depth_rmse").is_number());
+  // The anatomy of the evaluated views: its totals are metrics.json's CD terms, its depth causes
+  // metrics.json's depth MSE parts (means of linear terms), ours and the nearest scan's; the
+  // report shows it.
+  const Json anatomy = load_json_file(out + "/anatomy.json");
+  // Null where metrics.json has null (the smoke field may predict no return: CD undefined).
+  const auto same = [](const Json& a, const Json& b, double eps) {
+    if (a.is_null() || b.is_null()) return a.is_null() && b.is_null();
+    return a.get<double>() == Approx(b.get<double>()).epsilon(eps);
+  };
+  for (const char* who : {"model", "naive_baseline"}) {
+    const Json& am = anatomy.at(who).at("mean");
+    const Json& mm = std::string(who) == "model" ? metrics.at("metrics")
+                                                 : metrics.at("naive_baseline").at("metrics");
+    CHECK(same(am.at("cd_pred_to_gt/total"), mm.at("cd_pred_to_gt"), 1e-9));
+    CHECK(same(am.at("cd_gt_to_pred/total"), mm.at("cd_gt_to_pred"), 1e-9));
+    CHECK(same(am.at("depth_mse/cause/false"), mm.at("depth_mse_false"), 1e-9));
+    CHECK(same(am.at("depth_mse/cause/missed"), mm.at("depth_mse_missed"), 1e-9));
+    CHECK(am.at("depth_mse/train/<0.1m").is_number());
+  }
+  REQUIRE(anatomy.at("pictures").size() == metrics.at("per_frame").size());
+  CHECK(fs::file_size(fs::path(out) / anatomy.at("pictures")[0].get<std::string>()) > 100);
+  CHECK(test::file_contents(out + "/report.html").find("<h2>Error anatomy</h2>") != std::string::npos);
 
   // A rerun skips every stage: the checkpoint and the metrics stay as they were.
   const auto ck_time = fs::last_write_time(fs::path(out) / "checkpoints" / "latest.ckpt");
@@ -131,11 +153,23 @@ TEST_CASE("reconstruct: scans to poses, field, metrics, renders, cloud and repor
   CHECK(fs::last_write_time(fs::path(out) / "checkpoints" / "latest.ckpt") == ck_time);
   CHECK(fs::last_write_time(fs::path(out) / "metrics.json") == m_time);
 
+  // A job killed before the anatomy renders the views itself: the same anatomy.
+  {
+    Json rec = load_json_file(out + "/reconstruct.json");
+    for (const char* st : {"anatomy", "render", "cloud", "report"}) rec["stages"].erase(st);
+    write_json_file(out + "/reconstruct.json", rec);
+    fs::remove(fs::path(out) / "anatomy.json");
+    workflow::reconstruct(rt, request(s, out));
+    const Json again = load_json_file(out + "/anatomy.json");
+    for (const char* k : {"cd_pred_to_gt/total", "cd_gt_to_pred/total", "depth_mse/total"})
+      CHECK(same(again.at("model").at("mean").at(k), anatomy.at("model").at("mean").at(k), 1e-12));
+  }
+
   // Killed after the training: the record ends at "train"; the rerun evaluates, renders and
   // writes the cloud and report again, and does not train.
   {
     Json rec = load_json_file(out + "/reconstruct.json");
-    for (const char* st : {"evaluate", "render", "cloud", "report"}) rec["stages"].erase(st);
+    for (const char* st : {"evaluate", "anatomy", "render", "cloud", "report"}) rec["stages"].erase(st);
     write_json_file(out + "/reconstruct.json", rec);
     fs::remove(fs::path(out) / "metrics.json");
     fs::remove(fs::path(out) / "scene.ply");

@@ -241,7 +241,8 @@ Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
   return files;
 }
 
-Json eval_run(LoadedRun& run, const std::string& run_dir, FastRenderer* fast) {
+Json eval_run(LoadedRun& run, const std::string& run_dir, FastRenderer* fast,
+              TestViewImages* images) {
   const auto t0 = std::chrono::steady_clock::now();
   const ViewSet model = evaluate_model(*run.model, *run.dataset, *run.scene,
                                        run.manifest.config.schedule.render_chunk_rays,
@@ -304,6 +305,7 @@ Json eval_run(LoadedRun& run, const std::string& run_dir, FastRenderer* fast) {
                {"dropped_after_hit", double(c.march.dropped) / rays}};
   }
   write_json_file((fs::path(run_dir) / (fast ? "metrics-fast.json" : "metrics.json")).string(), j);
+  if (images) *images = TestViewImages{model.images, naive.images};
   return j;
 }
 

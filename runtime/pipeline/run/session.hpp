@@ -8,6 +8,7 @@
 #include "cl/runtime.hpp"
 #include "core/config.hpp"
 #include "pipeline/model/fast_renderer.hpp"
+#include "pipeline/run/anatomy_run.hpp"
 #include "pipeline/run/run_dir.hpp"
 #include "pipeline/train/pose_free_step.hpp"
 #include "pipeline/train/trainer.hpp"
@@ -70,7 +71,9 @@ Json pose_metrics_json(const std::vector<Pose>& est, const std::vector<Pose>& gt
 // pose metrics of the optimised and the initial poses over all frames); writes <run>/metrics.json.
 // With `fast`, the test views go through the fast renderer and the result (with the renderer's
 // counts and config under "renderer") goes to <run>/metrics-fast.json: metrics.json stays the
-// protocol's.
-Json eval_run(LoadedRun& run, const std::string& run_dir, FastRenderer* fast = nullptr);
+// protocol's. With `images`, the scored views are left there (for anatomy_run, which then
+// renders nothing again).
+Json eval_run(LoadedRun& run, const std::string& run_dir, FastRenderer* fast = nullptr,
+              TestViewImages* images = nullptr);
 
 }  // namespace sgnlf::pipeline
