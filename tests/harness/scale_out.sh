@@ -91,24 +91,46 @@ $common${!mode}$merge"
 rm -rf "$out"
 mkdir -p "$out/work" || die "cannot create $out/work"
 printf '%s' "$script" > "$out/readme-lines.sh"
+# The lines run in the background (so that a TERM to this script runs its traps at once: bash
+# holds them while a foreground command runs), under `timeout`, which leads its own process
+# group: killed whole on exit.
+lines_pid=""
+kill_lines() { [ -z "$lines_pid" ] || kill -TERM -- "-$lines_pid" 2>/dev/null; }
+trap kill_lines EXIT
+trap 'exit 143' TERM INT
 
 if [ "$mode" = slurm ]; then
   sd=$(mktemp -d "${TMPDIR:-/tmp}/sgnlf-slurm.XXXXXX") || die "mktemp failed"
   pids=()
+  # Each daemon runs under `timeout`, the leader of its own process group: TERM reaches the
+  # daemon through it, KILL reaches both through the group.
+  stop() {  # PID: TERM, up to 10 s, then KILL
+    local k
+    kill "$1" 2>/dev/null || return 0
+    for ((k = 0; k < 50; k++)); do kill -0 "$1" 2>/dev/null || break; sleep 0.2; done
+    kill -0 "$1" 2>/dev/null && { echo "$2 did not stop within 10 s: killed" >&2; kill -KILL -- "-$1" 2>/dev/null; }
+    wait "$1" 2>/dev/null
+  }
   cleanup() {
-    if [ -n "${SLURM_CONF:-}" ] && [ -f "$SLURM_CONF" ]; then
+    kill_lines
+    # pids: munged, slurmctld, slurmd. Jobs left are cancelled and their end reported while
+    # slurmctld and munged still run; then slurmd, slurmctld and munged stop in that order.
+    if [ ${#pids[@]} -ge 2 ] && kill -0 "${pids[1]}" 2>/dev/null; then
+      local jobs_left k
       jobs_left=$(squeue -h -o %A 2>/dev/null)
-      [ -z "$jobs_left" ] || scancel $jobs_left 2>/dev/null
+      if [ -n "$jobs_left" ]; then
+        scancel $jobs_left 2>/dev/null
+        for ((k = 0; k < 50; k++)); do [ -z "$(squeue -h -o %A 2>/dev/null)" ] && break; sleep 0.2; done
+      fi
     fi
-    local i
-    for ((i = ${#pids[@]} - 1; i >= 0; i--)); do kill "${pids[i]}" 2>/dev/null; done
-    for i in "${pids[@]}"; do wait "$i" 2>/dev/null; done
+    [ ${#pids[@]} -lt 3 ] || stop "${pids[2]}" slurmd
+    [ ${#pids[@]} -lt 2 ] || stop "${pids[1]}" slurmctld
+    [ ${#pids[@]} -lt 1 ] || stop "${pids[0]}" munged
     mkdir -p "$out/slurm-logs"
     cp "$sd"/slurm.conf "$sd"/log/* "$out/slurm-logs/" 2>/dev/null
     rm -rf "$sd"
   }
   trap cleanup EXIT
-  trap 'exit 143' TERM INT
   show_logs() {
     local f
     for f in "$sd"/log/*; do [ -s "$f" ] && { echo "--- $f (last 30 lines)"; tail -n 30 "$f"; }; done >&2
@@ -197,8 +219,11 @@ echo "--- the README's lines, as run in $out/work:"
 cat "$out/readme-lines.sh"
 echo "---"
 t0=$(date +%s)
-(cd "$out/work" && timeout 480 bash "$out/readme-lines.sh")
+(cd "$out/work" && exec timeout 480 bash "$out/readme-lines.sh") &
+lines_pid=$!
+wait "$lines_pid"
 rc=$?
+lines_pid=""
 if [ "$mode" = slurm ]; then
   if [ "$rc" -ne 0 ]; then
     for f in "$out"/work/slurm-*.out; do [ -f "$f" ] && { echo "--- $f"; tail -n 20 "$f"; }; done
