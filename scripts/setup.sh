@@ -15,6 +15,11 @@ if [ "${SGNLF_SETUP_BROWSER:-0}" = "1" ]; then PACKAGES+=(chromium); fi
 # The test job's Oclgrind tests (CTest label oclgrind, tests/oclgrind/) run the device tests under
 # Debian's OpenCL device simulator. The package registers no ICD: other programs keep PoCL.
 if [ "${SGNLF_SETUP_OCLGRIND:-0}" = "1" ]; then PACKAGES+=(oclgrind); fi
+# The test job's scale-out tests (harness_scale_out_{slurm,parallel}, tests/harness/scale_out.sh)
+# run the README's Slurm and GNU parallel lines; the Slurm one starts its own munged, slurmctld
+# and slurmd in a temporary folder. The packages' own services stay off where no slurm.conf is in
+# /etc/slurm (systemd starts munge with the key Debian makes; a container starts nothing).
+if [ "${SGNLF_SETUP_SCALE_OUT:-0}" = "1" ]; then PACKAGES+=(slurm-wlm munge parallel); fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

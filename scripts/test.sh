@@ -5,7 +5,9 @@
 # frames skip with a warning); CI=true or SGNLF_REQUIRE_REAL_DATA=1 (.ci/run) makes the larger
 # data required, failing those tests where it is missing;
 # Chromium too (SGNLF_SETUP_BROWSER=1), for the report page's browser test, and Oclgrind
-# (SGNLF_SETUP_OCLGRIND=1), for the device tests the suite also runs under it (label oclgrind);
+# (SGNLF_SETUP_OCLGRIND=1), for the device tests the suite also runs under it (label oclgrind),
+# and Slurm, munge and GNU parallel (SGNLF_SETUP_SCALE_OUT=1), for the tests that run the README's
+# scale-out lines (labels slurm, parallel);
 # then the hardening jobs, sharing one clang build (build-ci-sanitize/): the host
 # tests (without the label asan_slow) and the OpenCL test cl built with AddressSanitizer +
 # UndefinedBehaviorSanitizer (SCOPE=ci scripts/sanitize.sh), and every fuzz target for
@@ -15,7 +17,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 t0=$(date +%s)
-SGNLF_SETUP_BROWSER=1 SGNLF_SETUP_OCLGRIND=1 bash scripts/setup.sh
+SGNLF_SETUP_BROWSER=1 SGNLF_SETUP_OCLGRIND=1 SGNLF_SETUP_SCALE_OUT=1 bash scripts/setup.sh
 bash scripts/build.sh
 clinfo -l || true
 ctest --test-dir build --output-on-failure -j "${JOBS:-$(nproc)}"
