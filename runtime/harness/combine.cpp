@@ -119,6 +119,7 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
   std::map<std::pair<std::string, std::string>, std::vector<Claim>> claims;
   std::map<std::string, Json> failures;  // method -> [{source, error}]
   Json superseded = Json::array();
+  Json reproduced = Json::array();  // equal runs of one cell from several sources
   for (size_t i = 0; i < inputs.size(); ++i) {
     // Named references, not a structured binding: the lambda below captures them (C++17 does
     // not let a lambda capture a structured binding; clang refuses it).
@@ -136,12 +137,13 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
         throw ConfigError("merge: " + path + ": source " + std::to_string(k) + " out of range");
       return local[k];
     };
-    for (const auto& s : at_path(r, {"combined_from", "superseded"})) {
-      Json x = s;
-      x["source"] = source_of(Json{{"source", s.value("source", 0)}});
-      x["by"] = source_of(Json{{"source", s.value("by", 0)}});
-      superseded.push_back(x);
-    }
+    for (const char* list : {"superseded", "reproduced"})
+      for (const auto& s : at_path(r, {"combined_from", list})) {
+        Json x = s;
+        x["source"] = source_of(Json{{"source", s.value("source", 0)}});
+        x["by"] = source_of(Json{{"source", s.value("by", 0)}});
+        (std::string(list) == "superseded" ? superseded : reproduced).push_back(x);
+      }
     for (const auto& row : r["rows"]) {
       const std::string m = row.value("method", ""), st = row.value("status", "");
       const bool data = st == "ok" || st == "failed" || row.contains("failures");
@@ -164,13 +166,20 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
       }
     }
   }
-  // One claim per row × sequence: equal duplicates are one run; different ones are refused
-  // unless the later input wins.
+  // One claim per row × sequence: equal duplicates are one run, recorded as reproduced (a rerun
+  // that certifies the cell), the later one's provenance taken with --later-wins; different
+  // ones are refused unless the later input wins.
   std::map<std::pair<std::string, std::string>, Claim> chosen;
   for (const auto& [key, list] : claims) {
     Claim c = list.front();
     for (size_t k = 1; k < list.size(); ++k) {
-      if (comparable_entry(list[k].entry) == comparable_entry(c.entry)) continue;
+      if (comparable_entry(list[k].entry) == comparable_entry(c.entry)) {
+        if (list[k].source == c.source) continue;
+        reproduced.push_back(Json{{"method", key.first}, {"sequence", key.second},
+                                  {"source", c.source}, {"by", list[k].source}});
+        if (opt.later_wins) c = list[k];
+        continue;
+      }
       if (!opt.later_wins)
         throw ConfigError("merge: " + key.first + " / " + key.second + " is in both " +
                           inputs[c.input].first + " and " + inputs[list[k].input].first +
@@ -307,7 +316,8 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
   Json in_paths = Json::array();
   for (const auto& in : inputs) in_paths.push_back(in.first);
   out["combined_from"] = Json{{"inputs", in_paths}, {"files", files},
-                              {"later_wins", opt.later_wins}, {"superseded", superseded}};
+                              {"later_wins", opt.later_wins}, {"superseded", superseded},
+                              {"reproduced", reproduced}};
   return out;
 }
 

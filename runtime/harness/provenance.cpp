@@ -65,7 +65,12 @@ std::string render_provenance(const Json& r) {
   for (const auto& s : cf.value("superseded", Json::array()))
     o << "\n- " << s.value("method", "") << " / " << s.value("sequence", "") << ": source ["
       << s.value("source", Json()).dump() << "] replaced by [" << s.value("by", Json()).dump() << "]";
-  if (!cf.value("superseded", Json::array()).empty()) o << "\n";
+  for (const auto& s : cf.value("reproduced", Json::array()))
+    o << "\n- " << s.value("method", "") << " / " << s.value("sequence", "") << ": source ["
+      << s.value("source", Json()).dump() << "] reproduced bit for bit by ["
+      << s.value("by", Json()).dump() << "]";
+  if (!cf.value("superseded", Json::array()).empty() || !cf.value("reproduced", Json::array()).empty())
+    o << "\n";
   o << "\nStale: a run whose config hash is not the one the method's preset resolves to in the "
        "commit that combined the table (tests/pipeline/config_hashes.json); its numbers are "
        "from an older config.\n";

@@ -112,8 +112,21 @@ TEST_CASE("conflicting runs of a cell are refused unless the later input wins",
           "[harness][combine]") {
   Json a = test::fake_results(), b = partial({"lidar-nerf"}, {}, true);
   Json a2 = Json::parse(test::fake_results().dump());
-  // Equal duplicates (times and paths aside) are one run.
-  CHECK_NOTHROW(combine({{"a", a}, {"a2", a2}}));
+  // Equal duplicates (times and paths aside) are one run, recorded as reproduced: the first
+  // input's, or with --later-wins the later one's provenance (a clean rerun certifying a cell).
+  Json eq;
+  REQUIRE_NOTHROW(eq = combine({{"a", a}, {"a2", a2}}));
+  size_t cells = 0;
+  for (const auto& row : a["rows"]) cells += row.value("sequences", Json::array()).size();
+  CHECK(cells > 0);
+  CHECK(eq["combined_from"]["reproduced"].size() == cells);
+  CHECK(eq["combined_from"]["superseded"].empty());
+  CHECK(test::row(eq, "lidar-nerf")["sources"] == Json::array({0}));
+  CHECK(eq["combined_from"]["reproduced"][0]["by"] == 1);
+  Json eq_later = combine({{"a", a}, {"a2", a2}}, true);
+  CHECK(test::row(eq_later, "lidar-nerf")["sources"] == Json::array({1}));
+  CHECK(test::row(eq_later, "lidar-nerf")["mean"] == test::row(eq, "lidar-nerf")["mean"]);
+  CHECK(eq_later["combined_from"]["superseded"].empty());
   CHECK_THROWS_WITH(combine({{"first/results.json", a}, {"second/results.json", b}}),
                     Catch::Contains("lidar-nerf / kitti360-1538 is in both first/results.json and "
                                     "second/results.json") &&
