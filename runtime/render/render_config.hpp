@@ -138,8 +138,9 @@ struct RenderConfig {
   static RenderConfig from_json(const Json& j, const std::string& where);
   static RenderConfig from_json(const Json& j, const std::string& where, RenderConfig defaults);
   // eval_samples / eval_importance / eval_depth / stop_transmittance / coarse_waves /
-  // head_weight_threshold appear only when set, so configs without them keep their
-  // JSON and hash (run folders and baselines written before they existed still load).
+  // head_weight_threshold / surface_* / sampler / training_sampler appear only when set, so
+  // configs without them keep their JSON and hash (run folders and baselines written before
+  // they existed still load).
   Json to_json() const;
   // The strategy of every pass: `sampler` when given, else "terminated" with
   // stop_transmittance > 0, "importance" with n_importance > 0, "uniform" otherwise (the
