@@ -53,6 +53,17 @@ float RenderConfig::surface_band_m(long step) const {
                std::pow(double(surface_band_end_m) / double(surface_band_start_m), f));
 }
 
+std::string RenderConfig::sampler_name() const {
+  if (!sampler.empty()) return sampler;
+  if (stop_transmittance > 0.0f) return "terminated";
+  return n_importance > 0 ? "importance" : "uniform";
+}
+
+std::string RenderConfig::training_sampler_name() const {
+  if (!training_sampler.empty()) return training_sampler;
+  return surface_sampling() ? "surface" : sampler_name();
+}
+
 RenderConfig RenderConfig::from_json(const Json& j, const std::string& where, RenderConfig c) {
   ConfigReader r(j, where);
   config::read_fields_here(r, c);

@@ -83,6 +83,14 @@ struct RenderConfig {
   float surface_band_end_m = 0.2f;
   int surface_anneal_steps = 2000;
   float surface_behind_m = 2.0f;
+  // The sampling strategies by their registered names (pipeline/model/sampler.hpp): `sampler`
+  // places the samples of every pass (training, rendering, evaluation), `training_sampler`
+  // those of training rays. Absent (empty): the name the keys above imply, sampler_name() and
+  // training_sampler_name(), so the configs written before these keys keep their JSON and
+  // hash. The model checks a name against the registry (an unknown one is a ConfigError
+  // naming the key).
+  std::string sampler;
+  std::string training_sampler;
   RangeLossWeights weights;
   // Gradient loss on patch batches (LiDAR-NeRF: 2 × 8 patches, L1, GT steps ≥ 1 cm ignored).
   int patch_rows = 2;
@@ -114,6 +122,8 @@ struct RenderConfig {
     v("surface_band_end_m", s.surface_band_end_m, 1e-3f, 100.0f, config::omit_when(0.2f));
     v("surface_anneal_steps", s.surface_anneal_steps, 0, 1 << 28, config::omit_when(2000));
     v("surface_behind_m", s.surface_behind_m, 0.0f, 100.0f, config::omit_when(2.0f));
+    v("sampler", s.sampler, config::omit_when<std::string>(""));
+    v("training_sampler", s.training_sampler, config::omit_when<std::string>(""));
     v.section("weights", s.weights);
     v("patch_rows", s.patch_rows, 1, 256);
     v("patch_cols", s.patch_cols, 1, 256);
@@ -128,16 +138,25 @@ struct RenderConfig {
   static RenderConfig from_json(const Json& j, const std::string& where);
   static RenderConfig from_json(const Json& j, const std::string& where, RenderConfig defaults);
   // eval_samples / eval_importance / eval_depth / stop_transmittance / coarse_waves /
-  // head_weight_threshold appear only when set, so configs without them keep their
-  // JSON and hash (run folders and baselines written before they existed still load).
+  // head_weight_threshold / surface_* / sampler / training_sampler appear only when set, so
+  // configs without them keep their JSON and hash (run folders and baselines written before
+  // they existed still load).
   Json to_json() const;
-  // Uniform bin width in normalised units: also the last sample's δ (see kernels/render/volume.cl).
+  // The strategy of every pass: `sampler` when given, else "terminated" with
+  // stop_transmittance > 0, "importance" with n_importance > 0, "uniform" otherwise (the
+  // protocol's). Resolved where the model is made, from the keys as they are then (evaluation
+  // may set n_samples / n_importance from eval_samples / eval_importance).
+  std::string sampler_name() const;
+  // The strategy of training rays: `training_sampler` when given, else "surface" with
+  // surface_band_samples > 0, else sampler_name().
+  std::string training_sampler_name() const;
   bool surface_sampling() const { return surface_band_samples > 0; }
   int surface_samples() const {
     return surface_free_samples + surface_band_samples + surface_behind_samples;
   }
   // The surface band's half-width (metres) at training step `step`.
   float surface_band_m(long step) const;
+  // Uniform bin width in normalised units: also the last sample's δ (see kernels/render/volume.cl).
   float bin_width(float scene_scale) const {
     return (far_m - near_m) * scene_scale / float(n_samples);
   }

@@ -44,11 +44,11 @@ TEST_CASE("each sampling strategy's sample set and head rows are in the forward'
   const int S = 16, I = 4;  // tiny_config's
   SECTION("uniform") {
     auto m = model_of(scene, test::tiny_config(Json{{"render", {{"n_importance", 0}}}}));
-    CHECK(m->protocol_strategy() == SampleStrategy::Uniform);
+    CHECK(m->protocol_strategy() == "uniform");
     CHECK_FALSE(m->last_forward().valid());
     const ForwardContext ctx = render_context(*m, scene);
     CHECK(ctx.valid());
-    CHECK(ctx.samples.strategy == SampleStrategy::Uniform);
+    CHECK(ctx.samples.strategy == "uniform");
     CHECK(ctx.samples.per_ray == S);
     CHECK(ctx.samples.rows == long(kRays) * S);
     CHECK_FALSE(ctx.samples.encoded);
@@ -62,9 +62,9 @@ TEST_CASE("each sampling strategy's sample set and head rows are in the forward'
     for (const bool reuse : {true, false}) {
       auto m = model_of(scene, test::tiny_config());
       m->set_reuse_coarse_encodings(reuse);
-      CHECK(m->protocol_strategy() == SampleStrategy::Importance);
+      CHECK(m->protocol_strategy() == "importance");
       const ForwardContext ctx = render_context(*m, scene);
-      CHECK(ctx.samples.strategy == SampleStrategy::Importance);
+      CHECK(ctx.samples.strategy == "importance");
       CHECK(ctx.samples.per_ray == S + I);
       CHECK(ctx.samples.rows == long(kRays) * (S + I));
       CHECK(ctx.samples.encoded == reuse);
@@ -82,10 +82,10 @@ TEST_CASE("each sampling strategy's sample set and head rows are in the forward'
     for (size_t k = 0; k < renders.size(); ++k) {
       INFO("render " << renders[k].dump());
       auto m = model_of(scene, test::tiny_config(Json{{"render", renders[k]}}));
-      CHECK(m->protocol_strategy() == SampleStrategy::Terminated);
+      CHECK(m->protocol_strategy() == "terminated");
       const ForwardContext ctx = render_context(*m, scene);
       const int M = k == 1 ? S : S + I;
-      CHECK(ctx.samples.strategy == SampleStrategy::Terminated);
+      CHECK(ctx.samples.strategy == "terminated");
       CHECK(ctx.samples.per_ray == M);
       CHECK(ctx.samples.compacted);
       CHECK(ctx.samples.encoded);  // the live rows' encodings, gathered or encoded
@@ -116,24 +116,24 @@ TEST_CASE("each sampling strategy's sample set and head rows are in the forward'
                                                              {"surface_free_samples", 8},
                                                              {"surface_behind_samples", 2}}}});
     auto m = model_of(scene, c);
-    CHECK(m->training_strategy() == SampleStrategy::Surface);
-    CHECK(m->protocol_strategy() == SampleStrategy::Importance);
+    CHECK(m->training_strategy() == "surface");
+    CHECK(m->protocol_strategy() == "importance");
     const RayBatch b = draw_ray_batch(scene, c, 5, 1);
     m->forward_backward(b, 9, 1);
     const ForwardContext ctx = m->last_forward();
-    CHECK(ctx.samples.strategy == SampleStrategy::Surface);
+    CHECK(ctx.samples.strategy == "surface");
     CHECK(ctx.samples.per_ray == 18);
     CHECK(ctx.samples.rows == long(b.n_rays) * 18);
     CHECK(ctx.samples.coarse == 0);
     CHECK_FALSE(ctx.samples.encoded);
-    CHECK(render_context(*m, scene).samples.strategy == SampleStrategy::Importance);
+    CHECK(render_context(*m, scene).samples.strategy == "importance");
   }
   SECTION("a training step without surface keys uses the protocol's strategy") {
     const TrainConfig c = test::tiny_config(Json{{"render", {{"stop_transmittance", 0.01}}}});
     auto m = model_of(scene, c);
-    CHECK(m->training_strategy() == SampleStrategy::Terminated);
+    CHECK(m->training_strategy() == "terminated");
     m->forward_backward(draw_ray_batch(scene, c, 5, 1), 9, 1);
-    CHECK(m->last_forward().samples.strategy == SampleStrategy::Terminated);
+    CHECK(m->last_forward().samples.strategy == "terminated");
     CHECK(m->last_forward().samples.compacted);
   }
 }

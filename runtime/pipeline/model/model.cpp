@@ -84,9 +84,14 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
   col_set_ = rt.kernel("field/columns.cl", "field_column_set");
   clamp_ = rt.kernel("render/sample.cl", "render_clamp_points");
 
-  const size_t R = size_t(max_rays), S = size_t(c.render.n_samples),
-               M = std::max(S + size_t(c.render.n_importance),
-                            c.render.surface_sampling() ? size_t(c.render.surface_samples()) : 0),
+  // The samplers by name (sampler.hpp): the protocol's for every pass, the training rays'.
+  const auto& rc = c.render;
+  const std::string protocol_name = rc.sampler_name(), training_name = rc.training_sampler_name();
+  const SamplerKind& protocol = find_sampler(protocol_name, "render.sampler", rc);
+  const SamplerKind& training = find_sampler(training_name, "render.training_sampler", rc);
+  const size_t R = size_t(max_rays), S = size_t(rc.n_samples),
+               M = std::max({S + size_t(rc.n_importance), size_t(protocol.per_ray(rc)),
+                             size_t(training.per_ray(rc))}),
                N = R * M;
   samples_cap_ = int(M);
   const size_t lf = size_t(encoder_->width());
@@ -105,29 +110,24 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
   g_h0_ = floats(rt, N), g_head_ = floats(rt, N * 2);
   g_dens_ = floats(rt, N * kDensStride), g_enc_ = floats(rt, N * lf);
   g_dir_enc_ = floats(rt, R * enc_dim);
-  // The optional sampling modes; coarse waves and the head band only with early termination.
-  const auto& rc = c.render;
+  // The launchers the samplers share with the forward and the fast renderer (SamplerParts);
+  // the head band only with early termination.
   const int width = encoder_->width();
   if (rc.n_importance > 0)
     reuse_ = std::make_unique<EncodingReuse>(rt, max_rays, rc.n_samples, rc.n_importance, width);
   if (rc.stop_transmittance > 0.0f) {
     live_ = std::make_unique<SampleCompaction>(rt, max_rays, int(M), rc.n_samples, width,
                                                 rc.stop_transmittance);
-    const int waves = std::max(1, std::min(rc.coarse_waves, rc.n_samples));
-    if (waves > 1)
-      waves_ = std::make_unique<CoarseWaves>(rt, max_rays, rc.n_samples, waves, width,
-                                             rc.stop_transmittance);
     if (rc.head_weight_threshold > 0.0f)
       band_ = std::make_unique<HeadBand>(rt, max_rays, int(M), rc.head_weight_threshold);
   }
-  if (rc.surface_sampling()) surface_ = std::make_unique<render::SurfaceSampler>(rt, rc, scene_scale);
   if (rc.weights.carve > 0.0f)
     carve_ = std::make_unique<render::WeightCarving>(rt, rc, scene_scale, max_rays);
   loss_buf_.fill_zero();
   scene_scale_ = scene_scale;
   set_reuse_coarse_encodings(reuse_coarse_);  // off for the 4D encoder (see model.hpp)
   // The samplers on the launchers above, the buffers and the field's density-only pass.
-  const SamplerParts parts{sampler_, reuse_.get(), live_.get(), waves_.get(), surface_.get()};
+  const SamplerParts parts{sampler_, reuse_.get(), live_.get()};
   const SampleBuffers buffers{o_, d_, target_, t_c_, x_c_, w_c_, enc_c_, t_, x_, enc_, h0_};
   const SamplerField field{
       *encoder_, params_, off_grid_,
@@ -147,11 +147,12 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
         clamp_.set_args(rows * 3, kSceneBound, x);
         clamp_.launch({cl::round_up(size_t(rows) * 3, 64)}, {64});
       }};
-  protocol_ = make_sampler(pipeline::protocol_strategy(rc), rc, parts, buffers, field);
+  const SamplerContext context{rt, cfg_.render, scene_scale, max_rays, width, parts, buffers, field};
+  protocol_ = make_sampler(protocol_name, "render.sampler", context);
   training_ = protocol_.get();
-  if (surface_) {
-    surface_sampler_ = make_sampler(SampleStrategy::Surface, rc, parts, buffers, field);
-    training_ = surface_sampler_.get();
+  if (training_name != protocol_name) {
+    training_sampler_ = make_sampler(training_name, "render.training_sampler", context);
+    training_ = training_sampler_.get();
   }
   losses_ = make_loss_terms(c, scene_scale, loss_, loss_buf_, carve_.get(), loss_device_,
                             chamfer_device_ ? &rt : nullptr);
@@ -175,6 +176,7 @@ SampleSet LidarNerfModel::sample(Sampler& s, int n_rays, bool jitter, uint64_t s
   r.n_rays = n_rays, r.jitter = jitter, r.seed = seed, r.step = step;
   r.reuse_encodings = reuse_coarse_;
   last_.samples = s.sample(r);
+  last_.samples.strategy = s.name();
   return last_.samples;
 }
 
@@ -243,7 +245,7 @@ void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long ste
   up_target_.write(target_);
   up_o_.write_vec(o_, b.origins);
   up_d_.write_vec(d_, b.directions);
-  // Training samples by the returns when render.surface_* says so, else the protocol's.
+  // The training rays' sampler (render.training_sampler; by the returns with render.surface_*).
   const ForwardContext ctx =
       forward(sample(*training_, R, cfg_.render.jitter, seed, uint32_t(step)));
   // The loss terms (method.md §0–2) in order: each adds its per-ray output gradient, then,

@@ -4,10 +4,11 @@
 // backward chain and Adam over one flat parameter buffer.
 //
 // Every pass is sample → forward → (losses →) backward:
-// - a Sampler (sampler.hpp) places the pass's samples and returns a SampleSet: its strategy is
-//   the protocol's (uniform; importance with the coarse encodings reused; early termination's
-//   live rows, its coarse pass in waves) or, for training rays, samples by the return
-//   (render.surface_*);
+// - a Sampler (sampler.hpp) places the pass's samples and returns a SampleSet: the strategy
+//   registered under the config's name, render.sampler for every pass (by default the
+//   protocol's: uniform; importance with the coarse encodings reused; early termination's live
+//   rows, its coarse pass in waves) and render.training_sampler for training rays (by default
+//   samples by the return with render.surface_*);
 // - the forward runs the field on that set (the head on every row, the live rows, or the head
 //   band of render.head_weight_threshold) and returns a ForwardContext (forward_context.hpp):
 //   what the backward needs, and the pass number that says whether the activations are still
@@ -18,9 +19,9 @@
 //   encoder into a parameter gradient (and the rays' gradients for the pose-free methods).
 // A training step is enqueued as a whole; the only host sync is the caller's loss read-back
 // (and those of early termination, the head band and the Chamfer term).
-// The model owns the field and render launchers and, per optional sampling mode, a launcher
-// that owns that mode's kernels and buffers: EncodingReuse, SampleCompaction, CoarseWaves,
-// HeadBand, render::SurfaceSampler; the samplers and loss terms use them.
+// The model owns the field and render launchers and the launchers its forward shares with
+// the samplers (EncodingReuse, SampleCompaction) or uses alone (HeadBand); a sampler owns the
+// launchers only it uses (CoarseWaves, render::SurfaceSampler).
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -51,7 +52,6 @@
 #include "render/range_loss.hpp"
 #include "render/ray_gradient.hpp"
 #include "render/ray_sampler.hpp"
-#include "render/surface_sampler.hpp"
 #include "render/weight_carving.hpp"
 #include "render/volume_renderer.hpp"
 
@@ -242,9 +242,10 @@ class LidarNerfModel {
   // rows the backward runs on are encoded last, in one pass.
   void set_reuse_coarse_encodings(bool on) { reuse_coarse_ = on && four_d_ == nullptr; }
 
-  // The sampling strategy of training rays and of every other pass (the protocol's).
-  SampleStrategy training_strategy() const { return training_->strategy(); }
-  SampleStrategy protocol_strategy() const { return protocol_->strategy(); }
+  // The registered names of the sampling strategy of training rays and of every other pass
+  // (the protocol's): render.training_sampler_name() and render.sampler_name().
+  const std::string& training_strategy() const { return training_->name(); }
+  const std::string& protocol_strategy() const { return protocol_->name(); }
   // The context of the last sampled pass (train_step, forward_rays, render_rays): its samples
   // and head rows; valid() false before the first.
   const ForwardContext& last_forward() const { return last_; }
@@ -338,20 +339,18 @@ class LidarNerfModel {
   cl::Buffer grad_ext_;
   cl::Kernel add_k_;
   bool ext_pending_ = false;
-  // The optional sampling modes' launchers, null when the config does not use the mode:
-  // importance sampling (n_importance > 0), early termination (stop_transmittance > 0), and
-  // with it coarse waves (coarse_waves > 1) and the head band (head_weight_threshold > 0).
+  // The optional sampling modes' launchers the forward shares with the samplers, null when the
+  // config does not use the mode: importance sampling (n_importance > 0), early termination
+  // (stop_transmittance > 0), and with it the head band (head_weight_threshold > 0).
   std::unique_ptr<EncodingReuse> reuse_;
   std::unique_ptr<SampleCompaction> live_;
-  std::unique_ptr<CoarseWaves> waves_;
   std::unique_ptr<HeadBand> band_;
-  // Training samples by the return (render.surface_band_samples > 0) and weight carving
-  // (render.weights.carve > 0), null when off; the band's half-width of the last step.
-  std::unique_ptr<render::SurfaceSampler> surface_;
+  // Weight carving (render.weights.carve > 0), null when off.
   std::unique_ptr<render::WeightCarving> carve_;
-  // The samplers (sampler.hpp): the protocol's, and the training rays' (the surface sampler's
-  // with render.surface_*, else the protocol's); the training loss terms (loss_terms.hpp).
-  std::unique_ptr<Sampler> protocol_, surface_sampler_;
+  // The samplers (sampler.hpp), made by name: the protocol's (render.sampler_name()), and the
+  // training rays' (render.training_sampler_name(): training_sampler_ where it is another
+  // strategy, else the protocol's); the training loss terms (loss_terms.hpp).
+  std::unique_ptr<Sampler> protocol_, training_sampler_;
   Sampler* training_ = nullptr;
   std::vector<std::unique_ptr<LossTerm>> losses_;
   // depth_stats(): the last render_rays()'s rays and samples, and its outputs.

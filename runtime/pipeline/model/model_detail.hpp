@@ -1,6 +1,6 @@
 // Constants and a buffer helper shared by the LidarNerfModel sources and its launchers
-// (model.cpp, samplers.cpp, encoding_reuse.cpp, sample_compaction.cpp, coarse_waves.cpp,
-// head_band.cpp); private to the pipeline module.
+// (model.cpp, encoding_reuse.cpp, sample_compaction.cpp, coarse_waves.cpp, head_band.cpp);
+// private to the pipeline module.
 #pragma once
 #include <algorithm>
 #include <cstddef>

@@ -1,17 +1,23 @@
 // The sampler interface of LidarNerfModel (model.hpp): one call places the samples of a pass
-// along its rays and returns the SampleSet the field's forward runs on (sample_set.hpp). Its
-// strategies are the protocol's sampling modes and the training sampler by the return:
-// uniform; importance with the coarse encodings reused (EncodingReuse); early termination's
-// compaction of the live samples (SampleCompaction), its coarse pass in waves (CoarseWaves);
-// samples by the measured return (render::SurfaceSampler). The head band is the forward's
-// (forward_context.hpp: HeadRows), not a sampler's. The strategies use the model's launchers
-// and buffers (SamplerParts, SampleBuffers) and its field's density-only pass (SamplerField);
-// every call only enqueues, but for the host syncs of early termination (one per pass, one per
-// coarse wave but the last).
+// along its rays and returns the SampleSet the field's forward runs on (sample_set.hpp).
+//
+// A strategy is one class in one file of samplers/, registered under its name (SamplerKind);
+// the config names it (render.sampler for every pass, render.training_sampler for training
+// rays; absent, the name the numeric keys imply: RenderConfig::sampler_name()), and the model
+// makes it by that name. The built-in ones: uniform; importance with the coarse encodings
+// reused (EncodingReuse); terminated, early termination's compaction of the live samples
+// (SampleCompaction) with its coarse pass in waves (CoarseWaves); surface, samples by the
+// measured return (render::SurfaceSampler). A strategy builds the launchers only it uses from
+// its SamplerContext; the model's buffers, its field's density-only pass and the launchers its
+// forward shares (SamplerParts) come in the context. The head band is the forward's
+// (forward_context.hpp: HeadRows), not a sampler's. Every call only enqueues, but for the host
+// syncs of early termination (one per pass, one per coarse wave but the last).
 #pragma once
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "cl/runtime.hpp"
 #include "field/encoder.hpp"
@@ -21,7 +27,6 @@
 #include "pipeline/model/sample_set.hpp"
 #include "render/ray_sampler.hpp"
 #include "render/render_config.hpp"
-#include "render/surface_sampler.hpp"
 
 namespace sgnlf::pipeline {
 
@@ -36,20 +41,21 @@ struct SampleRequest {
 };
 
 // The model's sample buffers a strategy writes (capacity: max_rays rays of the largest
-// per-ray count), and the pass's rays (n_rays × 3) and targets (n_rays × 3, for Surface).
+// per-ray count of its samplers, SamplerKind::per_ray), and the pass's rays (n_rays × 3) and
+// targets (n_rays × 3: range, intensity, label; training rays only).
 struct SampleBuffers {
   const cl::Buffer &origins, &directions, &targets;
   cl::Buffer &t_c, &x_c, &w_c, &enc_c;  // the coarse pass: n_rays × n_samples
   cl::Buffer &t, &x, &enc, &h0;         // the full layout
 };
 
-// The model's launchers a strategy uses; null where the config lacks the mode.
+// The launchers the model's forward, backward or fast renderer use as well, so the model owns
+// them; null where the config lacks the mode. A new strategy adds nothing here: it builds its
+// own launchers from the context.
 struct SamplerParts {
   render::RaySampler& rays;
-  EncodingReuse* reuse = nullptr;            // n_importance > 0
-  SampleCompaction* live = nullptr;          // stop_transmittance > 0
-  CoarseWaves* waves = nullptr;              // coarse_waves > 1 with stop_transmittance
-  render::SurfaceSampler* surface = nullptr; // surface_band_samples > 0
+  EncodingReuse* reuse = nullptr;    // n_importance > 0 (the fast renderer's too)
+  SampleCompaction* live = nullptr;  // stop_transmittance > 0 (the forward runs on its rows)
 };
 
 // The field's parts the density-only coarse pass runs on.
@@ -68,20 +74,58 @@ struct SamplerField {
   std::function<void(cl::Buffer& x, int rows)> clamp;
 };
 
+// What a strategy is made from. The referenced objects outlive the sampler.
+struct SamplerContext {
+  cl::Runtime& rt;
+  const render::RenderConfig& render;  // the model's (n_samples, n_importance, surface_*, ...)
+  float scene_scale;
+  int max_rays;
+  int encoder_width;  // floats per encoded sample
+  SamplerParts parts;
+  SampleBuffers buffers;
+  SamplerField field;
+};
+
 class Sampler {
  public:
   virtual ~Sampler() = default;
-  virtual SampleStrategy strategy() const = 0;
+  // Places the samples of r.n_rays rays (the model records the strategy's name in the set).
   virtual SampleSet sample(const SampleRequest& r) = 0;
+  const std::string& name() const { return name_; }
+
+ private:
+  friend std::unique_ptr<Sampler> make_sampler(const std::string&, const std::string&,
+                                               const SamplerContext&);
+  std::string name_;
 };
 
-// The protocol's strategy of a render config: Terminated with stop_transmittance > 0, else
-// Importance with n_importance > 0, else Uniform.
-SampleStrategy protocol_strategy(const render::RenderConfig& rc);
-// The sampler of strategy `s` (its launchers must be in `parts`: throws Error naming the one
-// missing). The buffers, parts and field must outlive it.
-std::unique_ptr<Sampler> make_sampler(SampleStrategy s, const render::RenderConfig& rc,
-                                      const SamplerParts& parts, const SampleBuffers& buffers,
-                                      const SamplerField& field);
+// A registered strategy.
+struct SamplerKind {
+  std::string name;
+  // Samples per ray of its full layout under a render config (the model's sample buffers hold
+  // max_rays × the largest of its samplers').
+  int (*per_ray)(const render::RenderConfig&) = nullptr;
+  // Throws ConfigError (naming `key`, the config key that chose it) where the render config
+  // lacks what the strategy needs; may be null.
+  void (*check)(const render::RenderConfig&, const std::string& key) = nullptr;
+  std::unique_ptr<Sampler> (*make)(const SamplerContext&) = nullptr;
+};
+
+// Adds a strategy (throws Error on a name already registered). The built-in ones are listed in
+// sampler_registry.cpp; a strategy outside the library (a test's) registers itself with a
+// static SamplerRegistration.
+void register_sampler(const SamplerKind& kind);
+// The strategy registered as `name`, after its check; ConfigError naming `key` (e.g.
+// "render.sampler") for a name not registered, listing those that are.
+const SamplerKind& find_sampler(const std::string& name, const std::string& key,
+                                const render::RenderConfig& rc);
+std::vector<std::string> sampler_names();  // sorted
+// The sampler registered as `name` (find_sampler's errors), made from `context`.
+std::unique_ptr<Sampler> make_sampler(const std::string& name, const std::string& key,
+                                      const SamplerContext& context);
+
+struct SamplerRegistration {
+  explicit SamplerRegistration(const SamplerKind& kind) { register_sampler(kind); }
+};
 
 }  // namespace sgnlf::pipeline
