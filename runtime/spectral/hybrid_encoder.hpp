@@ -5,6 +5,8 @@
 // schedule: the range loss reaches the positions through Ψ (dL/dx, for the pose gradients) but
 // never Ψ's weights, so Ψ stays a spectral embedding of the surface (the reading of method.md
 // §4.1 this project takes). With λ = 0 Ψ is not evaluated and f_hyb = [f_geo, 0].
+// Without the geometric part (`geometric` false: the ablation "spectral only", method.md §5)
+// f_hyb = λ·Ψ(x): the encoder has no parameters of its own and the positions' gradient is Ψ's.
 #pragma once
 #include <memory>
 
@@ -20,11 +22,16 @@ namespace sgnlf::spectral {
 class HybridEncoder : public field::Encoder {
  public:
   HybridEncoder(cl::Runtime& rt, const field::HashGridConfig& grid, const PsiSpec& psi,
-                const SpectralLossConfig& loss);
+                const SpectralLossConfig& loss, bool geometric = true);
 
-  int width() const override { return grid_.n_output() + psi_spec_.k; }
-  std::vector<int> parts() const override { return {grid_.n_output(), psi_spec_.k}; }
-  size_t n_params() const override { return grid_.n_params(); }
+  int width() const override { return geo_width() + psi_spec_.k; }
+  // f_geo and λΨ, each normalised on its own where the pose graph matches features; λΨ alone
+  // without the grid.
+  std::vector<int> parts() const override {
+    return geometric_ ? std::vector<int>{geo_width(), psi_spec_.k} : std::vector<int>{psi_spec_.k};
+  }
+  size_t n_params() const override { return geometric_ ? grid_.n_params() : 0; }
+  bool geometric() const { return geometric_; }
   // The grid's slice from `seed`; Ψ from init_psi_params(seed ^ 0x5151); Ψ's Adam reset.
   void init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) override;
   void forward(const cl::Buffer& params, size_t offset, const cl::Buffer& x, int n,
@@ -57,7 +64,9 @@ class HybridEncoder : public field::Encoder {
 
  private:
   void ensure(int n);
+  int geo_width() const { return geometric_ ? grid_.n_output() : 0; }
   cl::Runtime& rt_;
+  bool geometric_;
   field::HashGrid grid_;
   PsiSpec psi_spec_;
   field::Mlp psi_;
@@ -66,7 +75,7 @@ class HybridEncoder : public field::Encoder {
   std::unique_ptr<SpectralObjective> objective_;
   cl::Buffer psi_params_, psi_grad_, psi_scratch_grad_;
   field::MlpContext ctx_;
-  cl::Buffer geo_, psi_out_, d_geo_, d_psi_, d_x_psi_;
+  cl::Buffer geo_, psi_out_, d_geo_, d_psi_, d_x_psi_, zeros_;
   cl::Kernel accumulate_;
   size_t capacity_ = 0;
   float lambda_ = 0.0f;

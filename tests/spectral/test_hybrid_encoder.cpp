@@ -193,6 +193,69 @@ TEST_CASE("hybrid encoder at lambda 0 is the hash grid exactly", "[hybrid]") {
   CHECK(x1.read_vec<float>(x.size()) == x2.read_vec<float>(x.size()));
 }
 
+TEST_CASE("hybrid encoder without the grid is lambda times Psi, forward and dL/dx", "[hybrid]") {
+  // The ablation "spectral only" (method.md §5): no hash grid, f = λ·Ψ(x).
+  cl::Runtime& rt = test::runtime();
+  HybridEncoder enc(rt, small_grid(), small_psi(), SpectralLossConfig{}, /*geometric=*/false);
+  const int n = 96, K = small_psi().k;
+  CHECK(enc.width() == K);
+  CHECK(enc.parts() == std::vector<int>{K});
+  CHECK(enc.n_params() == 0);
+  std::vector<float> host;  // no parameters of its own
+  enc.init_params(host, 0, 7);
+  CHECK(host.empty());
+  const auto psi = enc.psi_state().params;
+  const auto x = random_vec(size_t(n) * 3, 23, -0.8f, 0.8f);
+  const auto d_enc = random_vec(size_t(n) * K, 29, -1.0f, 1.0f);
+  cl::Buffer params(rt, 4), xb(rt, x.size() * 4), e(rt, size_t(n) * K * 4), d(rt, d_enc.size() * 4),
+      grad(rt, 4), dx(rt, x.size() * 4);
+  xb.write_vec(x);
+  d.write_vec(d_enc);
+  const auto spec = psi_mlp_spec(small_psi());
+  const auto ref = test::ref::mlp_fwd(spec, psi, x, n);
+  auto loss = [&](const std::vector<float>& xs, float lambda) {
+    const auto p = test::ref::mlp_fwd(spec, psi, xs, n);
+    double l = 0;
+    for (size_t i = 0; i < p.size(); ++i) l += double(d_enc[i]) * lambda * p[i];
+    return l;
+  };
+  for (float lambda : {1.0f, 0.3f}) {
+    INFO("lambda " << lambda);
+    enc.set_lambda(lambda);
+    enc.forward(params, 0, xb, n, e);
+    const auto got = e.read_vec<float>(size_t(n) * K);
+    double worst = 0;
+    for (size_t i = 0; i < got.size(); ++i)
+      worst = std::max(worst, double(std::abs(got[i] - lambda * ref[i])));
+    CHECK(worst < 2e-5);
+    enc.backward(params, 0, xb, n, d, grad, 0, &dx);
+    const auto g = dx.read_vec<float>(x.size());
+    std::vector<float> d_psi(d_enc.size()), want;
+    for (size_t i = 0; i < d_enc.size(); ++i) d_psi[i] = lambda * d_enc[i];
+    test::ref::mlp_bwd(spec, psi, x, n, d_psi, want);
+    double worst_dx = 0, fd_worst = 0;
+    for (size_t i = 0; i < g.size(); ++i) worst_dx = std::max(worst_dx, double(std::abs(g[i] - want[i])));
+    CHECK(worst_dx < 1e-4);
+    const float eps = 1e-3f;  // Ψ is smooth (tanh): central differences agree everywhere
+    for (int i = 0; i < n; i += 7)
+      for (int a = 0; a < 3; ++a) {
+        auto xp = x, xm = x;
+        xp[size_t(i) * 3 + a] += eps;
+        xm[size_t(i) * 3 + a] -= eps;
+        const double fd = (loss(xp, lambda) - loss(xm, lambda)) / (2.0 * eps);
+        fd_worst = std::max(fd_worst, std::abs(fd - g[size_t(i) * 3 + a]) / std::max(1.0, std::abs(fd)));
+      }
+    CHECK(fd_worst < 1e-2);
+  }
+  // λ = 0: nothing depends on x, and the gradient says so (after a λ > 0 pass wrote one).
+  enc.set_lambda(0.0f);
+  enc.forward(params, 0, xb, n, e);
+  for (float v : e.read_vec<float>(size_t(n) * K)) REQUIRE(v == 0.0f);
+  enc.backward(params, 0, xb, n, d, grad, 0, &dx);
+  for (float v : dx.read_vec<float>(x.size())) REQUIRE(v == 0.0f);
+  CHECK(enc.psi_state().params == psi);  // the range loss never trains Ψ
+}
+
 TEST_CASE("hybrid encoder spectral steps lower the spectral loss on a sphere", "[hybrid]") {
   Setup s;
   Rng rng(21, 3);

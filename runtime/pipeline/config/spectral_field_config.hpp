@@ -22,6 +22,9 @@ struct SpectralFieldConfig {
   int points_per_frame = 2000;       // observed points per training frame in the surface pool
   double radius_m = 1.0;             // neighbourhood of the uniform-area thinning and the PCA
                                      // normals (spectral::surface_from_points), metres
+  // false: the field without the hash grid, Ψ(x) alone feeds the density MLP (the ablation
+  // "spectral only", method.md §5); written only when false, so the other configs keep their hash.
+  bool geometric = true;
   // The keys and ranges (core/config_fields.hpp).
   template <class Self, class V>
   static void fields(Self& s, V& v) {
@@ -34,6 +37,7 @@ struct SpectralFieldConfig {
     v("lr_final", s.lr_final, 0.0, 1.0);
     v("points_per_frame", s.points_per_frame, 16, 1 << 22);
     v("radius_m", s.radius_m, 1e-3, 100.0);
+    v("geometric", s.geometric, config::omit_when(true));
   }
 
   void validate(const std::string& where) const;

@@ -12,7 +12,7 @@ const std::vector<Method>& method_registry() {
       methods::sg_nlf(),           methods::sg_nlf_no_consistency(),
       // The other one-switch ablations of method.md §5 (the ablation-nuscenes table).
       methods::sg_nlf_no_hybrid(), methods::sg_nlf_no_graph(),
-      methods::sg_nlf_baseline(),
+      methods::sg_nlf_baseline(),  methods::sg_nlf_spectral_only(),
       // The control beside SG-NLF: its field on the ground-truth poses.
       methods::sg_nlf_gt_poses(),
   };

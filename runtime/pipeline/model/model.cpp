@@ -46,7 +46,7 @@ std::unique_ptr<field::Encoder> make_encoder(cl::Runtime& rt, const TrainConfig&
   }
   if (c.hybrid_encoder()) {
     auto e = std::make_unique<spectral::HybridEncoder>(rt, c.field.grid, c.spectral->psi,
-                                                       c.spectral->loss);
+                                                       c.spectral->loss, c.spectral->geometric);
     hybrid = e.get();
     return e;
   }
