@@ -72,8 +72,7 @@ std::string summary_markdown(const Json& results, const std::string& link) {
     std::string label = member(row, "label").is_string() ? row["label"].get<std::string>() : "";
     std::vector<std::string> marks;
     if (status == "ok") {  // its seeds, when not the table's one seed alone
-      const Json& seed = member(member(results, "config"), "seed");
-      const std::string m = seeds_mark(row, seed.is_number_unsigned() ? seed.get<uint64_t>() : 1);
+      const std::string m = seeds_mark(row, table_seeds(results).front());
       if (!m.empty()) marks.push_back(m);
     }
     if (member(row, "stale").is_boolean() && row["stale"].get<bool>()) marks.push_back("stale preset");
@@ -91,7 +90,8 @@ std::string summary_markdown(const Json& results, const std::string& link) {
         const Json& v = member(member(row, "mean"), c.key);
         const Json& sd = member(member(row, "mean_sd"), c.key);  // several seeds
         ours = v.is_number() ? fixed(v.get<double>(), c.digits) : "—";
-        if (v.is_number() && sd.is_number()) ours += " ± " + fixed(sd.get<double>(), c.digits);
+        // One digit more for the spread: a small sd would print as 0.
+        if (v.is_number() && sd.is_number()) ours += " ± " + fixed(sd.get<double>(), c.digits + 1);
       }
       md += " " + ours + " | " + paper_cell(row, c) + " |";
     }

@@ -192,7 +192,7 @@ TEST_CASE("two seeds in the tables: table.md, the README summary and the claims 
   CHECK_THAT(md, Catch::Contains("| SG-NLF (seeds 1, 2) | 0.0600 ± 0.0071 |"));
   CHECK_THAT(md, Catch::Contains("| LiDAR-NeRF | 0.1100 |"));
   const std::string sum = harness::summary_markdown(c, "t/table.md");
-  CHECK_THAT(sum, Catch::Contains("| SG-NLF (seeds 1, 2) | 0.060 ± 0.007 |"));
+  CHECK_THAT(sum, Catch::Contains("| SG-NLF (seeds 1, 2) | 0.060 ± 0.0071 |"));
   CHECK_THAT(sum, Catch::Contains("| LiDAR-NeRF | 0.110 |"));
   // bench --seeds' own table needs no marks: every cell has every seed.
   const std::string all = harness::render_markdown(run({1, 2}));
