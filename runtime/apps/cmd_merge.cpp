@@ -3,9 +3,10 @@
 //   - cell files of one table run as cells (`sgnlf bench --cell K`, runtime/harness/cells.hpp):
 //     the result equals the one-process run's apart from the fields results/schema.md "Cells"
 //     names; `--expect RESULTS` checks that equality (exit 4 when they differ); or
-//   - results.json files of the same table and scale holding some of its rows (partial runs,
-//     other commits; runtime/harness/combine.hpp, results/schema.md "Combined tables"): every
-//     row of the table, "not run" where no input ran it, each run's source and staleness.
+//   - results.json files of the same table and scale holding some of its rows, sequences or
+//     seeds (partial runs, other commits; runtime/harness/combine.hpp, results/schema.md
+//     "Combined tables"): every row of the table, "not run" where no input ran it, each run's
+//     source and staleness; a cell run with several seeds becomes a several-seed entry.
 //     `--later-wins` lets a later input replace an earlier one's different result.
 // The kind is read from the first input; the others must be of the same kind.
 // `--keep-run-files` copies the small files of every run taken from a new input (metrics.json,
@@ -38,14 +39,14 @@ const Registrar reg("merge",
   sub.add_option("--out", *out, "Output folder (results.json, table.md)")->required();
   sub.add_option("INPUT", *inputs,
                  "Cell files or folders holding cell.json; or results.json files (or folders "
-                 "holding one) of one table and scale")
+                 "holding one) of one table and scale, of any seeds")
       ->required();
   sub.add_option("--expect", *expect,
                  "Cells only: a one-process results.json of the same table: fail (exit 4) unless "
                  "the merged result equals it apart from times, paths and context");
   sub.add_flag("--later-wins", *later_wins,
-               "results.json inputs: where two inputs have different runs of the same row and "
-               "sequence, the later input (in the order given) replaces the earlier; without "
+               "results.json inputs: where two inputs have different runs of the same row, "
+               "sequence and seed, the later input (in the order given) replaces the earlier; without "
                "it such a conflict is refused");
   sub.add_flag("--keep-run-files", *keep_files,
                "Copy each new run's metrics.json, summary.json and KITTI trajectories from its run "

@@ -93,7 +93,7 @@ Json assemble_table(const TablePlan& plan, const std::vector<CellOutcome>& outco
     }
     ++run_row;
     rows.push_back(make_row(t.name, row, status, status == "ok" ? entries : std::vector<Json>{},
-                            error, real_names, plan.seeds));
+                            error, real_names));
     if (status == "failed") rows.back()["sequences"] = entries;  // keep what finished
   }
 

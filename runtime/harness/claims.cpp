@@ -22,19 +22,28 @@ std::string percent(double v) {
   return s;
 }
 
-// The row's value of `metric` per sequence it ran (status ok, a number), by sequence name.
+// The row's value of `metric` per sequence it ran (status ok, a number), by sequence name: the
+// entry's (a several-seed entry's seed mean), or with `seed` > 0 that seed's run alone.
 std::map<std::string, double> row_values(const Json& results, const std::string& method,
-                                         const std::string& metric) {
+                                         const std::string& metric, uint64_t seed = 0) {
   std::map<std::string, double> v;
   if (!at(results, "rows").is_array()) return v;
   for (const auto& row : results["rows"]) {
     if (at(row, "method") != Json(method) || at(row, "status") != Json("ok")) continue;
     if (!at(row, "sequences").is_array()) continue;
-    for (const auto& s : row["sequences"]) {
+    for (const auto& e : row["sequences"]) {
+      if (!at(e, "sequence").is_string()) continue;
+      const Json* s = seed == 0 ? &e : nullptr;
+      if (seed != 0 && at(e, "runs").is_array()) {
+        for (const auto& x : e["runs"])
+          if (at(x, "seed") == Json(seed)) s = &x;
+      } else if (seed != 0 && (at(e, "seed") == Json(seed) || (at(e, "seed").is_null() && seed == 1))) {
+        s = &e;  // a one-seed entry (results before seeds were recorded: seed 1)
+      }
+      if (!s) continue;
       for (const char* block : {"metrics", "pose_metrics"}) {
-        const Json& x = at(at(s, block), metric);
-        if (x.is_number() && at(s, "sequence").is_string())
-          v[s["sequence"].get<std::string>()] = x.get<double>();
+        const Json& x = at(at(*s, block), metric);
+        if (x.is_number()) v[e["sequence"].get<std::string>()] = x.get<double>();
       }
     }
   }
@@ -134,39 +143,47 @@ Json claim_change(const Claim& c, const Json& results) {
                      row_values(results, c.against, c.metric));
 }
 
-Json claim_change_mixed(const Claim& c, const Json& seed1, const Json& seed2) {
-  auto a = row_values(seed1, c.row, c.metric), b = row_values(seed1, c.against, c.metric);
-  for (const auto& [k, v] : row_values(seed2, c.row, c.metric)) a[k] = v;
-  for (const auto& [k, v] : row_values(seed2, c.against, c.metric)) b[k] = v;
-  return change_over(c, scale_of(seed1), a, b);
+Json claim_change_of_seed(const Claim& c, const Json& results, uint64_t seed) {
+  return change_over(c, scale_of(results), row_values(results, c.row, c.metric, seed),
+                     row_values(results, c.against, c.metric, seed));
 }
 
-std::string claims_markdown(const std::string& root, const std::string& scale,
-                            const std::string& seed2_root) {
+std::vector<uint64_t> table_seeds(const Json& results) {
+  const Json& config = at(results, "config");
+  if (at(config, "seeds").is_array()) return config["seeds"].get<std::vector<uint64_t>>();
+  return {at(config, "seed").is_number_unsigned() ? config["seed"].get<uint64_t>() : uint64_t(1)};
+}
+
+std::string claims_markdown(const std::string& root, const std::string& scale) {
   std::string md =
       "**The paper's claims beside ours** (relative change of the row's mean against the "
-      "other row's, over the twins both ran; generated from the tables above and, where it "
-      "holds either row, the second seed's table)\n\n"
-      "| claim | paper | ours, seed 1 | with seed 2 | agrees |\n|---|---:|---:|---:|---|\n";
+      "other row's, over the twins both ran, generated from the tables above: a cell run with "
+      "several seeds counts with its seed mean; by seed: the same change from one seed's runs "
+      "alone, for each seed both rows ran on those twins)\n\n"
+      "| claim | paper | ours | by seed | agrees |\n|---|---:|---:|---|---|\n";
   std::string notes;
   for (const auto& c : paper_claims()) {
-    const Json seed1 = load_if_there(root + "/" + c.table + "/" + scale + "/results.json");
-    const Json seed2 = seed2_root.empty()
-                           ? Json(nullptr)
-                           : load_if_there(seed2_root + "/" + c.table + "/" + scale + "/results.json");
-    std::string ours = "not run", with2, agrees = "—";
-    if (!seed1.is_null()) {
-      const Json ch = claim_change(c, seed1);
+    const Json table = load_if_there(root + "/" + c.table + "/" + scale + "/results.json");
+    std::string ours = "not run", by_seed, agrees = "—";
+    if (!table.is_null()) {
+      const Json ch = claim_change(c, table);
       if (ch["change"].is_number()) {
         const double v = ch["change"].get<double>();
         ours = percent(v);
         if (ch["sequences"] != ch["of"])
           ours += " (" + ch["sequences"].dump() + " of " + ch["of"].dump() + ")";
-        if (!seed2.is_null()) {
-          const Json ch2 = claim_change_mixed(c, seed1, seed2);
-          const bool differs = ch2["change"].is_number() && ch2["change"] != ch["change"];
-          if (differs) with2 = percent(ch2["change"].get<double>());
+        // Each seed whose runs cover the same twins in both rows; nothing to add when that is
+        // one seed giving the same number.
+        std::vector<std::string> parts;
+        bool differs = false;
+        for (uint64_t k : table_seeds(table)) {
+          const Json chk = claim_change_of_seed(c, table, k);
+          if (!chk["change"].is_number() || chk["sequences"] != ch["sequences"]) continue;
+          parts.push_back("seed " + std::to_string(k) + ": " + percent(chk["change"].get<double>()));
+          differs |= chk["change"] != ch["change"];
         }
+        if (differs || parts.size() > 1)
+          for (size_t i = 0; i < parts.size(); ++i) by_seed += (i ? "; " : "") + parts[i];
         const bool same_sign = (v < 0) == (c.paper_change < 0);
         char ratio[64];
         std::snprintf(ratio, sizeof ratio, "%.2f", c.paper_change != 0 ? v / c.paper_change : 0.0);
@@ -176,7 +193,7 @@ std::string claims_markdown(const std::string& root, const std::string& scale,
         ours = ch.value("status", std::string("not run"));
       }
     }
-    md += "| " + c.text + " | " + percent(c.paper_change) + " | " + ours + " | " + with2 + " | " +
+    md += "| " + c.text + " | " + percent(c.paper_change) + " | " + ours + " | " + by_seed + " | " +
           agrees + " |\n";
     if (!c.note.empty()) notes += "- " + c.text + ": " + c.note + "\n";
   }

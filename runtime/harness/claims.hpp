@@ -2,9 +2,10 @@
 // each claim of results/paper_tables.json "claims" is a relative change of one metric between
 // two rows of one table (SG-NLF against GeoNLF on CD, an ablation row against the full method,
 // ...). Ours is computed from the committed tables over the twins both rows ran (real sequences
-// are averaged apart in the tables, and left out here), at seed 1 and, where a second seed's
-// table holds either row, with that seed's means too.
+// are averaged apart in the tables, and left out here), a cell run with several seeds counting
+// with its seed mean; beside it, the same change from each seed's runs alone.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -28,17 +29,18 @@ std::vector<Claim> paper_claims();
 std::vector<Claim> parse_claims(const Json& claims, const std::string& where);
 
 // Our relative change for one claim from one results.json, over the non-real sequences both
-// rows ran with the metric a number: {"change", "sequences" (count), "of" (the table's
-// non-real sequences)}; "change" null when the rows share none, "status" naming why.
+// rows ran with the metric a number (a several-seed entry's seed mean): {"change", "sequences"
+// (count), "of" (the table's non-real sequences)}; "change" null when the rows share none,
+// "status" naming why.
 Json claim_change(const Claim& c, const Json& results);
-// Like claim_change, with each row's per-sequence values taken from `seed2` where it has that
-// row and sequence, else from `seed1`.
-Json claim_change_mixed(const Claim& c, const Json& seed1, const Json& seed2);
+// The same from the runs of one seed alone (a sequence either row did not run with `seed`
+// does not count).
+Json claim_change_of_seed(const Claim& c, const Json& results, uint64_t seed);
+// A results table's seeds: config.seeds, else [config.seed].
+std::vector<uint64_t> table_seeds(const Json& results);
 
-// The markdown of every claim: a table (claim, paper, ours, with a second seed, agreement) and
-// the notes under it. `root`: <root>/<table>/<scale>/results.json; `seed2_root` the same
-// layout for seed 2 ("" or a missing file: none).
-std::string claims_markdown(const std::string& root, const std::string& scale,
-                            const std::string& seed2_root);
+// The markdown of every claim: a table (claim, paper, ours, by seed, agreement) and the notes
+// under it. `root`: <root>/<table>/<scale>/results.json (a missing file: "not run").
+std::string claims_markdown(const std::string& root, const std::string& scale);
 
 }  // namespace sgnlf::harness

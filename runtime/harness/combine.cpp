@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <tuple>
 
 #include "core/config.hpp"
 #include "harness/cells.hpp"
@@ -38,20 +39,13 @@ Json comparable_entry(const Json& e) {
   return v;
 }
 
+// One input's run of a cell (row × sequence × seed): a one-seed run entry.
 struct Claim {
   size_t input = 0, source = 0;
   Json entry;
 };
 
-// Config hashes of a run entry: its own, or each seed's run of a several-seed entry.
-std::vector<Json> run_hashes(const Json& e) {
-  std::vector<Json> v;
-  if (e.contains("runs") && e["runs"].is_array())
-    for (const auto& r : e["runs"]) v.push_back(r.value("config_hash", Json()));
-  else
-    v.push_back(e.value("config_hash", Json()));
-  return v;
-}
+using CellKey = std::tuple<std::string, std::string, uint64_t>;  // method, sequence, seed
 
 }  // namespace
 
@@ -94,15 +88,20 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
       if (r[k] != ref[k])
         throw ConfigError("merge: " + ref_path + " and " + path + " are of different " + k + ": " +
                           ref[k].dump() + " vs " + r[k].dump());
-    if (seeds_of(r) != seeds_of(ref))
-      throw ConfigError("merge: " + ref_path + " and " + path + " ran different seeds: " +
-                        Json(seeds_of(ref)).dump() + " vs " + Json(seeds_of(r)).dump());
   }
   const TableDef def = table_def(ref["table"].get<std::string>());
   const std::string scale = ref["scale"].get<std::string>();
   const bool real = ref["data"] == "real";
   const auto def_seqs = table_sequences(def, scale, real);
-  const std::vector<uint64_t> seeds = seeds_of(ref);
+  // The table's seeds: every input's, in order of first appearance (a one-seed table merged
+  // with another seed's becomes a several-seed table; results/schema.md "Combined tables").
+  std::vector<uint64_t> seeds;
+  for (const auto& in : inputs)
+    for (uint64_t k : seeds_of(in.second))
+      if (std::find(seeds.begin(), seeds.end(), k) == seeds.end()) seeds.push_back(k);
+  const auto seed_rank = [&](uint64_t k) {
+    return size_t(std::find(seeds.begin(), seeds.end(), k) - seeds.begin());
+  };
   const auto seq_known = [&](const std::string& n) {
     return std::any_of(def_seqs.begin(), def_seqs.end(),
                        [&](const SequenceDef& d) { return d.name == n; });
@@ -116,7 +115,7 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
     files.push_back(d);
     return files.size() - 1;
   };
-  std::map<std::pair<std::string, std::string>, std::vector<Claim>> claims;
+  std::map<CellKey, std::vector<Claim>> claims;
   std::map<std::string, Json> failures;  // method -> [{source, error}]
   Json superseded = Json::array();
   Json reproduced = Json::array();  // equal runs of one cell from several sources
@@ -162,31 +161,44 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
           throw ConfigError("merge: " + path + ": row " + m + " ran sequence '" + sq +
                             "', not a sequence of table " + def.name + " at scale " + scale +
                             " in this build (sgnlf bench --list)");
-        claims[{m, sq}].push_back(Claim{i, source_of(e), e});
+        // One claim per seed: a several-seed entry's runs (each with its own source when it
+        // came from a combined table, else the entry's), or the one-seed entry itself.
+        for (const auto& run : e.contains("runs") && e["runs"].is_array() ? e["runs"] : Json::array({e})) {
+          Json x = run;
+          const size_t src = source_of(run.contains("source") ? run : e);
+          x.erase("source");
+          x.erase("stale");
+          x["sequence"] = sq;
+          claims[{m, sq, run.value("seed", uint64_t(1))}].push_back(Claim{i, src, x});
+        }
       }
     }
   }
-  // One claim per row × sequence: equal duplicates are one run, recorded as reproduced (a rerun
-  // that certifies the cell), the later one's provenance taken with --later-wins; different
-  // ones are refused unless the later input wins.
-  std::map<std::pair<std::string, std::string>, Claim> chosen;
+  // One claim per row × sequence × seed: equal duplicates are one run, recorded as reproduced
+  // (a rerun that certifies the cell), the later one's provenance taken with --later-wins;
+  // different ones are refused unless the later input wins.
+  std::map<CellKey, Claim> chosen;
   for (const auto& [key, list] : claims) {
+    const auto& [method, sequence, seed] = key;
+    const auto record = [&](Json& to, const Claim& was, const Claim& by) {
+      to.push_back(Json{{"method", method}, {"sequence", sequence}, {"seed", seed},
+                        {"source", was.source}, {"by", by.source}});
+    };
     Claim c = list.front();
     for (size_t k = 1; k < list.size(); ++k) {
       if (comparable_entry(list[k].entry) == comparable_entry(c.entry)) {
         if (list[k].source == c.source) continue;
-        reproduced.push_back(Json{{"method", key.first}, {"sequence", key.second},
-                                  {"source", c.source}, {"by", list[k].source}});
+        record(reproduced, c, list[k]);
         if (opt.later_wins) c = list[k];
         continue;
       }
       if (!opt.later_wins)
-        throw ConfigError("merge: " + key.first + " / " + key.second + " is in both " +
-                          inputs[c.input].first + " and " + inputs[list[k].input].first +
+        throw ConfigError("merge: " + method + " / " + sequence + " / seed " + std::to_string(seed) +
+                          " is in both " + inputs[c.input].first + " and " +
+                          inputs[list[k].input].first +
                           " with different results (order the inputs and give --later-wins to "
                           "let the later one replace the earlier)");
-      superseded.push_back(Json{{"method", key.first}, {"sequence", key.second},
-                                {"source", c.source}, {"by", list[k].source}});
+      record(superseded, c, list[k]);
       c = list[k];
     }
     chosen[key] = c;
@@ -200,18 +212,26 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
   for (const auto& rd : def.rows) {
     const std::string current = hooks.config_hash ? hooks.config_hash(rd.method, scale) : "";
     std::vector<Json> flat;
-    std::map<std::string, const Claim*> of_seq;
+    std::map<std::string, std::vector<const Claim*>> of_seq;
     Json not_run = Json::array();
     for (const auto& sd : def_seqs) {
-      const auto it = chosen.find({rd.method, sd.name});
-      if (it == chosen.end()) {
+      std::vector<const Claim*> cs;
+      for (auto it = chosen.lower_bound({rd.method, sd.name, 0});
+           it != chosen.end() && std::get<0>(it->first) == rd.method && std::get<1>(it->first) == sd.name; ++it)
+        cs.push_back(&it->second);
+      if (cs.empty()) {
         not_run.push_back(sd.name);
         continue;
       }
+      // The cell's seeds in the table's seed order.
+      std::stable_sort(cs.begin(), cs.end(), [&](const Claim* a, const Claim* b) {
+        return seed_rank(a->entry.value("seed", uint64_t(1))) < seed_rank(b->entry.value("seed", uint64_t(1)));
+      });
       ran.insert(sd.name);
-      of_seq[sd.name] = &it->second;
-      const Json& e = it->second.entry;
-      for (const auto& run : e.contains("runs") ? e["runs"] : Json::array({e})) {
+      of_seq[sd.name] = cs;
+      for (const Claim* c : cs) {
+        Json run = c->entry;
+        run["source"] = c->source;
         flat.push_back(run);
         runs.push_back(Json{{"method", rd.method}, {"sequence", sd.name},
                             {"seed", run.value("seed", Json())},
@@ -224,19 +244,23 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
                          : !hooks.implemented || hooks.implemented(rd.method) ? "not_run"
                                                                               : "not_implemented";
     const std::string error = status == "failed" ? fails.back().value("error", "") : "";
-    Json row = make_row(def.name, rd, status, flat, error, real_names, seeds);
-    // Provenance and staleness of each run kept.
+    Json row = make_row(def.name, rd, status, flat, error, real_names);
+    // Provenance and staleness of each run kept: a several-seed entry's runs keep their own
+    // sources (the seeds may come from different inputs), and the entry names its first seed's.
     Json stale_any = of_seq.empty() || current.empty() ? Json(nullptr) : Json(false);
     std::set<size_t> srcs;
     for (auto& e : row["sequences"]) {
-      const Claim& c = *of_seq.at(e.value("sequence", ""));
-      e["source"] = c.source;
-      srcs.insert(c.source);
+      const auto& cs = of_seq.at(e.value("sequence", ""));
+      e["source"] = cs.front()->source;
+      std::vector<Json> hs;
+      for (const Claim* c : cs) {
+        srcs.insert(c->source);
+        hs.push_back(c->entry.value("config_hash", Json()));
+      }
       if (current.empty()) {
         e["stale"] = nullptr;
         continue;
       }
-      const auto hs = run_hashes(c.entry);
       e["stale"] = std::any_of(hs.begin(), hs.end(), [&](const Json& h) { return h != Json(current); });
       if (e["stale"] == Json(true)) stale_any = true;
     }
@@ -273,6 +297,10 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
   Json config = ref["config"];
   config.erase("rows");
   config.erase("sequences");
+  if (seeds.size() > 1) {  // as bench --seeds writes it
+    config.erase("seed");
+    config["seeds"] = seeds;
+  }
   std::vector<double> prepare;
   double total = 0;
   long rss = 0;

@@ -1,7 +1,8 @@
 // One table from partial runs (results/schema.md "Combined tables"): results.json files of the
-// same table, scale, data and seeds, each holding some of the rows (sgnlf bench --rows) or
-// sequences, made at different commits, are combined into one results.json with every row of
-// this build's table definition. A row no input ran is "not_run" (or "not_implemented" when
+// same table, scale and data, each holding some of the rows (sgnlf bench --rows), sequences or
+// seeds, made at different commits, are combined into one results.json with every row of
+// this build's table definition. Runs are matched per cell (row × sequence × seed): a cell run
+// with several seeds becomes a several-seed entry as `bench --seeds` writes it. A row no input ran is "not_run" (or "not_implemented" when
 // this build lacks the method); every run entry names its source file (commit, command,
 // created time, harness config hash), and a run whose config hash is not the method×scale's
 // current resolved one is flagged "stale". `sgnlf merge --out DIR RESULTS...` calls this.
@@ -15,7 +16,7 @@
 namespace sgnlf::harness {
 
 struct CombineOptions {
-  // Two inputs with different results for the same row × sequence are refused unless this is
+  // Two inputs with different results for the same row × sequence × seed are refused unless this is
   // set: then the later input (command-line order) replaces the earlier one, and the
   // replacement is recorded in combined_from.superseded.
   bool later_wins = false;
@@ -31,8 +32,9 @@ Json source_description(const std::string& path, const Json& results);
 
 // Combines results tables ({path, json}). Uses hooks.implemented (rows no input ran) and
 // hooks.config_hash (stale runs; unset or "" = unknown, stale is then null). ConfigError naming
-// the files when they differ in table, scale, data or seeds, when a row or sequence is not in
-// this build's table, and when two inputs disagree on a cell without `later_wins`.
+// the files when they differ in table, scale or data, when a row or sequence is not in this
+// build's table, and when two inputs disagree on a cell (row × sequence × seed) without
+// `later_wins`.
 Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
                     const CombineOptions& opt, const BenchHooks& hooks, const std::string& command,
                     const std::string& out_dir);

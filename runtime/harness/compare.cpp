@@ -88,20 +88,32 @@ struct Comparer {
       double tol = metric_tolerance(k, rep.mode, b);
       std::string spread_note;
       // Loose, both sides means over several seeds: allow twice the standard error of the
-      // difference of the two means (Welch) on top of the tolerance. Tight comparisons stay
-      // tight: one seed is deterministic on one device, so the spread is no noise there.
-      if (rep.mode == "loose" && fresh_spread.n >= 2 && base_spread.n >= 2 && fresh_spread.sd &&
-          base_spread.sd) {
-        const Json& sn = at(*fresh_spread.sd, k);
-        const Json& sb = at(*base_spread.sd, k);
+      // difference of the two means (Welch) on top of the tolerance. One side a single run, the
+      // other a mean over several seeds: the run is one more draw of the other side's spread,
+      // so the difference's standard error is sd·√(1 + 1/n). Tight comparisons stay tight: one
+      // seed is deterministic on one device, so the spread is no noise there.
+      static const Json none;
+      const auto sd_of = [&](const Spread& sp) -> const Json& {
+        return sp.n >= 2 && sp.sd ? at(*sp.sd, k) : none;
+      };
+      const Json& sn = sd_of(fresh_spread);
+      const Json& sb = sd_of(base_spread);
+      if (rep.mode == "loose" && (sn.is_number() || sb.is_number())) {
+        double se = -1;
         if (sn.is_number() && sb.is_number()) {
           const double a = sn.get<double>(), c = sb.get<double>();
-          const double se = std::sqrt(a * a / double(fresh_spread.n) + c * c / double(base_spread.n));
+          se = std::sqrt(a * a / double(fresh_spread.n) + c * c / double(base_spread.n));
+        } else if (sb.is_number() && fresh_spread.n < 2) {
+          se = sb.get<double>() * std::sqrt(1.0 + 1.0 / double(base_spread.n));
+        } else if (sn.is_number() && base_spread.n < 2) {
+          se = sn.get<double>() * std::sqrt(1.0 + 1.0 / double(fresh_spread.n));
+        }
+        if (se >= 0) {
           tol += 2.0 * se;
           ++rep.seed_spread_used;
           spread_note = " incl. 2 × " + fmt(se) + " seed standard error (" +
-                        std::to_string(fresh_spread.n) + " vs " + std::to_string(base_spread.n) +
-                        " seeds)";
+                        std::to_string(std::max<size_t>(fresh_spread.n, 1)) + " vs " +
+                        std::to_string(std::max<size_t>(base_spread.n, 1)) + " seeds)";
         }
       }
       const MetricInfo* info = metric_info(k);
@@ -150,6 +162,13 @@ struct Comparer {
   }
 };
 
+// The run of `seed` in a several-seed entry's runs[] (nullptr when it has none).
+const Json* run_of_seed(const Json& entry, const Json& seed) {
+  for (const auto& x : arr(entry, "runs"))
+    if (at(x, "seed") == seed) return &x;
+  return nullptr;
+}
+
 bool same_run_configs(const Json& fresh, const Json& base, bool subset) {
   for (const auto& brow : arr(base, "rows")) {
     const Json* nrow = find_by(at(fresh, "rows"), "method", str(brow, "method"));
@@ -160,7 +179,11 @@ bool same_run_configs(const Json& fresh, const Json& base, bool subset) {
     for (const auto& bs : arr(brow, "sequences")) {
       const Json* ns = find_by(at(*nrow, "sequences"), "sequence", str(bs, "sequence"));
       if (!ns && subset) continue;
-      if (!ns || at(*ns, "config_hash") != at(bs, "config_hash")) return false;
+      if (!ns) return false;
+      // A one-seed run against a several-seed entry: the baseline's run of that seed.
+      const Json* b = &bs;
+      if (at(*ns, "runs").is_null() && at(bs, "runs").is_array()) b = run_of_seed(bs, at(*ns, "seed"));
+      if (!b || at(*ns, "config_hash") != at(*b, "config_hash")) return false;
     }
   }
   return true;
@@ -222,6 +245,16 @@ int failing(const CompareReport& r) {
   return n;
 }
 
+// The seed every sequence of a row ran alone (one-seed entries of one seed), else null.
+Json one_seed(const Json& row) {
+  Json seed;
+  for (const auto& e : arr(row, "sequences")) {
+    if (!at(e, "runs").is_null() || (!seed.is_null() && at(e, "seed") != seed)) return nullptr;
+    seed = at(e, "seed");
+  }
+  return seed;
+}
+
 // Every row, sequence, seed run and timing of `base` against `fresh`, in c.rep.mode.
 void compare_rows(Comparer& c, const Json& fresh, const Json& base, bool same_dev, int min_reps,
                   double max_ratio) {
@@ -264,10 +297,18 @@ void compare_rows(Comparer& c, const Json& fresh, const Json& base, bool same_de
     if (c.opt.subset && !same_sequences) {
       c.add("note", false, m + " / mean", "not compared: the new result ran other sequences");
     } else {
-      c.metrics(m + " / mean", at(*nrow, "mean"), at(brow, "mean"), row_spread(*nrow, "mean"),
+      // Tight, a one-seed row against a several-seed one: the baseline's mean of that seed.
+      const Json seed = one_seed(*nrow);
+      const auto mean_of = [&](const std::string& key) -> const Json& {
+        if (c.rep.mode == "tight" && !seed.is_null() && !at(*nrow, key + "_by_seed").is_array())
+          for (const auto& x : arr(brow, key + "_by_seed"))
+            if (at(x, "seed") == seed) return at(x, "mean");
+        return at(brow, key);
+      };
+      c.metrics(m + " / mean", at(*nrow, "mean"), mean_of("mean"), row_spread(*nrow, "mean"),
                 row_spread(brow, "mean"));
       if (at(brow, "mean_real").is_object())  // real sequences of a synthetic scale, averaged apart
-        c.metrics(m + " / mean_real", at(*nrow, "mean_real"), at(brow, "mean_real"),
+        c.metrics(m + " / mean_real", at(*nrow, "mean_real"), mean_of("mean_real"),
                   row_spread(*nrow, "mean_real"), row_spread(brow, "mean_real"));
     }
     for (const auto& bseq : arr(brow, "sequences")) {
@@ -279,6 +320,18 @@ void compare_rows(Comparer& c, const Json& fresh, const Json& base, bool same_de
         c.add("missing", true, m + " / " + s,
               "sequence missing from the new result" +
                   (skip ? " (skipped: " + str(*skip, "reason") + ")" : std::string()));
+        continue;
+      }
+      // Tight, a one-seed run against a several-seed entry: its deterministic twin is the
+      // baseline's run of the same seed, not the seeds' mean.
+      if (c.rep.mode == "tight" && at(*nseq, "runs").is_null() && at(bseq, "runs").is_array()) {
+        const Json* brun = run_of_seed(bseq, at(*nseq, "seed"));
+        const std::string w = m + " / " + s + " / seed " + at(*nseq, "seed").dump();
+        if (!brun)
+          c.add("missing", true, w, "the baseline has no run of this seed (it ran seeds " +
+                                        at(bseq, "seeds").dump() + ")");
+        else
+          c.metrics(w, merged_metrics(*nseq), merged_metrics(*brun));
         continue;
       }
       c.metrics(m + " / " + s, merged_metrics(*nseq), merged_metrics(bseq),

@@ -1,9 +1,12 @@
 #include "harness/markdown.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <sstream>
 
 #include "core/config.hpp"
+#include "harness/results.hpp"
 #include "harness/tables.hpp"
 
 namespace sgnlf::harness {
@@ -119,7 +122,8 @@ static std::string format_mean_sd(const std::string& key, const Json& mean, cons
 // ours-only columns, then the naive baseline's mean over `naive_seqs`.
 void main_table(std::ostringstream& o, const Json& r, const std::vector<std::string>& cols,
                 const std::vector<std::string>& extra, const std::string& mean_key,
-                const std::vector<std::string>& naive_seqs, bool& any_unverified) {
+                const std::vector<std::string>& naive_seqs, bool& any_unverified,
+                const std::function<std::string(const Json&)>& mark) {
   o << "| method |";
   for (const auto& c : cols) o << " " << header(c) << " ours | paper | Δ |";
   for (const auto& c : extra) o << " " << header(c) << " |";
@@ -130,7 +134,7 @@ void main_table(std::ostringstream& o, const Json& r, const std::vector<std::str
   for (const auto& row : r.value("rows", Json::array())) {
     const bool ok = row.value("status", "") == "ok";
     const Json& mean = get_or_null(row, mean_key);
-    o << "| " << row_label(row) << " |";
+    o << "| " << row_label(row) << mark(row) << " |";
     for (const auto& c : cols) {
       Json paper = get_or_null(row["paper"], c);
       std::string mark;
@@ -177,6 +181,25 @@ void main_table(std::ostringstream& o, const Json& r, const std::vector<std::str
   }
 }
 
+std::string seeds_mark(const Json& row, uint64_t table_seed) {
+  std::vector<std::vector<uint64_t>> lists;
+  for (const auto& e : row.value("sequences", Json::array())) lists.push_back(entry_seeds(e));
+  if (lists.empty()) return "";
+  const auto text = [](const std::vector<uint64_t>& v) {
+    std::string s = v.size() > 1 ? "seeds " : "seed ";
+    for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + std::to_string(v[i]);
+    return s;
+  };
+  const bool same = std::all_of(lists.begin(), lists.end(), [&](const auto& l) { return l == lists[0]; });
+  if (same)
+    return lists[0].size() == 1 && lists[0][0] == table_seed ? std::string() : text(lists[0]);
+  // Different seeds by sequence: the most seeds any sequence has, and on how many.
+  const auto most = *std::max_element(lists.begin(), lists.end(),
+                                      [](const auto& a, const auto& b) { return a.size() < b.size(); });
+  const auto k = std::count(lists.begin(), lists.end(), most);
+  return text(most) + " on " + std::to_string(k) + " of " + std::to_string(lists.size()) + " sequences";
+}
+
 std::string render_markdown(const Json& r) {
   std::ostringstream o;
   const auto cols = str_list(r.value("columns", Json::array()));
@@ -186,23 +209,47 @@ std::string render_markdown(const Json& r) {
   o << "Table `" << r.value("table", "") << "`, scale `" << r.value("scale", "") << "`, "
     << r.value("data", "") << " data, ";
   const Json& seeds = get_or_null(r["config"], "seeds");
-  if (seeds.is_array() && seeds.size() > 1) {
+  const bool several = seeds.is_array() && seeds.size() > 1;
+  if (several) {
     o << "seeds ";
     for (size_t i = 0; i < seeds.size(); ++i) o << (i ? ", " : "") << seeds[i].dump();
   } else {
     o << "seed " << get_or_null(r["config"], "seed").dump();
   }
   o << ", " << r.value("created_utc", "") << ".\n";
-  if (seeds.is_array() && seeds.size() > 1)
+  // Every run cell on every seed (bench --seeds), or, in a combined table, some cells on some
+  // seeds: those are marked with their seeds.
+  std::vector<uint64_t> table_seeds;
+  if (several) table_seeds = seeds.get<std::vector<uint64_t>>();
+  bool every_cell_all_seeds = several;
+  for (const auto& row : r.value("rows", Json::array()))
+    for (const auto& e : row.value("sequences", Json::array()))
+      every_cell_all_seeds &= row.value("status", "") != "ok" || entry_seeds(e) == table_seeds;
+  const uint64_t first_seed = several ? table_seeds.front() : get_or_null(r["config"], "seed").is_number_unsigned()
+                                                                 ? r["config"]["seed"].get<uint64_t>()
+                                                                 : uint64_t(1);
+  // The row label with the seeds of a row run on other seeds than the table's one seed, or
+  // than every seed of a several-seed table.
+  const auto mark = [&](const Json& row) {
+    const std::string m = every_cell_all_seeds ? std::string() : seeds_mark(row, first_seed);
+    return m.empty() ? m : " (" + m + ")";
+  };
+  if (every_cell_all_seeds)
     o << "Ours: mean ± sample standard deviation over the " << seeds.size()
       << " seeds (of the per-seed means over sequences in the main tables).\n";
+  else if (several)
+    o << "Ours: one run per cell (row × sequence) at seed " << first_seed
+      << ", except where a row or sequence is marked with its seeds: there the mean ± sample "
+         "standard deviation over those seeds (in the main tables, of the per-seed means over "
+         "sequences; a row whose sequences ran different seeds: the mean of each sequence's "
+         "seed mean, ± the spread over the seeds all its sequences share, results/schema.md).\n";
   if (!r.value("command", "").empty()) o << "Command: `" << r.value("command", "") << "`\n";
   o << "\n";
 
   // Main table: the rows' means over the synthetic twins (or the --data-root windows).
   bool any_unverified = false;
   const auto twins = sequence_names(r, false), reals = sequence_names(r, true);
-  main_table(o, r, cols, extra, "mean", twins, any_unverified);
+  main_table(o, r, cols, extra, "mean", twins, any_unverified, mark);
   o << "\nΔ = ours − paper. Paper numbers: " << paper_source(r.value("table", "")) << ".";
   if (any_unverified) o << " † from third-party notes, not verified.";
   o << " F-score compares squared distances with 0.05, i.e. a √0.05 ≈ 0.224 m threshold "
@@ -233,7 +280,7 @@ std::string render_markdown(const Json& r) {
           << "\n";
     o << "\nOurs: " << (reals.size() > 1 ? "mean over these sequences" : "this sequence")
       << " (`mean_real`); paper: the paper's numbers on its own sequences of the dataset.\n\n";
-    main_table(o, r, cols, extra, "mean_real", reals, any_unverified);
+    main_table(o, r, cols, extra, "mean_real", reals, any_unverified, mark);
   }
 
   // Per-sequence tables.
@@ -259,7 +306,13 @@ std::string render_markdown(const Json& r) {
       std::string mark;
       for (const auto& s : row.value("sequences", Json::array()))
         if (s.value("sequence", "") == name) {
-          if (s.value("stale", Json()) == Json(true)) mark = " (stale config)";
+          const auto ks = entry_seeds(s);
+          if (!every_cell_all_seeds && (ks.size() > 1 || ks.front() != first_seed)) {
+            mark = ks.size() > 1 ? " (seeds" : " (seed";
+            for (size_t i = 0; i < ks.size(); ++i) mark += (i ? ", " : " ") + std::to_string(ks[i]);
+            mark += ")";
+          }
+          if (s.value("stale", Json()) == Json(true)) mark += " (stale config)";
           m = s.value("metrics", Json::object());
           msd = s.value("metrics_sd", Json::object());
           const Json pose = s.value("pose_metrics", Json());

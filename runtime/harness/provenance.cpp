@@ -48,8 +48,14 @@ std::string render_provenance(const Json& r) {
   for (const auto& row : r.value("rows", Json::array())) {
     std::string seqs, not_run;
     for (const auto& s : row.value("sequences", Json::array())) {
-      seqs += (seqs.empty() ? "" : ", ") + s.value("sequence", "") + " [" +
-              s.value("source", Json()).dump() + "]";
+      std::string src = s.value("source", Json()).dump();
+      if (s.contains("runs") && s["runs"].is_array()) {  // several seeds: each seed's source
+        src.clear();
+        for (const auto& x : s["runs"])
+          src += (src.empty() ? "" : ", ") + std::string("seed ") + x.value("seed", Json()).dump() +
+                 ": " + x.value("source", s.value("source", Json())).dump();
+      }
+      seqs += (seqs.empty() ? "" : ", ") + s.value("sequence", "") + " [" + src + "]";
       if (s.value("stale", Json()) == Json(true))
         seqs += " (" + s.value("config_hash", Json()).get<std::string>() + ")";
     }
@@ -62,13 +68,17 @@ std::string render_provenance(const Json& r) {
       << (cur.is_string() ? cur.get<std::string>() : "—") << " | "
       << (stale.is_boolean() ? (stale.get<bool>() ? "**stale**" : "no") : "—") << " |\n";
   }
+  // A record made before cells were matched per seed has none.
+  const auto cell = [](const Json& s) {
+    return s.value("method", "") + " / " + s.value("sequence", "") +
+           (s.contains("seed") ? " / seed " + s["seed"].dump() : std::string());
+  };
   for (const auto& s : cf.value("superseded", Json::array()))
-    o << "\n- " << s.value("method", "") << " / " << s.value("sequence", "") << ": source ["
-      << s.value("source", Json()).dump() << "] replaced by [" << s.value("by", Json()).dump() << "]";
-  for (const auto& s : cf.value("reproduced", Json::array()))
-    o << "\n- " << s.value("method", "") << " / " << s.value("sequence", "") << ": source ["
-      << s.value("source", Json()).dump() << "] reproduced bit for bit by ["
+    o << "\n- " << cell(s) << ": source [" << s.value("source", Json()).dump() << "] replaced by ["
       << s.value("by", Json()).dump() << "]";
+  for (const auto& s : cf.value("reproduced", Json::array()))
+    o << "\n- " << cell(s) << ": source [" << s.value("source", Json()).dump()
+      << "] reproduced bit for bit by [" << s.value("by", Json()).dump() << "]";
   if (!cf.value("superseded", Json::array()).empty() || !cf.value("reproduced", Json::array()).empty())
     o << "\n";
   o << "\nStale: a run whose config hash is not the one the method's preset resolves to in the "

@@ -158,9 +158,86 @@ Json seed_sequence_entry(const std::vector<Json>& runs) {
   return e;
 }
 
+std::vector<uint64_t> entry_seeds(const Json& e) {
+  std::vector<uint64_t> v;
+  if (e.contains("runs") && e["runs"].is_array()) {
+    for (const auto& r : e["runs"]) v.push_back(r.value("seed", uint64_t(1)));
+    return v;
+  }
+  return {e.value("seed", uint64_t(1))};
+}
+
+namespace {
+
+// Runs grouped by sequence, in order of first appearance; each sequence's runs in their order.
+std::vector<std::pair<std::string, std::vector<Json>>> by_sequence(const std::vector<Json>& runs) {
+  std::vector<std::pair<std::string, std::vector<Json>>> v;
+  for (const auto& s : runs) {
+    const std::string name = s.value("sequence", "");
+    auto it = std::find_if(v.begin(), v.end(), [&](const auto& p) { return p.first == name; });
+    if (it == v.end()) {
+      v.push_back({name, {}});
+      it = v.end() - 1;
+    }
+    it->second.push_back(s);
+  }
+  return v;
+}
+
+// One group's (the twins', or the real sequences') mean into r[key], and with several seeds its
+// spread (results/schema.md "Several seeds"). Every sequence with the same seeds, two or more:
+// per seed the mean over sequences, then mean and spread of those over the seeds. One run per
+// sequence: the mean over sequences. Else (a combined table whose sequences have different
+// seeds): the mean over sequences of each sequence's seed mean, and the spread over the seeds
+// every sequence has, when they are two or more.
+void group_mean(Json& r, const std::string& key,
+                const std::vector<std::pair<std::string, std::vector<Json>>>& group) {
+  std::vector<Json> flat, entries;
+  std::vector<uint64_t> common;
+  bool same = true;
+  for (size_t i = 0; i < group.size(); ++i) {
+    std::vector<uint64_t> seeds;
+    for (const auto& run : group[i].second) {
+      flat.push_back(run);
+      seeds.push_back(run.value("seed", uint64_t(1)));
+    }
+    if (i == 0) {
+      common = seeds;
+    } else {
+      same &= seeds == common;
+      common.erase(std::remove_if(common.begin(), common.end(),
+                                  [&](uint64_t s) {
+                                    return std::find(seeds.begin(), seeds.end(), s) == seeds.end();
+                                  }),
+                   common.end());
+    }
+    entries.push_back(group[i].second.size() > 1 ? seed_sequence_entry(group[i].second)
+                                                 : group[i].second.front());
+  }
+  if (common.size() < 2) {  // one run per sequence, or fewer than two seeds shared by all
+    r[key] = mean_over_sequences(entries);
+    return;
+  }
+  std::vector<Json> means;
+  Json list = Json::array();
+  for (const uint64_t seed : common) {
+    std::vector<Json> of_seed;
+    for (const auto& s : flat)
+      if (s.value("seed", Json()) == Json(seed)) of_seed.push_back(s);
+    means.push_back(mean_over_sequences(of_seed));
+    list.push_back(Json{{"seed", seed}, {"mean", means.back()}});
+  }
+  const SeedStats st = seed_stats(means);
+  r[key] = same ? st.mean : mean_over_sequences(entries);
+  r[key + "_sd"] = st.sd;
+  r[key + "_by_seed"] = list;
+}
+
+}  // namespace
+
 Json make_row(const std::string& table, const RowDef& row, const std::string& status,
               const std::vector<Json>& sequences, const std::string& error,
-              const std::vector<std::string>& real_sequences, const std::vector<uint64_t>& seeds) {
+              const std::vector<std::string>& real_sequences) {
   Json r;
   r["method"] = row.method;
   r["label"] = row.label;
@@ -170,61 +247,32 @@ Json make_row(const std::string& table, const RowDef& row, const std::string& st
   const Json paper = paper_numbers(table, row.method);
   r["paper"] = paper;
   r["paper_unverified"] = unverified_numbers(table, row.method);
-  if (status == "ok") {
-    std::vector<Json> twins, reals;
-    for (const auto& s : sequences) {
-      const std::string name = s.value("sequence", "");
-      const bool is_real = std::find(real_sequences.begin(), real_sequences.end(), name) !=
-                           real_sequences.end();
-      (is_real ? reals : twins).push_back(s);
-    }
-    if (seeds.size() > 1) {
-      // Per seed, the mean over sequences; then mean and spread of those over the seeds.
-      const auto by_seed = [&](const std::vector<Json>& group, const char* key) {
-        std::vector<Json> means;
-        Json list = Json::array();
-        for (const uint64_t seed : seeds) {
-          std::vector<Json> of_seed;
-          for (const auto& s : group)
-            if (s.value("seed", Json()) == Json(seed)) of_seed.push_back(s);
-          means.push_back(mean_over_sequences(of_seed));
-          list.push_back(Json{{"seed", seed}, {"mean", means.back()}});
-        }
-        const SeedStats st = seed_stats(means);
-        r[key] = st.mean;
-        r[std::string(key) + "_sd"] = st.sd;
-        r[std::string(key) + "_by_seed"] = list;
-      };
-      by_seed(twins, "mean");
-      if (!reals.empty()) by_seed(reals, "mean_real");
-    } else {
-      r["mean"] = mean_over_sequences(twins);
-      if (!reals.empty()) r["mean_real"] = mean_over_sequences(reals);
-    }
-    Json all_paper = paper;
-    const Json unv = r["paper_unverified"];
-    for (auto it = unv.begin(); it != unv.end(); ++it) all_paper[it.key()] = it.value();
-    r["diff_vs_paper"] = diff_vs_paper(r["mean"], all_paper);
-    r["timings"] = row_timings(sequences);
-    if (seeds.size() > 1) {  // one entry per sequence: its seeds' runs, mean and spread
-      std::vector<std::string> order;
-      std::map<std::string, std::vector<Json>> of_seq;
-      for (const auto& s : sequences) {
-        const std::string name = s.value("sequence", "");
-        if (!of_seq.count(name)) order.push_back(name);
-        of_seq[name].push_back(s);
-      }
-      Json agg = Json::array();
-      for (const auto& name : order) agg.push_back(seed_sequence_entry(of_seq[name]));
-      r["sequences"] = agg;
-      return r;
-    }
-  } else {
+  if (status != "ok") {
     r["mean"] = nullptr;
     r["diff_vs_paper"] = nullptr;
     r["timings"] = Json::object();
+    r["sequences"] = sequences;
+    return r;
   }
-  r["sequences"] = sequences;
+  const auto groups = by_sequence(sequences);
+  std::vector<std::pair<std::string, std::vector<Json>>> twins, reals;
+  for (const auto& g : groups)
+    (std::find(real_sequences.begin(), real_sequences.end(), g.first) != real_sequences.end() ? reals
+                                                                                                : twins)
+        .push_back(g);
+  group_mean(r, "mean", twins);
+  if (!reals.empty()) group_mean(r, "mean_real", reals);
+  Json all_paper = paper;
+  const Json unv = r["paper_unverified"];
+  for (auto it = unv.begin(); it != unv.end(); ++it) all_paper[it.key()] = it.value();
+  r["diff_vs_paper"] = diff_vs_paper(r["mean"], all_paper);
+  r["timings"] = row_timings(sequences);
+  // One entry per sequence: a run alone as it is; several seeds' runs as their mean, spread and
+  // runs (seed_sequence_entry).
+  Json entries = Json::array();
+  for (const auto& g : groups)
+    entries.push_back(g.second.size() > 1 ? seed_sequence_entry(g.second) : g.second.front());
+  r["sequences"] = entries;
   return r;
 }
 

@@ -67,9 +67,10 @@ KeptRunFiles keep_run_files(const Json& results, const Inputs& inputs, const std
     if (row.value("status", "") != "ok") continue;
     const std::string m = row.value("method", "");
     for (const auto& e : row.value("sequences", Json::array())) {
-      const auto from = new_inputs_of(results, e, inputs);
-      if (from.empty()) continue;
       for (const auto& x : e.contains("runs") ? e["runs"] : Json::array({e})) {
+        // A several-seed entry of a combined table names each seed's source (they may differ).
+        const auto from = new_inputs_of(results, x.contains("source") ? x : e, inputs);
+        if (from.empty()) continue;
         RunToKeep k{m, e.value("sequence", ""), x.value("seed", uint64_t(1)), {}, {}};
         const std::string what = "merge --keep-run-files: " + m + " / " + k.sequence + " seed " +
                                  std::to_string(k.seed);

@@ -7,6 +7,7 @@
 
 #include "core/config.hpp"
 #include "harness/claims.hpp"
+#include "harness/markdown.hpp"
 #include "harness/tables.hpp"
 
 namespace sgnlf::harness {
@@ -70,6 +71,10 @@ std::string summary_markdown(const Json& results, const std::string& link) {
     const std::string status = member(row, "status").is_string() ? row["status"].get<std::string>() : "";
     std::string label = member(row, "label").is_string() ? row["label"].get<std::string>() : "";
     std::vector<std::string> marks;
+    if (status == "ok") {  // its seeds, when not the table's one seed alone
+      const std::string m = seeds_mark(row, table_seeds(results).front());
+      if (!m.empty()) marks.push_back(m);
+    }
     if (member(row, "stale").is_boolean() && row["stale"].get<bool>()) marks.push_back("stale preset");
     const size_t not_run = member(row, "sequences_not_run").size();
     if (status == "ok" && not_run > 0 && n_seq > not_run)
@@ -83,7 +88,10 @@ std::string summary_markdown(const Json& results, const std::string& link) {
         ours = status_text(status);
       } else {
         const Json& v = member(member(row, "mean"), c.key);
+        const Json& sd = member(member(row, "mean_sd"), c.key);  // several seeds
         ours = v.is_number() ? fixed(v.get<double>(), c.digits) : "—";
+        // One digit more for the spread: a small sd would print as 0.
+        if (v.is_number() && sd.is_number()) ours += " ± " + fixed(sd.get<double>(), c.digits + 1);
       }
       md += " " + ours + " | " + paper_cell(row, c) + " |";
     }
@@ -105,9 +113,8 @@ std::string summary_tables(const std::string& root, const std::string& scale,
     out += (out.empty() ? "" : "\n") +
            summary_markdown(load_json_file(file), link_root + "/" + name + "/" + scale + "/table.md");
   }
-  // The paper's claims beside ours (harness/claims.hpp), with the second seed's tables of
-  // <root>-seed2 where they exist.
-  if (!out.empty()) out += "\n" + claims_markdown(root, scale, root + "-seed2");
+  // The paper's claims beside ours (harness/claims.hpp), from the same tables.
+  if (!out.empty()) out += "\n" + claims_markdown(root, scale);
   return out;
 }
 

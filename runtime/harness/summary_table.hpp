@@ -10,13 +10,15 @@
 namespace sgnlf::harness {
 
 // One table: "**title** ([link](link))" and a row per table row: ours | paper for CD, F-score,
-// depth RMSE, intensity PSNR and ATE; a row's status ("not implemented", "not run", "failed"),
-// "stale preset" and "k of n sequences" marks. `link` is the table.md path the heading links.
+// depth RMSE, intensity PSNR and ATE, ours "mean ± sd" where the row has a spread over seeds
+// (`mean_sd`); a row's status ("not implemented", "not run", "failed"), its seeds when not the
+// table's one seed ("seeds 1, 2", markdown.hpp seeds_mark), "stale preset" and "k of n
+// sequences" marks. `link` is the table.md path the heading links.
 std::string summary_markdown(const Json& results, const std::string& link);
 
 // Every <root>/<table>/<scale>/results.json of the tables `sgnlf bench --list` defines, in that
 // order, with links under `link_root` (e.g. "results/tables"), then the paper's claims beside
-// ours (harness/claims.hpp; a second seed's tables from <root>-seed2 where they exist).
+// ours (harness/claims.hpp, from the same tables).
 std::string summary_tables(const std::string& root, const std::string& scale,
                            const std::string& link_root);
 

@@ -37,11 +37,12 @@ void collect_runs(const Json& r, const std::string& rel, const fs::path& scale_d
   for (const auto& row : r.value("rows", Json::array())) {
     if (row.value("status", "") != "ok") continue;
     for (const auto& e : row.value("sequences", Json::array())) {
-      const size_t k = e.value("source", size_t(0));
-      if (k >= files.size())
-        throw ConfigError(rel + ": row " + row.value("method", "") + " / " + e.value("sequence", "") +
-                          ": source " + std::to_string(k) + " is not in combined_from.files");
       for (const auto& x : e.contains("runs") ? e["runs"] : Json::array({e})) {
+        // A several-seed entry of a combined table names each seed's source.
+        const size_t k = (x.contains("source") ? x : e).value("source", size_t(0));
+        if (k >= files.size())
+          throw ConfigError(rel + ": row " + row.value("method", "") + " / " + e.value("sequence", "") +
+                            ": source " + std::to_string(k) + " is not in combined_from.files");
         FoundRun f{rel, scale_dir, files[k], x.value("config_hash", ""), -1};
         const Json t = x.value("timings", Json::object()).value("train", Json());
         if (t.is_number()) f.train_s = t.get<double>();

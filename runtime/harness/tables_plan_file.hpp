@@ -1,8 +1,8 @@
 // results/tables/plan.json: the human intent behind the plan of the committed tables
 // (tables_plan.hpp derives the rest from the tables themselves). What no results file can say:
 // which cells are being run now and by whom, which rerun certified a row (issue 65 item 4), the
-// cells not planned and why, the order in which to run what is missing, and where the tables of
-// other seeds live. Read strictly: unknown keys and wrong types are errors naming the file and
+// cells not planned and why, the order in which to run what is missing, and which folders hold
+// the tables (`roots`). Read strictly: unknown keys and wrong types are errors naming the file and
 // the field. Not harness/plan.hpp (a bench run's TablePlan of indexed cells).
 #pragma once
 #include <cstdint>
@@ -47,8 +47,9 @@ struct PlanCertification {
 struct TablesPlanFile {
   std::string scale = "quick";
   std::vector<uint64_t> seeds{1};
-  // Folders of <table>/<scale>/results.json, relative to plan.json's folder; a cell is looked
-  // up in each in turn (e.g. "." and "../tables-seed2").
+  // Folders of <table>/<scale>/results.json, relative to plan.json's folder; a cell (row ×
+  // sequence × seed) is looked up in each in turn, the first holding it wins. The committed
+  // tables hold every seed (sgnlf merge makes several-seed tables), so plan.json names ".".
   std::vector<std::string> roots{"."};
   // The PoCL CPU target the cells should share (pocl_cpu_target); "" marks none.
   std::string reference_target;
