@@ -6,8 +6,12 @@
 // intensity). Volume rendering as the field's renderer (kernels/render/volume.cl):
 //   alpha_k = 1 − exp(−exp(logit_k)·step),  w_k = alpha_k Π_{j<k} (1 − alpha_j)
 //   depth = Σ w_k t_k (not normalised), prob = Σ w_k p_k, intensity = Σ w_k i_k
-// Early termination once the transmittance falls below stop_t. out: n_rays × 3 (depth in
-// metres, return probability, intensity). Host reference: tests/bake/raycast_reference.hpp.
+// Early termination once the transmittance falls below stop_t. A sample in a cell whose 8
+// vertices all have logit < skip_logit (it would stop less than the bake's min_alpha of the
+// light) is skipped after one bit test of the brick's cell mask (cells x fastest, 32 a word),
+// before its 8 gathers. out: n_rays × 4 (depth in metres, return probability, intensity,
+// opacity Σ w_k).
+// Host reference: tests/bake/raycast_reference.hpp.
 
 // Trilinear interpolation of the 8 vertices around local voxel coordinate u (0 ≤ u < brick)
 // of the brick whose first vertex is verts[base].
@@ -29,7 +33,8 @@ __kernel void bake_raycast(const int n_rays, __global const float* origins,
                            __global const float* dirs, const float4 lo, const float voxel,
                            const int4 dims, const int brick, const float near, const float far,
                            const float step, const float stop_t, __global const int* index,
-                           __global const float4* verts, __global float* out) {
+                           __global const float4* verts, __global const uint* mask,
+                           __global float* out) {
   const int r = get_global_id(0);
   if (r >= n_rays) return;
   const float ox = origins[3 * r] - lo.x, oy = origins[3 * r + 1] - lo.y,
@@ -37,7 +42,7 @@ __kernel void bake_raycast(const int n_rays, __global const float* origins,
   const float dx = dirs[3 * r], dy = dirs[3 * r + 1], dz = dirs[3 * r + 2];
   const float ix = bake_inv(dx), iy = bake_inv(dy), iz = bake_inv(dz);
   const float bm = voxel * (float)brick, inv_voxel = 1.0f / voxel;
-  const int n1 = brick + 1, V = n1 * n1 * n1;
+  const int n1 = brick + 1, V = n1 * n1 * n1, words = (brick * brick * brick + 31) / 32;
   // The brick grid's box [0, dims·bm]: entry and exit.
   const float ax = -ox * ix, bx = ((float)dims.x * bm - ox) * ix;
   const float ay = -oy * iy, by = ((float)dims.y * bm - oy) * iy;
@@ -70,6 +75,12 @@ __kernel void bake_raycast(const int n_rays, __global const float* origins,
           const float3 u = (float3)(clamp((ox + dx * t) * inv_voxel - bx0, 0.0f, hi),
                                     clamp((oy + dy * t) * inv_voxel - by0, 0.0f, hi),
                                     clamp((oz + dz * t) * inv_voxel - bz0, 0.0f, hi));
+          const int cell = ((int)u.z * brick + (int)u.y) * brick + (int)u.x;
+          if (!(mask[slot * words + (cell >> 5)] & (1u << (cell & 31)))) {
+            ++k;
+            t = near + (float)k * step;
+            continue;
+          }
           const float4 s = bake_trilinear(verts, base, n1, u);
           const float e = exp(-exp(fmin(s.x, 80.0f)) * step);
           const float w = trans * (1.0f - e);
@@ -99,7 +110,8 @@ __kernel void bake_raycast(const int n_rays, __global const float* origins,
       tin = tout;
     }
   }
-  out[3 * r] = depth;
-  out[3 * r + 1] = prob;
-  out[3 * r + 2] = inten;
+  out[4 * r] = depth;
+  out[4 * r + 1] = prob;
+  out[4 * r + 2] = inten;
+  out[4 * r + 3] = 1.0f - trans;
 }

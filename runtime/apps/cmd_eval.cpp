@@ -17,7 +17,7 @@ namespace sgnlf::app {
 namespace {
 
 struct EvalArgs {
-  std::string run, data, device, device_profile, baked;
+  std::string run, data, device, device_profile, baked, baked_head = "field";
   pipeline::RenderSampling sampling;
   FastRenderOptions fast;
   SensorRateOptions sensor_rate;
@@ -59,6 +59,10 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
   sub.add_option("--baked", a->baked,
                  "Score the views ray-cast from this baked scene (`sgnlf bake`) instead; writes "
                  "<run>/metrics-baked.json (docs/baking.md)");
+  sub.add_option("--baked-head", a->baked_head,
+                 "With --baked: field (the run's head once per ray at the baked surface; default) "
+                 "or vertex (the scene's per-vertex attributes)")
+      ->check(CLI::IsMember({"field", "vertex"}));
   return std::function<int()>([a] {
     const render::FastRenderConfig fcfg = a->fast.config();
     const std::unique_ptr<bake::BakedScene> baked_scene =
@@ -70,7 +74,9 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
     auto run = pipeline::load_run(rt, a->run, a->data, a->sampling,
                                   a->sensor_rate.any() ? &data_options : nullptr);
     const auto fast = baked_scene ? nullptr : a->fast.make(rt, run, fcfg);
-    const auto baked = baked_scene ? std::make_unique<pipeline::BakedRenderer>(rt, *baked_scene) : nullptr;
+    const auto baked = baked_scene ? std::make_unique<pipeline::BakedRenderer>(
+                                         rt, *baked_scene, a->baked_head == "field" ? run.model.get() : nullptr)
+                                   : nullptr;
     const Json j = pipeline::eval_run(run, a->run, fast.get(), nullptr, baked.get());
     if (a->json) {
       std::cout << j.dump(2) << "\n";

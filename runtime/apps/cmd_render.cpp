@@ -21,7 +21,7 @@ namespace sgnlf::app {
 namespace {
 
 struct RenderArgs {
-  std::string run, out, data, device, poses, sensor, device_profile, baked;
+  std::string run, out, data, device, poses, sensor, device_profile, baked, baked_head = "field";
   std::vector<int> frames;
   FastRenderOptions fast;
   pipeline::RenderSampling sampling;
@@ -50,6 +50,11 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
   sub.add_option("--baked", a->baked,
                  "Ray-cast this baked scene (`sgnlf bake RUN --out SCENE`) instead of rendering "
                  "the field: same poses, sensors and outputs (docs/baking.md)");
+  sub.add_option("--baked-head", a->baked_head,
+                 "With --baked: field (the run's LiDAR head once per ray at the baked surface, "
+                 "with the ray's own direction; default) or vertex (the scene's baked per-vertex "
+                 "return probability and intensity: no field at all)")
+      ->check(CLI::IsMember({"field", "vertex"}));
   sub.add_option("--samples", a->sampling.n_samples,
                  "Uniform samples per ray when rendering (default: the config's render.eval_samples, else as trained)");
   sub.add_option("--importance", a->sampling.n_importance,
@@ -79,8 +84,10 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
     const std::string out =
         a->out.empty() ? (std::filesystem::path(a->run) / "renders").string() : a->out;
     const auto fast = baked_scene ? nullptr : a->fast.make(rt, run, fcfg);
-    const auto baked = baked_scene ? std::make_unique<pipeline::BakedRenderer>(rt, *baked_scene) : nullptr;
-    const std::string renderer = baked ? "baked" : a->fast.renderer;
+    const auto baked = baked_scene ? std::make_unique<pipeline::BakedRenderer>(
+                                         rt, *baked_scene, a->baked_head == "field" ? run.model.get() : nullptr)
+                                   : nullptr;
+    const std::string renderer = baked ? std::string("baked, ") + baked->head() + " head" : a->fast.renderer;
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<Pose> views = poses;
     if (views.empty() && sensor)

@@ -128,6 +128,7 @@ BakedScene bake_field(const BakeConfig& cfg, const BakeInput& in, const FieldPro
     if (*std::max_element(l, l + V) >= keep_logit) kept.push_back(cand[c]), kept_from.push_back(c);
   }
   st.kept_bricks = long(kept.size());
+  s.skip_logit = keep_logit;
   s.index.assign(size_t(cells), -1);
   s.vertices.resize(kept.size() * size_t(V));
   for (size_t q = 0; q < kept.size(); ++q) {

@@ -36,6 +36,24 @@ void BakedScene::validate(const std::string& where) const {
                          std::to_string(index[i]) + " outside [-1, " + std::to_string(slots) + ")");
 }
 
+std::vector<uint32_t> BakedScene::cell_mask() const {
+  const int n1 = brick + 1, V = vertices_per_brick(), W = mask_words();
+  std::vector<uint32_t> m(bricks() * size_t(W), 0u);
+  for (size_t b = 0; b < bricks(); ++b)
+    for (int k = 0; k < brick; ++k)
+      for (int j = 0; j < brick; ++j)
+        for (int i = 0; i < brick; ++i) {
+          bool on = false;
+          for (int q = 0; q < 8 && !on; ++q)
+            on = vertices[b * size_t(V) +
+                          size_t(((k + (q >> 2)) * n1 + j + ((q >> 1) & 1)) * n1 + i + (q & 1))]
+                     .logit >= skip_logit;
+          const int c = (k * brick + j) * brick + i;
+          if (on) m[b * size_t(W) + size_t(c >> 5)] |= 1u << (c & 31);
+        }
+  return m;
+}
+
 std::array<double, 3> BakedScene::vertex_position(const std::array<int, 3>& b, int i, int j,
                                                   int k) const {
   const int v[3] = {i, j, k};
@@ -51,6 +69,7 @@ void write_baked_scene(const std::string& path, const BakedScene& s) {
                     {"origin_m", s.origin_m}, {"dims", s.dims},
                     {"near_m", s.near_m},     {"far_m", s.far_m},
                     {"step_m", s.step_m},     {"stop_transmittance", s.stop_transmittance},
+                    {"skip_logit", s.skip_logit},
                     {"bricks", s.bricks()},   {"provenance", s.provenance}};
   const std::string text = header.dump();
   std::ofstream out(path, std::ios::binary);
@@ -100,6 +119,7 @@ BakedScene read_baked_scene(const std::string& path) {
     s.far_m = h.at("far_m").get<float>();
     s.step_m = h.at("step_m").get<float>();
     s.stop_transmittance = h.at("stop_transmittance").get<float>();
+    s.skip_logit = h.at("skip_logit").get<float>();
     s.provenance = h.value("provenance", Json::object());
   } catch (const std::exception& e) {
     throw IoError(path + ": header field missing or of the wrong type (" + e.what() + ")");

@@ -36,8 +36,15 @@ struct BakedScene {
   int vertices_per_brick() const { return (brick + 1) * (brick + 1) * (brick + 1); }
   size_t bricks() const { return index.empty() ? 0 : vertices.size() / size_t(vertices_per_brick()); }
   double brick_m() const { return double(voxel_m) * brick; }
-  // Bytes of the arrays the ray caster reads (index and vertices).
-  size_t bytes() const { return index.size() * 4 + vertices.size() * sizeof(BakedVertex); }
+  // Bytes of the arrays the ray caster reads (index, vertices and the cell mask).
+  size_t bytes() const {
+    return index.size() * 4 + vertices.size() * sizeof(BakedVertex) + bricks() * size_t(mask_words()) * 4;
+  }
+  // The ray caster's cell mask: per brick, a bit per cell (x fastest, 32 a word), set when one
+  // of the cell's 8 vertices has logit ≥ skip_logit; a sample in a clear cell is skipped.
+  float skip_logit = -30.0f;
+  int mask_words() const { return (brick * brick * brick + 31) / 32; }
+  std::vector<uint32_t> cell_mask() const;
   // Throws NumericError naming the first inconsistency (sizes, slots out of range).
   void validate(const std::string& where = "baked scene") const;
   // World position (metres) of vertex (i, j, k) of the brick at brick coordinates (bx, by, bz).

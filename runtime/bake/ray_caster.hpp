@@ -15,7 +15,7 @@ class RayCaster {
   RayCaster(cl::Runtime& rt, const BakedScene& scene);
 
   // Enqueues n rays (origins and unit directions n × 3 on the device, world metres) into out
-  // (n × 3: depth in metres, return probability, intensity). No wait.
+  // (n × 4: depth in metres, return probability, intensity, opacity Σ w). No wait.
   cl::Event cast(const cl::Buffer& origins, const cl::Buffer& dirs, int n, cl::Buffer& out);
   // The same from host arrays; blocking.
   std::vector<float> cast(const std::vector<float>& origins, const std::vector<float>& dirs);
@@ -26,7 +26,7 @@ class RayCaster {
  private:
   cl::Runtime& rt_;
   cl::Kernel k_;
-  cl::Buffer index_, verts_;
+  cl::Buffer index_, verts_, mask_;
   cl_float4 lo_{};
   cl_int4 dims_{};
   float voxel_, near_, far_, step_, stop_;

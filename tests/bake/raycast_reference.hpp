@@ -11,7 +11,7 @@
 
 namespace sgnlf::test {
 
-inline std::array<float, 3> raycast_reference(const bake::BakedScene& s, const float* o_w,
+inline std::array<float, 4> raycast_reference(const bake::BakedScene& s, const float* o_w,
                                               const float* d) {
   const auto inv = [](float v) { return std::fabs(v) > 1e-12f ? 1.0f / v : 1e30f; };
   const float o[3] = {o_w[0] - float(s.origin_m[0]), o_w[1] - float(s.origin_m[1]),
@@ -26,7 +26,7 @@ inline std::array<float, 3> raycast_reference(const bake::BakedScene& s, const f
     t1 = std::min(t1, std::max(ta, tb));
   }
   float depth = 0.0f, prob = 0.0f, inten = 0.0f, trans = 1.0f;
-  if (!(t0 < t1)) return {0.0f, 0.0f, 0.0f};
+  if (!(t0 < t1)) return {0.0f, 0.0f, 0.0f, 0.0f};
   int c[3], st[3];
   float tm[3], dd[3];
   for (int a = 0; a < 3; ++a) {
@@ -52,6 +52,17 @@ inline std::array<float, 3> raycast_reference(const bake::BakedScene& s, const f
           i[a] = int(u[a]);
           f[a] = u[a] - float(i[a]);
         }
+        // The kernel's cell mask: skipped when all 8 vertices lie below skip_logit.
+        bool on = false;
+        for (int q = 0; q < 8 && !on; ++q)
+          on = s.vertices[size_t(slot * V + ((i[2] + (q >> 2)) * n1 + i[1] + ((q >> 1) & 1)) * n1 +
+                                 i[0] + (q & 1))]
+                   .logit >= s.skip_logit;
+        if (!on) {
+          ++k;
+          t = s.near_m + float(k) * s.step_m;
+          continue;
+        }
         float val[3] = {0, 0, 0};
         for (int q = 0; q < 8; ++q) {
           const int dx = q & 1, dy = (q >> 1) & 1, dz = (q >> 2) & 1;
@@ -64,7 +75,7 @@ inline std::array<float, 3> raycast_reference(const bake::BakedScene& s, const f
         const float w = trans * (1.0f - e);
         depth += w * t, prob += w * val[1], inten += w * val[2];
         trans *= e;
-        if (trans < s.stop_transmittance) return {depth, prob, inten};
+        if (trans < s.stop_transmittance) return {depth, prob, inten, 1.0f - trans};
         ++k;
         t = s.near_m + float(k) * s.step_m;
       }
@@ -75,7 +86,7 @@ inline std::array<float, 3> raycast_reference(const bake::BakedScene& s, const f
     if (c[a] < 0 || c[a] >= s.dims[size_t(a)]) break;
     tin = tout;
   }
-  return {depth, prob, inten};
+  return {depth, prob, inten, 1.0f - trans};
 }
 
 }  // namespace sgnlf::test

@@ -50,11 +50,11 @@ TEST_CASE("baked ray caster matches the host reference", "[bake][raycast]") {
   make_rays(n, o, d);
   bake::RayCaster caster(test::runtime(), s);
   const std::vector<float> got = caster.cast(o, d);
-  REQUIRE(got.size() == size_t(n) * 3);
+  REQUIRE(got.size() == size_t(n) * 4);
   std::vector<float> want(got.size());
   for (int i = 0; i < n; ++i) {
     const auto r = test::raycast_reference(s, &o[3 * size_t(i)], &d[3 * size_t(i)]);
-    for (int c = 0; c < 3; ++c) want[3 * size_t(i) + size_t(c)] = r[size_t(c)];
+    for (int c = 0; c < 4; ++c) want[4 * size_t(i) + size_t(c)] = r[size_t(c)];
   }
   // Float math in a different order (fma, exp): compared per channel with an absolute floor
   // (depth in metres, probabilities in [0, 1]); a ray whose early termination lands one sample
@@ -62,10 +62,9 @@ TEST_CASE("baked ray caster matches the host reference", "[bake][raycast]") {
   long hits = 0;
   for (int i = 0; i < n; ++i) {
     INFO("ray " << i);
-    CHECK(got[3 * size_t(i)] == Approx(want[3 * size_t(i)]).epsilon(1e-4).margin(2e-3));
-    CHECK(got[3 * size_t(i) + 1] == Approx(want[3 * size_t(i) + 1]).margin(2e-4));
-    CHECK(got[3 * size_t(i) + 2] == Approx(want[3 * size_t(i) + 2]).margin(2e-4));
-    hits += want[3 * size_t(i) + 1] > 0.5f;
+    CHECK(got[4 * size_t(i)] == Approx(want[4 * size_t(i)]).epsilon(1e-4).margin(2e-3));
+    for (size_t c = 1; c < 4; ++c) CHECK(got[4 * size_t(i) + c] == Approx(want[4 * size_t(i) + c]).margin(2e-4));
+    hits += want[4 * size_t(i) + 1] > 0.5f;
   }
   CHECK(hits > n / 4);      // the rays meet the surfaces
   CHECK(hits < n * 9 / 10);  // and some leave the scene
@@ -85,9 +84,11 @@ TEST_CASE("baked ray caster: the wall's depth, its attributes, early termination
   CHECK(r[1] == Approx(0.85f).margin(0.01f));              // the head's return probability
   CHECK(r[2] == Approx(0.5f + 0.1f).margin(0.02f));        // its intensity at y = 0, seen along +x
   // Away from the wall and up: nothing stored there.
-  CHECK(r[3] == 0.0f);
+  CHECK(r[3] == Approx(1.0f).margin(1e-3f));  // opaque
   CHECK(r[4] == 0.0f);
+  CHECK(r[5] == 0.0f);
   CHECK(r[7] == 0.0f);
+  CHECK(r[9] == 0.0f);
   // Early termination: the reference with and without a stop gives the same depth to 1e-3.
   bake::BakedScene no_stop = s;
   no_stop.stop_transmittance = 0.0f;

@@ -312,6 +312,9 @@ Json eval_run(LoadedRun& run, const std::string& run_dir, FastRenderer* fast,
     const auto& c = baked->counts();
     const double s = c.render_seconds;
     j["renderer"] = Json{{"name", "baked"},
+                         {"head", baked->head()},
+                         {"head_seconds", c.head_seconds},
+                         {"head_rows_per_ray", c.rays > 0 ? double(c.head_rows) / double(c.rays) : 0.0},
                          {"scene", baked->scene().provenance},
                          {"scene_bytes", baked->scene().bytes()},
                          {"render_seconds", s},
