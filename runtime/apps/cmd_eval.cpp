@@ -9,6 +9,7 @@
 #include "apps/device_profile_option.hpp"
 #include "apps/fast_render_options.hpp"
 #include "apps/sensor_rate_options.hpp"
+#include "bake/baked_scene.hpp"
 #include "core/config.hpp"
 #include "pipeline/run/session.hpp"
 
@@ -16,7 +17,7 @@ namespace sgnlf::app {
 namespace {
 
 struct EvalArgs {
-  std::string run, data, device, device_profile;
+  std::string run, data, device, device_profile, baked, baked_head = "field";
   pipeline::RenderSampling sampling;
   FastRenderOptions fast;
   SensorRateOptions sensor_rate;
@@ -55,16 +56,28 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
       sub.get_option("--frequency")->get_description());
   a->fast.add(sub, "protocol",
               " (the tables'); fast writes <run>/metrics-fast.json, to compare with metrics.json");
+  sub.add_option("--baked", a->baked,
+                 "Score the views ray-cast from this baked scene (`sgnlf bake`) instead; writes "
+                 "<run>/metrics-baked.json (docs/baking.md)");
+  sub.add_option("--baked-head", a->baked_head,
+                 "With --baked: field (the run's head once per ray at the baked surface; default) "
+                 "or vertex (the scene's per-vertex attributes)")
+      ->check(CLI::IsMember({"field", "vertex"}));
   return std::function<int()>([a] {
     const render::FastRenderConfig fcfg = a->fast.config();
+    const std::unique_ptr<bake::BakedScene> baked_scene =
+        a->baked.empty() ? nullptr : std::make_unique<bake::BakedScene>(bake::read_baked_scene(a->baked));
     cl::Runtime rt(a->device, a->device_profile);
     LoadOptions data_options = pipeline::read_manifest(a->run).data_options;
     a->sensor_rate.apply(data_options);
     data_options.validate();
     auto run = pipeline::load_run(rt, a->run, a->data, a->sampling,
                                   a->sensor_rate.any() ? &data_options : nullptr);
-    const auto fast = a->fast.make(rt, run, fcfg);
-    const Json j = pipeline::eval_run(run, a->run, fast.get());
+    const auto fast = baked_scene ? nullptr : a->fast.make(rt, run, fcfg);
+    const auto baked = baked_scene ? std::make_unique<pipeline::BakedRenderer>(
+                                         rt, *baked_scene, a->baked_head == "field" ? run.model.get() : nullptr)
+                                   : nullptr;
+    const Json j = pipeline::eval_run(run, a->run, fast.get(), nullptr, baked.get());
     if (a->json) {
       std::cout << j.dump(2) << "\n";
       return 0;
@@ -81,7 +94,13 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
     for (auto it = m.begin(); it != m.end(); ++it)
       std::printf("%-18s %12s %12s\n", it.key().c_str(), num(it.value()).c_str(),
                   num(n.contains(it.key()) ? n.at(it.key()) : Json()).c_str());
-    if (j.contains("renderer")) {
+    if (j.contains("renderer") && j.at("renderer").at("name") == "baked") {
+      const Json& r = j.at("renderer");
+      std::printf("\nbaked scene: %.2f s ray casting the test views (%.1f frames/s, %.3g rays/s), "
+                  "%.1f MiB\n",
+                  r.at("render_seconds").get<double>(), r.at("frames_per_s").get<double>(),
+                  r.at("rays_per_s").get<double>(), r.at("scene_bytes").get<double>() / (1 << 20));
+    } else if (j.contains("renderer")) {
       const Json& r = j.at("renderer");
       std::printf("\nfast renderer: %.1f s rendering (%.1f s occupancy grid), %.1f density and %.1f "
                   "head rows per ray (protocol: every sample)\n",

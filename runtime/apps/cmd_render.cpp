@@ -3,6 +3,8 @@
 // recorded frames IDS, training frames too) of a trained run
 // (npy arrays and PNGs of the rendering above the ground truth), or novel views at the poses of
 // a KITTI-format trajectory file (npy, PNG and PCD per pose), and prints rays/s and frames/s.
+// With `--baked SCENE` (from `sgnlf bake`), the views are ray-cast from the baked scene instead
+// of rendered from the field (docs/baking.md).
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -11,6 +13,7 @@
 #include "apps/device_profile_option.hpp"
 #include "apps/fast_render_options.hpp"
 #include "core/config.hpp"
+#include "bake/baked_scene.hpp"
 #include "io/trajectory_io.hpp"
 #include "pipeline/run/session.hpp"
 
@@ -18,7 +21,7 @@ namespace sgnlf::app {
 namespace {
 
 struct RenderArgs {
-  std::string run, out, data, device, poses, sensor, device_profile;
+  std::string run, out, data, device, poses, sensor, device_profile, baked, baked_head = "field";
   std::vector<int> frames;
   FastRenderOptions fast;
   pipeline::RenderSampling sampling;
@@ -44,6 +47,14 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
                  "HDL-64E, nuscenes = HDL-32E) or a sensor JSON file (keys of sensor.json); "
                  "without --poses, at the test frames' poses");
   a->fast.add(sub, "fast", "");
+  sub.add_option("--baked", a->baked,
+                 "Ray-cast this baked scene (`sgnlf bake RUN --out SCENE`) instead of rendering "
+                 "the field: same poses, sensors and outputs (docs/baking.md)");
+  sub.add_option("--baked-head", a->baked_head,
+                 "With --baked: field (the run's LiDAR head once per ray at the baked surface, "
+                 "with the ray's own direction; default) or vertex (the scene's baked per-vertex "
+                 "return probability and intensity: no field at all)")
+      ->check(CLI::IsMember({"field", "vertex"}));
   sub.add_option("--samples", a->sampling.n_samples,
                  "Uniform samples per ray when rendering (default: the config's render.eval_samples, else as trained)");
   sub.add_option("--importance", a->sampling.n_importance,
@@ -67,24 +78,32 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
               ? sensor_preset(a->sensor)
               : sensor_from_json(load_config_file(a->sensor), a->sensor));
     cl::Runtime rt(a->device, a->device_profile);
+    const std::unique_ptr<bake::BakedScene> baked_scene =
+        a->baked.empty() ? nullptr : std::make_unique<bake::BakedScene>(bake::read_baked_scene(a->baked));
     auto run = pipeline::load_run(rt, a->run, a->data, a->sampling);
     const std::string out =
         a->out.empty() ? (std::filesystem::path(a->run) / "renders").string() : a->out;
-    const auto fast = a->fast.make(rt, run, fcfg);
+    const auto fast = baked_scene ? nullptr : a->fast.make(rt, run, fcfg);
+    const auto baked = baked_scene ? std::make_unique<pipeline::BakedRenderer>(
+                                         rt, *baked_scene, a->baked_head == "field" ? run.model.get() : nullptr)
+                                   : nullptr;
+    const std::string renderer = baked ? std::string("baked, ") + baked->head() + " head" : a->fast.renderer;
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<Pose> views = poses;
     if (views.empty() && sensor)
       for (int f : run.dataset->split.test) views.push_back(run.T_world_lidar[size_t(f)]);
     const Json files = views.empty()
-                           ? pipeline::render_run(run, out, fast.get(), a->frames)
-                           : pipeline::render_poses(run, views, out, fast.get(), sensor.get());
+                           ? pipeline::render_run(run, out, fast.get(), a->frames, baked.get())
+                           : pipeline::render_poses(run, views, out, fast.get(), sensor.get(), baked.get());
     const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const long frames = long(files.size());
     const Sensor& shown = sensor ? *sensor : run.scene->sensor;
     const long rays = frames * long(shown.height) * long(shown.width);
     // Render time without writing files and (fast) without the grid builds.
-    const double render_s = fast ? fast->counts().render_seconds : total_s;
-    Json summary{{"renderer", a->fast.renderer}, {"frames", frames}, {"rays", rays},
+    const double render_s = fast    ? fast->counts().render_seconds
+                            : baked ? baked->counts().render_seconds
+                                    : total_s;
+    Json summary{{"renderer", renderer}, {"frames", frames}, {"rays", rays},
                  {"render_s", render_s}, {"wall_s", total_s},
                  {"rays_per_s", render_s > 0 ? double(rays) / render_s : 0.0},
                  {"frames_per_s", render_s > 0 ? double(frames) / render_s : 0.0}};
@@ -105,7 +124,7 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
     std::cerr << "render: " << frames << " frame(s) of " << shown.height << " x "
               << shown.width << " in " << render_s << " s ("
               << summary["rays_per_s"].get<double>() << " rays/s, "
-              << summary["frames_per_s"].get<double>() << " frames/s, " << a->fast.renderer
+              << summary["frames_per_s"].get<double>() << " frames/s, " << renderer
               << " renderer)\n";
     std::cout << Json{{"files", files}, {"speed", summary}}.dump(2) << "\n";
     return 0;

@@ -232,6 +232,10 @@ class LidarNerfModel {
   std::vector<float> density_logits(const std::vector<float>& x, int n);
   // Rows one density_logits() device call takes (the sample buffers' capacity).
   int sample_capacity() const;
+  // The LiDAR head at n points (n × 3, normalised box) seen along unit directions (n × 3):
+  // n × 2 (return probability, intensity) after the sigmoid, as the renderer weights them
+  // (model_bake.cpp; what `sgnlf bake` stores per vertex). Blocking; chunks of max_rays.
+  std::vector<float> head_at(const std::vector<float>& x, const std::vector<float>& dirs, int n);
   // The renderer's uniform bin width in the normalised frame (the last sample's δ).
   float bin_width() const { return cfg_.render.bin_width(scene_scale_); }
 

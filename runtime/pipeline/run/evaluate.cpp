@@ -61,7 +61,7 @@ void add_view(ViewSet& vs, std::vector<Json>& views, const Dataset& d, int f, Ra
 
 ViewSet evaluate_model(LidarNerfModel& model, const Dataset& d, const Scene& scene,
                        int chunk_rays, const std::vector<Pose>& T_world_lidar,
-                       FastRenderer* fast, const RayDropStage* refine) {
+                       FastRenderer* fast, const RayDropStage* refine, BakedRenderer* baked) {
   if (d.split.test.empty()) throw Error("dataset " + d.name + ": no test frames to evaluate");
   require(T_world_lidar.size() == d.frames.size(),
           "evaluate_model: " + std::to_string(T_world_lidar.size()) + " poses for " +
@@ -70,11 +70,12 @@ ViewSet evaluate_model(LidarNerfModel& model, const Dataset& d, const Scene& sce
   std::vector<Json> views;
   for (int f : d.split.test) {
     DepthStats stats;
-    RangeImage pred = fast ? fast->render(T_world_lidar[size_t(f)], f)
-                           : render_view(model, scene, T_world_lidar[size_t(f)], chunk_rays, f,
-                                         nullptr, &stats);
+    RangeImage pred = fast    ? fast->render(T_world_lidar[size_t(f)], f)
+                      : baked ? baked->render(T_world_lidar[size_t(f)], scene)
+                              : render_view(model, scene, T_world_lidar[size_t(f)], chunk_rays, f,
+                                            nullptr, &stats);
     if (refine) refine->apply(pred);
-    add_view(vs, views, d, f, std::move(pred), fast ? nullptr : &stats);
+    add_view(vs, views, d, f, std::move(pred), fast || baked ? nullptr : &stats);
   }
   vs.mean = metrics::mean_metrics(views);
   return vs;

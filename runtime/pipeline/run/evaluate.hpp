@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/config.hpp"
+#include "pipeline/model/baked_renderer.hpp"
 #include "pipeline/model/fast_renderer.hpp"
 #include "pipeline/model/model.hpp"
 #include "pipeline/model/scene.hpp"
@@ -24,9 +25,11 @@ struct ViewSet {
 // frame's observed range image. With `fast`, through the fast renderer (a diagnostic of its
 // agreement: the tables use the protocol's renderer). With `refine`, every view's return
 // probability is the ray-drop U-Net's (LiDAR4D, ray_drop_stage.hpp) before it is scored.
+// With `baked` (and no `fast`), the views are ray-cast from a baked scene (docs/baking.md).
 ViewSet evaluate_model(LidarNerfModel& model, const Dataset& d, const Scene& scene,
                        int chunk_rays, const std::vector<Pose>& T_world_lidar,
-                       FastRenderer* fast = nullptr, const RayDropStage* refine = nullptr);
+                       FastRenderer* fast = nullptr, const RayDropStage* refine = nullptr,
+                       BakedRenderer* baked = nullptr);
 // The naive baseline (nearest training scan moved with GT poses, metrics/naive_baseline.hpp).
 ViewSet evaluate_naive(const Dataset& d);
 // The same with the scans moved by `T_world_lidar` (one per frame, metres): for scans without

@@ -154,7 +154,7 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req) {
 }
 
 Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast,
-                const std::vector<int>& frame_ids) {
+                const std::vector<int>& frame_ids, BakedRenderer* baked) {
   const Dataset& d = *run.dataset;
   // (frame index, its place in the test split or -1) for every view asked for.
   std::vector<std::pair<int, int>> views;
@@ -183,9 +183,10 @@ Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast,
     const Frame& fr = d.frames[size_t(index)];
     const Pose& T = run.T_world_lidar[size_t(index)];
     RangeImage pred =
-        fast ? fast->render(T, index)
-             : render_view(*run.model, *run.scene, T,
-                           run.manifest.config.schedule.render_chunk_rays, index);
+        fast    ? fast->render(T, index)
+        : baked ? baked->render(T, *run.scene)
+                : render_view(*run.model, *run.scene, T,
+                              run.manifest.config.schedule.render_chunk_rays, index);
     if (run.ray_drop) run.ray_drop->apply(pred);
     const std::string stem = (fs::path(out_dir) / std::to_string(fr.id)).string();
     io::write_range_npy(stem + "_pred.npy", pred);
@@ -206,7 +207,8 @@ Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast,
 }
 
 Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
-                  const std::string& out_dir, FastRenderer* fast, const Sensor* sensor) {
+                  const std::string& out_dir, FastRenderer* fast, const Sensor* sensor,
+                  BakedRenderer* baked) {
   if (T_world_lidar.empty()) throw ConfigError("render_poses: no poses to render");
   fs::create_directories(out_dir);
   const std::unique_ptr<Scene> other =
@@ -222,9 +224,10 @@ Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
       log::warn("render_poses: pose ", k, " has its origin at (", o.x(), ", ", o.y(), ", ", o.z(),
                 ") in the normalised scene, outside the trained box [-1, 1]^3");
     RangeImage pred =
-        fast ? fast->render(T_world_lidar[k], -1, &view)
-             : render_view(*run.model, view, T_world_lidar[k],
-                           run.manifest.config.schedule.render_chunk_rays);
+        fast    ? fast->render(T_world_lidar[k], -1, &view)
+        : baked ? baked->render(T_world_lidar[k], view)
+                : render_view(*run.model, view, T_world_lidar[k],
+                              run.manifest.config.schedule.render_chunk_rays);
     if (run.ray_drop) run.ray_drop->apply(pred);
     char name[32];
     std::snprintf(name, sizeof name, "pose_%04zu", k);
@@ -242,11 +245,12 @@ Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
 }
 
 Json eval_run(LoadedRun& run, const std::string& run_dir, FastRenderer* fast,
-              TestViewImages* images) {
+              TestViewImages* images, BakedRenderer* baked) {
   const auto t0 = std::chrono::steady_clock::now();
   const ViewSet model = evaluate_model(*run.model, *run.dataset, *run.scene,
                                        run.manifest.config.schedule.render_chunk_rays,
-                                       run.T_world_lidar, fast, run.ray_drop.get());
+                                       run.T_world_lidar, fast, run.ray_drop.get(),
+                                       fast ? nullptr : baked);
   const double render_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // Without reference poses the naive baseline moves the scans with the run's own poses.
   const ViewSet naive = run.dataset->has_reference_poses ? evaluate_naive(*run.dataset)
@@ -304,7 +308,21 @@ Json eval_run(LoadedRun& run, const std::string& run_dir, FastRenderer* fast,
                {"outside_grid", double(c.march.outside) / rays},
                {"dropped_after_hit", double(c.march.dropped) / rays}};
   }
-  write_json_file((fs::path(run_dir) / (fast ? "metrics-fast.json" : "metrics.json")).string(), j);
+  if (baked && !fast) {
+    const auto& c = baked->counts();
+    const double s = c.render_seconds;
+    j["renderer"] = Json{{"name", "baked"},
+                         {"head", baked->head()},
+                         {"head_seconds", c.head_seconds},
+                         {"head_rows_per_ray", c.rays > 0 ? double(c.head_rows) / double(c.rays) : 0.0},
+                         {"scene", baked->scene().provenance},
+                         {"scene_bytes", baked->scene().bytes()},
+                         {"render_seconds", s},
+                         {"frames_per_s", s > 0 ? double(c.frames) / s : 0.0},
+                         {"rays_per_s", s > 0 ? double(c.rays) / s : 0.0}};
+  }
+  const char* name = fast ? "metrics-fast.json" : baked ? "metrics-baked.json" : "metrics.json";
+  write_json_file((fs::path(run_dir) / name).string(), j);
   if (images) *images = TestViewImages{model.images, naive.images};
   return j;
 }

@@ -7,6 +7,7 @@
 
 #include "cl/runtime.hpp"
 #include "core/config.hpp"
+#include "pipeline/model/baked_renderer.hpp"
 #include "pipeline/model/fast_renderer.hpp"
 #include "pipeline/run/anatomy_run.hpp"
 #include "pipeline/run/run_dir.hpp"
@@ -45,8 +46,9 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req);
 // protocol's. With `frame_ids` (the dataset's frame ids, training or test frames), those frames
 // instead, at the run's poses and times; a test frame among them gets its naive view too, a
 // training frame none (it is its own nearest scan). ConfigError names an id the dataset lacks.
+// With `baked` (and no `fast`), the views are ray-cast from a baked scene (docs/baking.md).
 Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast = nullptr,
-                const std::vector<int>& frame_ids = {});
+                const std::vector<int>& frame_ids = {}, BakedRenderer* baked = nullptr);
 
 // Renders novel views at the given poses (T_world_lidar in the dataset's world frame, metres):
 // <out>/pose_<k>.npy (H×W×3: range, return probability, intensity) and pose_<k>.png (the
@@ -58,7 +60,7 @@ Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast =
 // view, resolution, range), not the recording one's.
 Json render_poses(LoadedRun& run, const std::vector<Pose>& T_world_lidar,
                   const std::string& out_dir, FastRenderer* fast = nullptr,
-                  const Sensor* sensor = nullptr);
+                  const Sensor* sensor = nullptr, BakedRenderer* baked = nullptr);
 
 // ATE (3D and horizontal, ate_reference), RPE_t, RPE_r (protocol §4, SE(3) Umeyama alignment;
 // metrics::pose_metrics) of `est` against `gt`, as JSON, with "frames".
@@ -72,8 +74,10 @@ Json pose_metrics_json(const std::vector<Pose>& est, const std::vector<Pose>& gt
 // With `fast`, the test views go through the fast renderer and the result (with the renderer's
 // counts and config under "renderer") goes to <run>/metrics-fast.json: metrics.json stays the
 // protocol's. With `images`, the scored views are left there (for anatomy_run, which then
-// renders nothing again).
+// renders nothing again). With `baked` (and no `fast`), the views are ray-cast from a baked
+// scene and the result (with the ray caster's counts under "renderer") goes to
+// <run>/metrics-baked.json.
 Json eval_run(LoadedRun& run, const std::string& run_dir, FastRenderer* fast = nullptr,
-              TestViewImages* images = nullptr);
+              TestViewImages* images = nullptr, BakedRenderer* baked = nullptr);
 
 }  // namespace sgnlf::pipeline

@@ -1,0 +1,50 @@
+// The renderer of a baked scene (`sgnlf render --baked`, `eval --baked`; docs/baking.md): a view's
+// rays (a Scene's sensor at T_world_lidar, world metres) cast against the scene by the OpenCL ray
+// caster (bake::RayCaster), one launch per view, into a RangeImage as render_view returns one
+// (range in metres, intensity, ray_drop = return probability). Counts rays and seconds for
+// rays/s and frames/s.
+// Two heads: "vertex" (the scene's own per-vertex return probability and intensity, baked along
+// the nearest training origin's view: self-contained) or "field" (the trained model's LiDAR head
+// once per ray, at the ray's baked surface point o + d·depth/opacity and its own direction,
+// scaled by the ray's opacity: the head's view dependence kept, one field row per ray instead
+// of the field renderer's ~57; docs/baking.md).
+#pragma once
+#include <memory>
+
+#include "bake/baked_scene.hpp"
+#include "bake/ray_caster.hpp"
+#include "pipeline/model/model.hpp"
+#include "pipeline/model/scene.hpp"
+
+namespace sgnlf::pipeline {
+
+class BakedRenderer {
+ public:
+  // `field_head`: the model whose head runs per ray ("field"), or null ("vertex").
+  BakedRenderer(cl::Runtime& rt, const bake::BakedScene& scene, LidarNerfModel* field_head = nullptr);
+
+  // The view of `view`'s sensor at T_world_lidar (metres, the dataset's world frame).
+  RangeImage render(const Pose& T_world_lidar, const Scene& view);
+
+  struct Counts {
+    long frames = 0, rays = 0;
+    double render_seconds = 0.0;  // ray setup, cast and read-back, per view (head included)
+    double head_seconds = 0.0;    // "field": the head rows
+    long head_rows = 0;
+  };
+  const Counts& counts() const { return counts_; }
+  const bake::BakedScene& scene() const { return scene_; }
+  const char* head() const { return model_ ? "field" : "vertex"; }
+
+ private:
+  cl::Runtime& rt_;
+  const bake::BakedScene& scene_;
+  bake::RayCaster caster_;
+  LidarNerfModel* model_;
+  cl::Buffer o_, d_, out_;
+  size_t cap_ = 0;
+  std::vector<float> origins_, dirs_;
+  Counts counts_;
+};
+
+}  // namespace sgnlf::pipeline
