@@ -83,6 +83,16 @@ TEST_CASE("every method is described once and composes its step from the parts",
   CHECK_FALSE(resolve_config("sg-nlf-baseline", "smoke").confidence_graph());
   CHECK_FALSE(resolve_config("sg-nlf-baseline", "smoke").consistency_term());
   CHECK(resolve_config("sg-nlf-no-graph", "smoke").hybrid_encoder());
+  // Spectral only: SG-NLF's field without the hash grid, Ψ at full weight from the first step.
+  CHECK(composed("sg-nlf-spectral-only") == V{"pose_free", "consistency", "spectral"});
+  for (const char* scale : {"smoke", "quick", "paper"}) {
+    const TrainConfig so = resolve_config("sg-nlf-spectral-only", scale);
+    REQUIRE(so.hybrid_encoder());
+    CHECK_FALSE(so.spectral->geometric);
+    CHECK(so.spectral->fusion.lambda(0) == 1.0);
+    CHECK(resolve_config("sg-nlf", scale).spectral->geometric);
+    CHECK(so.confidence_graph() == resolve_config("sg-nlf", scale).confidence_graph());
+  }
   CHECK_FALSE(resolve_config("sg-nlf-no-graph", "smoke").confidence_graph());
   // The ground-truth-pose control: SG-NLF's field on the true poses, which nothing moves.
   CHECK(composed("sg-nlf-gt-poses") == V{"pose_free", "consistency", "spectral"});
