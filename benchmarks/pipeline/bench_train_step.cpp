@@ -40,11 +40,11 @@ void BM_TrainStep(benchmark::State& state, const char* preset, bool reuse_coarse
   long step = 0;
   const RayBatch warm = draw_ray_batch(scene, c, 1, step);
   model.train_step(warm, 1, step++, 1e-2f);
-  model.read_loss();
+  model.read_losses();
   for (auto _ : state) {
     const RayBatch b = draw_ray_batch(scene, c, 1, step);
     model.train_step(b, 1, step++, 1e-2f);
-    benchmark::DoNotOptimize(model.read_loss());
+    benchmark::DoNotOptimize(model.read_losses());
   }
   const double samples = double(c.schedule.rays_per_batch) * (c.render.n_samples + c.render.n_importance);
   state.counters["samples/s"] =
@@ -86,7 +86,7 @@ void BM_TrainStepTrained(benchmark::State& state, float stop_transmittance, int 
   for (auto _ : state) {
     const RayBatch b = draw_ray_batch(scene, c, 1, step);
     model.train_step(b, 1, step++, 1e-3f);
-    benchmark::DoNotOptimize(model.read_loss());
+    benchmark::DoNotOptimize(model.read_losses());
     live += double(model.live_samples()) / samples;
     evals += double(model.live_samples() + model.coarse_evaluated());
     coarse += double(model.coarse_evaluated()) / double(c.schedule.rays_per_batch * c.render.n_samples);

@@ -24,7 +24,7 @@ inline const pipeline::ModelState& trained_state() {
     for (long step = 0; step < kWarmSteps; ++step)
       model.train_step(draw_ray_batch(scene, c, 1, step), 1, step,
                        float(c.optim.lr_at(step, c.schedule.iterations)));
-    model.read_loss();
+    model.read_losses();
     return model.state();
   }();
   return st;

@@ -75,11 +75,10 @@ inline constexpr std::pair<PoseGrad, const char*> kPoseGradNames[] = {
 
 const char* pose_grad_name(PoseGrad g);
 
-// How a training pass's loss reaches the host (LidarNerfModel::read_loss, the pose-free step's
-// reweighting and the logged steps): host = each loss term reads its own values (the range and
-// patch terms' 4 floats twice, weight carving's per-ray terms summed in double on the host);
-// device = weight carving's per-ray terms summed on the device in the loss kernels' fixed tree
-// (render_loss_reduce) into the loss buffer, and the whole buffer read once.
+// Where weight carving's per-ray loss terms are summed (the loss the pose-free step's
+// reweighting and the logged steps read, LidarNerfModel::read_losses: the loss buffer read once
+// either way): host = read back and summed in double on the host; device = summed on the device
+// in the loss kernels' fixed tree (render_loss_reduce) into the loss buffer.
 enum class LossReduce { Host, Device };
 
 inline constexpr std::pair<LossReduce, const char*> kLossReduceNames[] = {

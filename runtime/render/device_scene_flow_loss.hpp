@@ -1,7 +1,7 @@
 // LiDAR4D's scene-flow losses on the device (device profile chamfer: device; kernels/render/
 // chamfer.cl): render::scene_flow_loss times the supervision's weight on a frame's moving
 // points and render::ground_flow_penalty on its ground points (render/scene_flow_loss.hpp), as
-// FlowSupervisionStep combines them, from the flow on the device to dL/dflow on the device,
+// pipeline::FlowSupervision combines them, from the flow on the device to dL/dflow on the device,
 // every kernel enqueued and nothing read back. The value stays in kSlots floats on the device
 // (the Chamfer terms of the frames k ± s, then the ground penalty) until read() is asked for it.
 #pragma once
@@ -38,7 +38,7 @@ class DeviceSceneFlowLoss {
            cl::Buffer& d_flow);
 
   const cl::Buffer& slots() const { return slots_; }
-  // weight · Σ Chamfer slots + the ground slot, in double (FlowSupervisionStep's value).
+  // weight · Σ Chamfer slots + the ground slot, in double (pipeline::FlowSupervision's value).
   static double value(const std::vector<float>& slots, double weight);
   // The same from one blocking read of slots().
   double read(double weight) const;

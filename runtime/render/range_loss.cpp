@@ -78,7 +78,7 @@ cl::Event RangeLoss::patch_gradient(const cl::Buffer& out, const cl::Buffer& tar
   return reduce(terms, int(n), 1, 0, inv_pairs, loss, 3);
 }
 
-LossValues RangeLoss::read_losses(const cl::Buffer& loss) {
+RangeLossValues RangeLoss::read_losses(const cl::Buffer& loss) {
   check_floats(loss, kLossFloats, "RangeLoss::read_losses");
   const auto v = loss.read_vec<float>(kLossFloats);
   return {v[0], v[1], v[2], v[3]};

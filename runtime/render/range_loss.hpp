@@ -10,11 +10,11 @@
 
 namespace sgnlf::render {
 
-// The loss buffer holds the first four floats, in this order; `carve` is the weight-carving
-// term's (render::WeightCarving, read beside it by the model; 0 when off).
-struct LossValues {
-  float depth = 0, ret = 0, intensity = 0, grad = 0, carve = 0;
-  float total() const { return depth + ret + intensity + grad + carve; }
+// The loss buffer's first four floats, in this order (read_losses; the training step reports
+// them through its loss terms, pipeline/model/loss_terms.hpp).
+struct RangeLossValues {
+  float depth = 0, ret = 0, intensity = 0, grad = 0;
+  float total() const { return depth + ret + intensity + grad; }
 };
 inline constexpr size_t kLossFloats = 4;
 
@@ -39,7 +39,7 @@ class RangeLoss {
   cl::Event patch_gradient(const cl::Buffer& out, const cl::Buffer& target, int n_patches,
                            cl::Buffer& grad_out, cl::Buffer& terms, cl::Buffer& loss);
 
-  static LossValues read_losses(const cl::Buffer& loss);
+  static RangeLossValues read_losses(const cl::Buffer& loss);
   // loss[index] = scale · Σ_{i<n} in[offset + i·stride], one work-group in a fixed tree
   // (render_loss_reduce: the loss values above; weight carving's sum under the device
   // profile's loss_reduce: device).

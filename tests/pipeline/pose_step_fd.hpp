@@ -34,7 +34,7 @@ inline PoseStepGradients pose_step_gradients(pipeline::LidarNerfModel& model,
     const Pose T = corrected_pose(T_init, xi);
     const pipeline::RayBatch b = pipeline::draw_ray_batch(scene, c, 7, step, [&](int) { return T; });
     model.forward_backward(b, 7, step, true);
-    return model.read_loss().total();
+    return double(model.read_losses().total());
   };
   PoseStepGradients g;
   REQUIRE(std::isfinite(loss_at(xi0)));

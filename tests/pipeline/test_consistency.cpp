@@ -1,5 +1,5 @@
-// SG-NLF's adversarial cross-frame consistency in pose-free training: the
-// external gradient joins the range loss's Adam step; the gradient of L_con with respect to a
+// SG-NLF's adversarial cross-frame consistency in pose-free training (how a term's own pass
+// joins the step's Adam update: test_loss_terms.cpp): the gradient of L_con with respect to a
 // frame's ξ through render → reprojection → discriminator against finite differences; a run
 // folder of `sg-nlf` (L_D/L_con logged, exact resume of field, discriminator and poses); the
 // "consistency" section's validation.
@@ -35,76 +35,7 @@ TrainConfig tiny_sgnlf(const Json& extra = Json::object()) {
                         merge_config_json(test::tiny_sgnlf_overrides(true), extra));
 }
 
-// Rays of the tiny scene's frame `f` at its ground-truth pose, pixels [0, n).
-void frame_rays(const Scene& scene, int f, int n, std::vector<float>& o, std::vector<float>& d) {
-  image_rays(scene, scene.T_world_lidar[size_t(f)], 0, size_t(n), o, d);
-}
-
 }  // namespace
-
-TEST_CASE("external gradient: accumulated into the range loss's Adam step",
-          "[pipeline][consistency][device]") {
-  const Dataset& ds = test::tiny_dataset();
-  const TrainConfig c = test::tiny_config();
-  const Scene scene = make_scene(ds);
-  const float lr = 1e-2f;
-  auto fresh = [&] {
-    auto m = std::make_unique<LidarNerfModel>(test::runtime(), c, float(scene.norm.scale), 512);
-    m->init_params(5);
-    return m;
-  };
-  std::vector<float> o, d;
-  frame_rays(scene, 2, 200, o, d);
-  std::vector<float> g_out(200 * 3, 0.0f);
-  for (int k = 0; k < 200; ++k) g_out[3 * size_t(k)] = (k % 3 == 0 ? 1.0f : -0.5f) * 1e-2f;
-  const RayBatch b = draw_ray_batch(scene, c, 7, 3);
-
-  // Range loss only.
-  auto m_range = fresh();
-  m_range->forward_backward(b, 7, 3);
-  const auto g_range = m_range->read_gradient();
-  m_range->update(lr);
-  // External term only (the gradient buffer starts at zero).
-  auto m_ext = fresh();
-  CHECK_THROWS_WITH(m_ext->backward_external(g_out, false), Catch::Contains("forward_rays"));
-  m_ext->forward_rays(o, d, 200, 7, 3);
-  m_ext->backward_external(g_out, false);
-  CHECK(m_ext->external_gradient_pending());
-  m_ext->update(lr);
-  CHECK_FALSE(m_ext->external_gradient_pending());
-  const auto g_ext = m_ext->read_gradient();
-  // Both in one step: the step's gradient is their sum, and Adam's first step moves each
-  // parameter by lr against its sign (eps 1e-15).
-  auto m_both = fresh();
-  const auto p0 = m_both->state().params;
-  m_both->forward_rays(o, d, 200, 7, 3);
-  m_both->backward_external(g_out, false);
-  m_both->forward_backward(b, 7, 3);
-  m_both->update(lr);
-  const auto g_both = m_both->read_gradient();
-  const auto p1 = m_both->state().params;
-  REQUIRE(g_both.size() == g_range.size());
-  size_t differ_range = 0, differ_ext = 0, bad = 0, bad_step = 0;
-  for (size_t k = 0; k < g_both.size(); ++k) {
-    bad += g_both[k] != g_range[k] + g_ext[k];
-    differ_range += g_both[k] != g_range[k];
-    differ_ext += g_both[k] != g_ext[k];
-    if (std::abs(g_both[k]) > 1e-10f) {
-      const float step = p1[k] - p0[k];
-      bad_step += std::abs(step + lr * (g_both[k] > 0 ? 1.0f : -1.0f)) > 1e-3f * lr;
-    }
-  }
-  CHECK(bad == 0);
-  CHECK(bad_step == 0);
-  CHECK(differ_range > 100);  // the external term reached the field's parameters …
-  CHECK(differ_ext > 100);    // … and the range loss is still there
-  // One Adam step per training step: the step counter advanced once.
-  CHECK(m_both->state().adam_step == 1);
-  // A render between forward_rays and backward_external invalidates the activations.
-  m_both->forward_rays(o, d, 200, 7, 4);
-  m_both->render_rays(o, d, 200);
-  CHECK_THROWS_WITH(m_both->backward_external(g_out, false), Catch::Contains("forward_rays"));
-}
 
 TEST_CASE("consistency term: analytic dL_con/dxi through render, reprojection and "
           "discriminator matches finite differences",
@@ -126,13 +57,19 @@ TEST_CASE("consistency term: analytic dL_con/dxi through render, reprojection an
   train(model, scene, c, opt);  // a field with structure (ground-truth poses)
 
   ConsistencyTerm term(test::runtime(), scene, *c.consistency, 512);
+  // Each run in a pass of its own (seed 7, step 40), as a training step gives it.
+  const RayBatch no_batch;
+  auto run = [&](const ConsistencyPair& q, bool disc, bool pose_grads) {
+    FieldPass field(model, no_batch, 7, 40);
+    return term.run(field, q, disc, pose_grads);
+  };
   ConsistencyPair p;
   p.i = 4, p.j = 5;
   p.T_init_i = scene.T_world_lidar[4], p.T_init_j = scene.T_world_lidar[5];
   p.xi_i << 0.004, -0.003, 0.002, 0.01, -0.006, 0.004;
   p.xi_j << -0.002, 0.003, 0.001, -0.005, 0.008, 0.002;
-  for (int k = 0; k < 3; ++k) term.run(model, p, 7, 40, true, false);  // a trained discriminator
-  const ConsistencyResult base = term.run(model, p, 7, 40, false, true);
+  for (int k = 0; k < 3; ++k) run(p, true, false);  // a trained discriminator
+  const ConsistencyResult base = run(p, false, true);
   const std::vector<int> winners = term.last_reprojection().winner;
   REQUIRE(base.rendered_points > 100);
   REQUIRE(base.coverage > 0.05);
@@ -152,7 +89,7 @@ TEST_CASE("consistency term: analytic dL_con/dxi through render, reprojection an
         ConsistencyPair q = p;
         const double x = eps * m / 8.0;
         (frame_i ? q.xi_i : q.xi_j)[k] += x;
-        const double l = term.run(model, q, 7, 40, false, false).l_con;
+        const double l = run(q, false, false).l_con;
         same = term.last_reprojection().winner == winners;
         sxy += x * l, sxx += x * x;
       }
@@ -199,6 +136,9 @@ TEST_CASE("sg-nlf run folder: consistency logged, exact resume of field, discrim
     if (!j.contains("consistency")) continue;
     const Json& k = j.at("consistency");
     ++logged;
+    // λ_con·L_con with the other terms' values, out of the total (loss_report.hpp).
+    CHECK(j.at("loss").at("consistency").get<double>() ==
+          tiny_sgnlf().consistency->weight * k.at("l_con").get<double>());
     CHECK(std::isfinite(k.at("l_d").get<double>()));
     CHECK(k.at("l_d").get<double>() > 0.0);  // hinge: 2 at a blind discriminator
     CHECK(std::isfinite(k.at("l_con").get<double>()));

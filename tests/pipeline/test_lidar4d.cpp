@@ -37,7 +37,7 @@ std::string config_error(const Json& overrides) {
 
 struct Trained {
   std::vector<float> params;
-  render::LossValues first, last;
+  LossReport first, last;
   double flow_loss = 0.0;
 };
 
@@ -45,14 +45,15 @@ Trained train_lidar4d(const Scene& scene, const TrainConfig& c, uint64_t seed,
                       const std::string& dir) {
   LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), model_capacity(c));
   GroundTruthPoseStep gt(scene, c);
-  FlowSupervisionStep flow(gt, test::tiny_dataset(), scene, c, seed);
+  auto& flow = static_cast<FlowSupervision&>(model.add_loss(make_flow_supervision(
+      test::runtime().device_profile().chamfer, test::tiny_dataset(), scene, c, seed)));
   TrainOptions opt;
   opt.run_dir = test::temp_dir(dir);
   opt.seed = seed;
   opt.show_progress = false;
-  opt.policy = &flow;
+  opt.policy = &gt;
   const TrainSummary s = train(model, scene, c, opt);
-  return {model.state().params, s.first_loss, s.last_loss, flow.last_flow_loss()};
+  return {model.state().params, s.first_loss, s.last_loss, flow.last_value()};
 }
 
 }  // namespace
@@ -184,45 +185,49 @@ TEST_CASE("lidar4d model: bit-identical training, decreasing loss, flow gradient
   const Trained other = train_lidar4d(scene, c, 10, "l4d_c");
   CHECK(other.params != a.params);
 
-  // The flow supervision's gradient reaches the flow field's parameters only: from a fresh
-  // model (zero gradient, zero moments) one update moves nothing else.
+  // A flow loss term's gradient reaches the flow field's parameters only: a term of the test's
+  // own (FieldPass::flow, as the flow supervision's) in a model's step.
   LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), model_capacity(c));
   model.init_params(3);
-  const std::vector<float> before = model.state().params;
-  model.set_frame(4, int(scene.T_world_lidar.size()));
-  const std::vector<float> x = {0.1f, 0.2f, -0.1f, -0.3f, 0.0f, 0.05f};
-  const double value = model.flow_supervision(x, 2, [](const std::vector<float>& f,
-                                                       std::vector<float>& d) {
-    double l = 0;  // pull every flow component to 0.01
-    for (size_t i = 0; i < f.size(); ++i) {
-      l += double(f[i] - 0.01f) * double(f[i] - 0.01f);
-      d[i] = 2.0f * (f[i] - 0.01f);
+  struct PullFlow final : LossTerm {
+    const char* name() const override { return "pull_flow"; }
+    void add_field_gradient(FieldPass& field) override {
+      const std::vector<float> x = {0.1f, 0.2f, -0.1f, -0.3f, 0.0f, 0.05f};
+      // Pull every flow component to 0.01, weighted far above the batch's loss, whose gradient
+      // reaches the flow field too (through the 4D encoder's flowed neighbours).
+      value = field.flow(x, 2, [](const std::vector<float>& f, std::vector<float>& d) {
+        double l = 0;
+        for (size_t i = 0; i < f.size(); ++i) {
+          l += 1e3 * double(f[i] - 0.01f) * double(f[i] - 0.01f);
+          d[i] = 2e3f * (f[i] - 0.01f);
+        }
+        return l;
+      });
     }
-    return l;
-  });
+    void report(LossReport& r, const std::vector<float>&) const override { r.add(name(), value); }
+    double value = 0.0;
+  };
+  auto& pull = static_cast<PullFlow&>(model.add_loss(std::make_unique<PullFlow>()));
+  const RayBatch batch = draw_ray_batch(scene, c, 4, 1);
+  model.set_frame(batch.frame, int(scene.T_world_lidar.size()));
+  model.forward_backward(batch, 4, 1);
+  const double value = pull.value;
   CHECK(value > 0.0);
-  CHECK(model.external_gradient_pending());
-  model.update(1e-2f);
-  const std::vector<float> after = model.state().params;
+  CHECK(model.read_losses().value("pull_flow") == value);
+  // The term's share of the step's gradient lies in the flow field's slice only.
+  const std::vector<float> g = model.read_term_gradient();
   const auto& off = model.four_d_encoder()->offsets();
   const size_t lo = off.flow, hi = off.end;  // the encoder's slice starts at 0
-  size_t moved_in = 0, moved_out = 0;
-  for (size_t i = 0; i < after.size(); ++i)
-    ((i >= lo && i < hi) ? moved_in : moved_out) += after[i] != before[i] ? 1 : 0;
-  CHECK(moved_in > 0);
-  CHECK(moved_out == 0);
+  size_t in = 0, out = 0;
+  for (size_t i = 0; i < g.size(); ++i) ((i >= lo && i < hi) ? in : out) += g[i] != 0.0f ? 1 : 0;
+  CHECK(in > 0);
+  CHECK(out == 0);
   // Repeated steps pull the flow toward the target: the loss falls.
   double last = value;
   for (int it = 0; it < 20; ++it) {
-    last = model.flow_supervision(x, 2, [](const std::vector<float>& f, std::vector<float>& d) {
-      double l = 0;
-      for (size_t i = 0; i < f.size(); ++i) {
-        l += double(f[i] - 0.01f) * double(f[i] - 0.01f);
-        d[i] = 2.0f * (f[i] - 0.01f);
-      }
-      return l;
-    });
+    model.forward_backward(batch, 4, 2 + it);
     model.update(1e-2f);
+    last = pull.value;
   }
   CHECK(last < 0.5 * value);
 }
@@ -236,12 +241,12 @@ TEST_CASE("lidar4d model: the Chamfer term and renders at the frame's time",
   const RayBatch b = draw_ray_batch(scene, c, 4, 1);
   model.set_frame(b.frame, int(scene.T_world_lidar.size()));
   model.forward_backward(b, 4, 1);
-  CHECK(model.last_chamfer() > 0.0);
+  CHECK(model.read_losses().value("chamfer") > 0.0);
   const TrainConfig off = tiny_lidar4d(Json{{"lidar4d", {{"chamfer_weight", 0.0}}}});
   LidarNerfModel plain(test::runtime(), off, float(scene.norm.scale), model_capacity(off));
   plain.init_params(4);
   plain.forward_backward(b, 4, 1);
-  CHECK(plain.last_chamfer() == 0.0);
+  CHECK_FALSE(plain.read_losses().has("chamfer"));
   // The Chamfer term changes the parameter gradient (it adds dL/d depth per ray).
   CHECK(model.read_gradient() != plain.read_gradient());
 
@@ -317,8 +322,8 @@ TEST_CASE("lidar4d model: separate intensity and ray-drop heads stay separate in
   plain.set_frame(b.frame, int(scene.T_world_lidar.size()));
   model.forward_backward(b, 6, 1);
   plain.forward_backward(b, 6, 1);
-  const render::LossValues ls = model.read_loss(), lp = plain.read_loss();
-  CHECK(ls.depth == lp.depth);
-  CHECK(ls.intensity == lp.intensity);
-  CHECK(ls.ret != lp.ret);
+  const LossReport ls = model.read_losses(), lp = plain.read_losses();
+  CHECK(ls.value("depth") == lp.value("depth"));
+  CHECK(ls.value("intensity") == lp.value("intensity"));
+  CHECK(ls.value("return") != lp.value("return"));
 }

@@ -1,5 +1,5 @@
 // LiDAR4D's Chamfer term and flow supervision under the device profile's chamfer: device
-// (render::DeviceChamfer, DeviceSceneFlowLoss through ChamferTerm and FlowSupervisionStep)
+// (render::DeviceChamfer, DeviceSceneFlowLoss through the Chamfer and flow loss terms)
 // against chamfer: host, the k-d tree path: the output gradient and the Chamfer value of one
 // pass, the flow supervision's value and parameter gradient, a whole gpu-profile step's loss
 // and gradient; two gpu-profile steps from one seed give the same bits.
@@ -56,13 +56,8 @@ void under(const cl::DeviceProfile& profile, F&& f) {
   rt.set_device_profile(saved);
 }
 
-// The flow supervision alone: its inner step does nothing.
-struct NoStep final : StepPolicy {
-  void step(LidarNerfModel&, uint64_t, long, float) override {}
-};
-
-// The flow supervision's value and its parameter gradient (update() adds the pending external
-// gradient to a zero one: the model made no forward_backward).
+// The flow supervision's term alone, in a pass of its own at the batch frame of (seed, step):
+// its value and its parameter gradient.
 struct FlowResult {
   double loss = 0;
   std::vector<float> grad;
@@ -72,12 +67,15 @@ FlowResult flow_step(const cl::DeviceProfile& p, const Scene& scene, const Train
   FlowResult r;
   under(p, [&] {
     auto m = model_under(p, scene, c, 5);
-    NoStep none;
-    FlowSupervisionStep flow(none, test::tiny_dataset(), scene, c, 3);
-    flow.step(*m, seed, step, 1e-3f);
-    m->update(1e-3f);
-    r.grad = m->read_gradient();
-    r.loss = flow.last_flow_loss();
+    const auto flow = make_flow_supervision(p.chamfer, test::tiny_dataset(), scene, c, 3);
+    RayBatch b;
+    b.frame = batch_frame(scene, seed, step);
+    m->set_frame(b.frame, int(scene.T_world_lidar.size()));
+    FieldPass field(*m, b, seed, step);
+    flow->add_field_gradient(field);
+    REQUIRE(field.wrote_gradient());
+    r.grad = m->read_term_gradient();
+    r.loss = flow->last_value();
   });
   return r;
 }
@@ -99,11 +97,10 @@ TEST_CASE("lidar4d: the Chamfer term on the device equals the host's k-d tree pa
   for (const auto& p : {host, device}) {
     under(p, [&] {
       auto m = model_under(p, scene, c, 7);
-      CHECK(m->chamfer_on_device() == (k == 1));
       m->set_frame(b.frame, int(scene.T_world_lidar.size()));
       m->forward_backward(b, 9, 14);
       g[k] = m->read_output_gradient();
-      value[k] = m->last_chamfer();
+      value[k] = m->read_losses().value("chamfer");
     });
     ++k;
   }
@@ -147,13 +144,16 @@ TEST_CASE("lidar4d: a gpu-profile step with the device Chamfer equals the host p
     under(p, [&] {
       auto m = model_under(p, scene, c, 2);
       GroundTruthPoseStep gt(scene, c);
-      FlowSupervisionStep flow(gt, test::tiny_dataset(), scene, c, 3);
-      for (long step = 0; step < steps; ++step) flow.step(*m, 4, step, 1e-3f);
+      auto& flow = static_cast<FlowSupervision&>(
+          m->add_loss(make_flow_supervision(p.chamfer, test::tiny_dataset(), scene, c, 3)));
+      for (long step = 0; step < steps; ++step) gt.step(*m, 4, step, 1e-3f);
       s.grad = m->read_gradient();
       s.params = m->state().params;
-      s.loss = m->read_loss().total();
-      s.flow = flow.last_flow_loss();
-      s.chamfer = m->last_chamfer();
+      const LossReport l = m->read_losses();
+      s.loss = l.total();
+      s.flow = flow.last_value();
+      s.chamfer = l.value("chamfer");
+      CHECK(l.value("flow") == s.flow);
     });
     return s;
   };

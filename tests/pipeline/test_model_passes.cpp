@@ -138,26 +138,6 @@ TEST_CASE("each sampling strategy's sample set and head rows are in the forward'
   }
 }
 
-TEST_CASE("forward_rays' context is differentiated once, and not after another pass",
-          "[pipeline][model][device]") {
-  const Scene scene = make_scene(test::tiny_dataset());
-  auto m = model_of(scene, test::tiny_config(Json{{"render", {{"stop_transmittance", 0.01}}}}));
-  std::vector<float> o, d;
-  image_rays(scene, scene.T_world_lidar[2], 0, kRays, o, d);
-  const std::vector<float> g(size_t(kRays) * 3, 1e-3f);
-  m->forward_rays(o, d, kRays, 7, 3);
-  const ForwardContext ctx = m->last_forward();
-  CHECK(ctx.samples.compacted);
-  m->backward_external(g, true);
-  CHECK(m->external_gradient_pending());
-  CHECK(m->read_ray_grads().origin.size() == size_t(kRays) * 3);
-  CHECK_THROWS_WITH(m->backward_external(g, false), Catch::Contains("forward_rays"));
-  // encode_points overwrites the sample buffers too.
-  m->forward_rays(o, d, kRays, 7, 3);
-  m->encode_points(std::vector<float>(30, 0.1f), 10);
-  CHECK_THROWS_WITH(m->backward_external(g, false), Catch::Contains("forward_rays"));
-}
-
 TEST_CASE("the loss terms: the list per config, each term's own share of the gradient",
           "[pipeline][model][device]") {
   const Scene scene = make_scene(test::tiny_dataset());
@@ -194,8 +174,8 @@ TEST_CASE("the loss terms: the list per config, each term's own share of the gra
     REQUIRE(returns > 10);
     const auto c = render::ray_chamfer_loss(batch.directions, depth, gt, float(scene.norm.scale),
                                             float(with.lidar4d->chamfer_weight));
-    CHECK(a->last_chamfer() == c.loss);
-    CHECK(b->last_chamfer() == 0.0);
+    CHECK(a->read_losses().value("chamfer") == c.loss);
+    CHECK_FALSE(b->read_losses().has("chamfer"));
     size_t differ = 0, changed = 0;
     for (size_t i = 0; i < R; ++i) {
       const float expect = batch.label[i] > 0.5f ? gb[3 * i] + c.d_depth[i] : gb[3 * i];
@@ -215,12 +195,14 @@ TEST_CASE("the loss terms: the list per config, each term's own share of the gra
     b->forward_backward(batch, 9, 14);
     CHECK(a->read_output_gradient() == b->read_output_gradient());
     CHECK(a->read_gradient() != b->read_gradient());
-    CHECK(a->read_loss().carve > 0.0f);
-    CHECK(a->loss_value("carve") == Approx(a->read_loss().carve));
-    CHECK(b->read_loss().carve == 0.0f);
-    CHECK(a->read_loss().depth == b->read_loss().depth);
-    CHECK(a->loss_value("range") == Approx(double(a->read_loss().depth) + a->read_loss().ret +
-                                           a->read_loss().intensity));
+    const LossReport la = a->read_losses(), lb = b->read_losses();
+    CHECK(la.value("carve") > 0.0);
+    CHECK_FALSE(lb.has("carve"));
+    CHECK(la.value("depth") == lb.value("depth"));
+    // The total: the records in list order, summed in float.
+    CHECK(la.total() == float(la.value("depth")) + float(la.value("return")) +
+                            float(la.value("intensity")) + float(la.value("grad")) +
+                            float(la.value("carve")));
   }
 }
 
@@ -248,22 +230,20 @@ TEST_CASE("the loss read once under loss_reduce: device equals the terms' own re
     test::runtime().finish();
     cl::LaunchTrace th, td;
     test::runtime().set_trace(&th);
-    const render::LossValues a = host->read_loss();
+    const LossReport la = host->read_losses();
     test::runtime().set_trace(&td);
-    const render::LossValues b = device->read_loss();
+    const LossReport lb = device->read_losses();
     test::runtime().set_trace(nullptr);
-    // The range and patch values are the same buffer's words, read once or twice.
-    CHECK(a.depth == b.depth);
-    CHECK(a.ret == b.ret);
-    CHECK(a.intensity == b.intensity);
-    CHECK(a.grad == b.grad);
+    // The range and patch values are the same buffer's words.
+    for (const char* name : {"depth", "return", "intensity", "grad"})
+      CHECK(la.value(name) == lb.value(name));
+    const float a_carve = float(la.value("carve")), b_carve = float(lb.value("carve"));
     // Carving: the host sums the per-ray terms in double, the device in float (strided partials
     // and a tree over 200 rays); the terms are non-negative, so no cancellation: a few float
     // roundings of the sum, 1e-5 relative with room for any device's order.
-    REQUIRE(a.carve > 0.0f);
-    CHECK(test::sym_rel_err({b.carve}, {a.carve}, 0.0) <= 1e-5);
-    CHECK(device->loss_value("carve") == double(b.carve));
-    CHECK(th.blocking_transfers.size() == 3);  // range, patch, carving's per-ray terms
+    REQUIRE(a_carve > 0.0f);
+    CHECK(test::sym_rel_err({b_carve}, {a_carve}, 0.0) <= 1e-5);
+    CHECK(th.blocking_transfers.size() == 2);  // the loss buffer, carving's per-ray terms
     REQUIRE(td.blocking_transfers.size() == 1);
     CHECK(td.blocking_transfers[0].bytes == kLossBufferFloats * sizeof(float));
   }
@@ -289,18 +269,19 @@ TEST_CASE("the loss and the ray-gradient sums in one read equal the two reads",
     test::runtime().finish();
     cl::LaunchTrace trace;
     test::runtime().set_trace(&trace);
-    const LidarNerfModel::LossAndRaySums both = m->read_loss_and_ray_grad_sums();
+    const LidarNerfModel::LossAndRaySums both = m->read_losses_and_ray_grad_sums();
     test::runtime().set_trace(nullptr);
-    const render::LossValues l = m->read_loss();
+    const LossReport l = m->read_losses();
     const render::RayGradSums s = m->read_ray_grad_sums();
     // Copies of the same words (the sums' kernel run again over the same gradients, a fixed
     // tree: the same bits).
-    CHECK(both.loss.depth == l.depth);
-    CHECK(both.loss.grad == l.grad);
-    CHECK(both.loss.carve == l.carve);
+    CHECK(both.loss.value("depth") == l.value("depth"));
+    CHECK(both.loss.value("grad") == l.value("grad"));
+    CHECK(both.loss.value("carve") == l.value("carve"));
     CHECK(both.sums.origin == s.origin);
     CHECK(both.sums.cross == s.cross);
     CHECK(s.cross.norm() > 0.0);
-    CHECK(trace.blocking_transfers.size() == (mode == cl::LossReduce::Device ? 1u : 4u));
+    // Host: carving's per-ray terms read beside the loss buffer and the sums.
+    CHECK(trace.blocking_transfers.size() == (mode == cl::LossReduce::Device ? 1u : 2u));
   }
 }

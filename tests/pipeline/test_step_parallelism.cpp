@@ -96,7 +96,7 @@ const std::vector<KnownTransfers> kBlockingTransfers = {
      "sized by it. The prefix sum itself runs on the device under the gpu profile (compaction: "
      "device; the host's read of the counts and write of the offsets were 2 transfers)"},
     {"loss and ray-gradient sums", {"geonlf", "sg-nlf"}, 1,
-     "PoseFreeStep's one read (LidarNerfModel::read_loss_and_ray_grad_sums, 44 bytes): the loss "
+     "PoseFreeStep's one read (LidarNerfModel::read_losses_and_ray_grad_sums, 44 bytes): the loss "
      "for per-frame reweighting and the frame's ray gradients summed on the device (gpu profile "
      "loss_reduce, pose_grad: device), copied into one buffer; the SE(3) Jacobians and the pose "
      "Adam run on the host. Was 6: the range and patch values, weight carving's per-ray terms and "

@@ -256,7 +256,7 @@ TEST_CASE("early ray termination: exact while no ray terminates, within its thre
   auto gradient_of = [&](LidarNerfModel& m) {
     m.set_state(st);
     m.forward_backward(b, 7, 160);
-    m.read_loss();
+    m.read_losses();
     return m.read_gradient();
   };
   const auto grad_cut = gradient_of(cut);
@@ -266,7 +266,7 @@ TEST_CASE("early ray termination: exact while no ray terminates, within its thre
     sp.params[k] += v;
     band.set_state(sp);
     band.forward_backward(b, 7, 160);
-    return double(band.read_loss().total());
+    return double(band.read_losses().total());
   };
   const auto& hs = band.layout().slice("head_mlp");
   std::vector<size_t> idx(hs.count);

@@ -76,7 +76,7 @@ TEST_CASE("surface sampling: the head's parameter gradient matches finite differ
     const RayBatch b = draw_ray_batch(scene, c, 5, 1);  // a pixel batch (odd epoch)
     REQUIRE_FALSE(b.patches);
     model.forward_backward(b, 9, 1);
-    const double l0 = model.read_loss().total();
+    const double l0 = double(model.read_losses().total());
     const auto g = model.read_gradient();
     ModelState st = model.state();
     const field::ParamSlice head = model.layout().slice("head_mlp");
@@ -90,11 +90,11 @@ TEST_CASE("surface sampling: the head's parameter gradient matches finite differ
       p.params[k] += float(eps);
       model.set_state(p);
       model.forward_backward(b, 9, 1);
-      const double lp = model.read_loss().total();
+      const double lp = double(model.read_losses().total());
       p.params[k] -= float(2 * eps);
       model.set_state(p);
       model.forward_backward(b, 9, 1);
-      const double lm = model.read_loss().total();
+      const double lm = double(model.read_losses().total());
       const double fd = (lp - lm) / (2 * eps);
       rel.push_back(std::abs(fd - g[k]) / (1e-3 + std::abs(fd)));
     }

@@ -37,12 +37,14 @@ class StepParts {
   // The pose-free step (poses are parameters) with the geometric stage before each epoch; with
   // the confidence-aware pose graph when the config turns it on.
   virtual StepPolicy& pose_free() = 0;
-  // SG-NLF's adversarial cross-frame consistency around `inner` (needs pose_free()).
+  // SG-NLF's adversarial cross-frame consistency (needs pose_free()): a loss term added to the
+  // model's list, and around `inner` its logs and checkpoint state.
   virtual StepPolicy& consistency(StepPolicy& inner) = 0;
   // SG-NLF's hybrid field: Ψ trains on the current surface around `inner` (needs pose_free()).
   virtual StepPolicy& spectral(StepPolicy& inner) = 0;
-  // LiDAR4D's scene-flow supervision around `inner` (needs the config's lidar4d section): the
-  // flow field's loss on the batch frame's ground-removed points joins inner's update.
+  // LiDAR4D's scene-flow supervision (needs the config's lidar4d section): a loss term added to
+  // the model's list, the flow field's loss on the batch frame's ground-removed points in the
+  // same Adam step; `inner` is the step.
   virtual StepPolicy& scene_flow(StepPolicy& inner) = 0;
 };
 

@@ -1,10 +1,11 @@
-// The training losses of LidarNerfModel (model.hpp) as a list of terms. Each term adds its
-// gradient to one of two places of the backward: the per-ray output gradient dL/d(depth,
-// return probability, intensity) before the renderer's backward (the range loss, the patch
-// gradient loss, LiDAR4D's Chamfer term), or the per-sample σ-logit gradient after it (weight
-// carving); and each reports its named value(s) into render::LossValues. The list is made from
-// the config once (make_loss_terms) and run in its order; the range term comes first and WRITES
-// the output gradient, every later term adds to it.
+// The model's list of loss terms (loss_term.hpp) and the config's built-in ones: the range loss,
+// LiDAR-NeRF's patch gradient loss, LiDAR4D's Chamfer term and NeuRAD's weight carving. The
+// list is made from the config once (make_loss_terms); a step part adds its own terms
+// (LidarNerfModel::add_loss). Its first entry is the range term, the one term that writes the
+// per-ray output gradient: a RangeTerm by type, held apart from the terms that add to it.
+// Where a device profile entry chooses an algorithm (chamfer: host or device; loss_reduce:
+// carving's terms summed on the host or the device), make_loss_terms picks the term's class
+// once.
 #pragma once
 #include <memory>
 #include <string>
@@ -12,7 +13,7 @@
 
 #include "cl/runtime.hpp"
 #include "pipeline/config/train_config.hpp"
-#include "pipeline/model/ray_batch.hpp"
+#include "pipeline/model/loss_term.hpp"
 #include "render/range_loss.hpp"
 #include "render/weight_carving.hpp"
 
@@ -23,54 +24,51 @@ namespace sgnlf::pipeline {
 inline constexpr size_t kCarveSlot = render::kLossFloats;
 inline constexpr size_t kLossBufferFloats = render::kLossFloats + 1;
 
-// One training pass as the terms see it: the batch, the renderer's forward (t, h0, weights:
-// n_rays × per_ray; out: n_rays × 3), the targets (n_rays × 3) and the gradients they add to.
-struct LossPass {
-  const RayBatch& batch;
-  long step;
-  int n_rays, per_ray;
-  const cl::Buffer &out, &target, &t, &h0, &weights;
-  cl::Buffer &grad_out, &terms, &loss_buf;  // grad_out: n_rays × 3; loss_buf: kLossBufferFloats
-  cl::Buffer& g_h0;                          // n_rays × per_ray, the renderer's dL/dh0
-  // The batch's world directions on the device (n_rays × 3; the Chamfer term under the device
-  // profile's chamfer: device reads them there).
-  const cl::Buffer* directions = nullptr;
-};
-
-class LossTerm {
+// The range loss (method.md §0): writes the per-ray output gradient and the loss buffer's first
+// three values (the buffer zeroed first); reports "depth", "return", "intensity".
+class RangeTerm final : public LossTerm {
  public:
-  virtual ~LossTerm() = default;
-  virtual const char* name() const = 0;
-  // Before the renderer's backward: into pass.grad_out (and pass.loss_buf).
-  virtual void add_output_gradient(LossPass&) {}
-  // After the renderer's backward: into pass.g_h0.
-  virtual void add_sample_gradient(LossPass&) {}
-  // The term's value(s) of the last pass into v (its own fields of it; none for "chamfer",
-  // which LossValues does not hold). Blocking.
-  virtual void read(render::LossValues& v) const = 0;
-  // The same from `loss`, a host copy of the loss buffer read once for every term (the device
-  // profile's loss_reduce: device); a term whose value lives on the host reads it as read().
-  virtual void read_copy(render::LossValues& v, const std::vector<float>& loss) const {
-    (void)loss;
-    read(v);
-  }
-  // The term's value of the last pass (the sum of its fields); 0 before the first. Blocking.
-  virtual double value() const = 0;
+  explicit RangeTerm(render::RangeLoss& l) : loss_(l) {}
+  const char* name() const override { return "range"; }
+  void write_output_gradient(LossPass& p);
+  void report(LossReport& r, const std::vector<float>& loss) const override;
+
+ private:
+  render::RangeLoss& loss_;
 };
 
-// The config's terms, in order: "range" (depth, ret, intensity), "patch_gradient" (grad; on
-// patch batches), "chamfer" (lidar4d.chamfer_weight > 0), "carve" (render.weights.carve > 0).
-// `loss_buf` is the buffer the passes' loss_buf will be (the range and patch terms' values);
-// `carve` is null when the config has no carving. Both, and `range`, must outlive the terms.
-// `device_sums`: the device profile's loss_reduce is device (carving's terms summed into
-// loss_buf[kCarveSlot] on the device). `device_chamfer`: the device profile's chamfer is device
-// (the Chamfer term's neighbours, gradient and value on that runtime's device, its value read
-// only when asked; null: on the host, 3 blocking transfers a pass).
-std::vector<std::unique_ptr<LossTerm>> make_loss_terms(const TrainConfig& c, float scene_scale,
-                                                        render::RangeLoss& range,
-                                                        const cl::Buffer& loss_buf,
-                                                        render::WeightCarving* carve,
-                                                        bool device_sums = false,
-                                                        cl::Runtime* device_chamfer = nullptr);
+class LossList {
+ public:
+  LossList() = default;
+  explicit LossList(std::unique_ptr<RangeTerm> range) : range_(std::move(range)) {}
+  RangeTerm& range() { return *range_; }
+  // The terms after the range term, in the order they were added.
+  const std::vector<std::unique_ptr<LossTerm>>& others() const { return others_; }
+  LossTerm& add(std::unique_ptr<LossTerm> t) {
+    others_.push_back(std::move(t));
+    return *others_.back();
+  }
+  // Every term, the range term first.
+  template <class F>
+  void each(F&& f) const {
+    f(static_cast<LossTerm&>(*range_));
+    for (const auto& t : others_) f(*t);
+  }
+  std::vector<std::string> names() const;
+
+ private:
+  std::unique_ptr<RangeTerm> range_;
+  std::vector<std::unique_ptr<LossTerm>> others_;
+};
+
+// The config's terms, in order: "range", "patch_gradient" (reports "grad"; on patch batches),
+// "chamfer" (lidar4d.chamfer_weight > 0), "carve" (render.weights.carve > 0). `range` and
+// `carve` (null when the config has no carving) must outlive the list. The device profile of
+// `rt` chooses the Chamfer term's class (chamfer: host = the batch's depths on the host and
+// geometry::KdTree, 3 blocking transfers a pass; device = render::DeviceChamfer, its value read
+// only when reported) and carving's (loss_reduce: host = its per-ray terms summed in double when
+// reported; device = summed by render_loss_reduce into the loss buffer's kCarveSlot).
+LossList make_loss_terms(cl::Runtime& rt, const TrainConfig& c, float scene_scale,
+                         render::RangeLoss& range, render::WeightCarving* carve);
 
 }  // namespace sgnlf::pipeline

@@ -70,10 +70,7 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
       renderer_(rt, c.render, scene_scale),
       loss_(rt, c.render, scene_scale,
             c.lidar4d ? float(c.lidar4d->ray_drop_label_smoothing) : 0.0f),
-      ray_grad_(rt),
-      pose_grad_device_(rt.device_profile().pose_grad == cl::PoseGrad::Device),
-      loss_device_(rt.device_profile().loss_reduce == cl::LossReduce::Device) {
-  chamfer_device_ = rt.device_profile().chamfer == cl::ChamferSearch::Device;
+      ray_grad_(rt) {
   if (1 + c.field.geo_features != kDensStride)
     throw ConfigError("config.field: 'geo_features' must be 15 (density output 1 + 15 = 16)");
   off_grid_ = layout_.add("hash_grid", encoder_->n_params()).offset;
@@ -154,8 +151,7 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
     training_sampler_ = make_sampler(training_name, "render.training_sampler", context);
     training_ = training_sampler_.get();
   }
-  losses_ = make_loss_terms(c, scene_scale, loss_, loss_buf_, carve_.get(), loss_device_,
-                            chamfer_device_ ? &rt : nullptr);
+  losses_ = make_loss_terms(rt, c, scene_scale, loss_, carve_.get());
 }
 
 void LidarNerfModel::init_params(uint64_t seed) {
@@ -234,6 +230,10 @@ void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long ste
   require(R > 0 && R <= max_rays_, "LidarNerfModel::forward_backward: batch of " +
                                        std::to_string(R) + " rays, capacity " +
                                        std::to_string(max_rays_));
+  // The terms' own passes (loss_term.hpp): each differentiates what it rendered before the next
+  // pass overwrites the activations, into the step's second gradient.
+  FieldPass own(*this, b, seed, step);
+  losses_.each([&](LossTerm& t) { t.add_field_gradient(own); });
   // Non-blocking uploads (the same bytes as blocking writes): the queue reads the host copies
   // when it gets there, behind the previous step's kernels.
   float* target = up_target_.stage<float>(size_t(R) * 3);
@@ -248,13 +248,19 @@ void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long ste
   // The training rays' sampler (render.training_sampler; by the returns with render.surface_*).
   const ForwardContext ctx =
       forward(sample(*training_, R, cfg_.render.jitter, seed, uint32_t(step)));
-  // The loss terms (method.md §0–2) in order: each adds its per-ray output gradient, then,
-  // inside the backward, its per-sample one.
-  LossPass pass{b,  step,   R,      ctx.samples.per_ray, out_,      target_,  t_, h0_,
-                weights_, grad_out_, terms_, loss_buf_,  g_h0_};
-  pass.directions = &d_;
-  for (const auto& term : losses_) term->add_output_gradient(pass);
+  // The loss terms (method.md §0–2): the range term writes the per-ray output gradient, the
+  // others add theirs; inside the backward, their per-sample ones.
+  LossPass pass{b,        step,       R,      ctx.samples.per_ray, out_,   target_, t_, h0_,
+                weights_, grad_out_,  terms_, loss_buf_,           g_h0_,  d_};
+  losses_.range().write_output_gradient(pass);
+  for (const auto& term : losses_.others()) term->add_output_gradient(pass);
   backward(ctx, grad_, ray_grads, &pass);
+  // One objective, one gradient: the terms' own passes' share joins the batch's.
+  if (own.wrote_gradient()) {
+    const int n = int(layout_.total());
+    add_k_.set_args(n, grad_own_, grad_);
+    add_k_.launch({cl::round_up(size_t(n), 64)}, {64});
+  }
 }
 
 void LidarNerfModel::backward(const ForwardContext& ctx, cl::Buffer& grad, bool ray_grads,
@@ -269,8 +275,7 @@ void LidarNerfModel::backward(const ForwardContext& ctx, cl::Buffer& grad, bool 
   renderer_.backward(t_, h0_, head_out_, weights_, grad_out_, R, M, g_h0_, g_head_);
   // The loss terms' per-sample gradients on the full layout (weight carving: dead samples have
   // zero weight and get none).
-  if (pass)
-    for (const auto& term : losses_) term->add_sample_gradient(*pass);
+  if (pass) losses_.each([&](LossTerm& t) { t.add_sample_gradient(*pass); });
   // With early termination the chain runs on the live rows: the dead samples' gradients are
   // dropped (they do not exist in the truncated field).
   int rows = n;
@@ -313,46 +318,7 @@ void LidarNerfModel::backward(const ForwardContext& ctx, cl::Buffer& grad, bool 
   grad_rays_ = R;
 }
 
-std::vector<float> LidarNerfModel::forward_rays(const std::vector<float>& origins,
-                                                const std::vector<float>& directions, int n,
-                                                uint64_t seed, long step) {
-  require(n > 0 && n <= max_rays_, "LidarNerfModel::forward_rays: " + std::to_string(n) +
-                                       " rays, capacity " + std::to_string(max_rays_));
-  require(origins.size() == size_t(n) * 3 && directions.size() == size_t(n) * 3,
-          "LidarNerfModel::forward_rays: origins/directions must hold n × 3 floats");
-  o_.write_vec(origins);
-  d_.write_vec(directions);
-  rays_ctx_ = forward(sample(*protocol_, n, cfg_.render.jitter, seed, uint32_t(step)));
-  return out_.read_vec<float>(size_t(n) * 3);
-}
-
-void LidarNerfModel::backward_external(const std::vector<float>& grad_out, bool ray_grads) {
-  if (!rays_ctx_.valid() || rays_ctx_.pass != pass_)
-    throw Error("LidarNerfModel::backward_external: no forward_rays() to differentiate (none, "
-                "differentiated already, or another pass ran since)");
-  const int n = rays_ctx_.samples.n_rays;
-  require(grad_out.size() == size_t(n) * 3,
-          "LidarNerfModel::backward_external: " + std::to_string(grad_out.size()) +
-              " floats for " + std::to_string(n) + " rays × 3");
-  if (!grad_ext_) {
-    grad_ext_ = floats(rt_, layout_.total());
-    grad_ext_.fill_zero();  // alignment gaps between the slices stay zero
-    add_k_ = rt_.kernel("field/accumulate.cl", "field_accumulate");
-  }
-  grad_out_.write_vec(grad_out);
-  backward(rays_ctx_, grad_ext_, ray_grads, nullptr);
-  ext_full_ = true;
-  rays_ctx_ = ForwardContext{};  // a forward is differentiated once
-  ext_pending_ = true;
-}
-
 void LidarNerfModel::update(float lr) {
-  if (ext_pending_) {  // the external term joins this step's gradient (see model.hpp)
-    const int n = int(layout_.total());
-    add_k_.set_args(n, grad_ext_, grad_);
-    add_k_.launch({cl::round_up(size_t(n), 64)}, {64});
-    ext_pending_ = false;
-  }
   adam_->begin_step();
   if (four_d_) {  // LiDAR4D's groups: the encodings at lr, the flow field and the MLPs scaled
     const size_t enc_end = off_grid_ + four_d_->offsets().flow;
@@ -401,7 +367,7 @@ std::vector<float> LidarNerfModel::encode_points(const std::vector<float>& x, in
           "LidarNerfModel::encode_points: " + std::to_string(x.size()) + " floats for " +
               std::to_string(n) + " points");
   const int w = encoder_->width();
-  begin_pass();  // x_ and enc_ are overwritten: forward_rays()'s activations are gone
+  begin_pass();  // x_ and enc_ are overwritten: an earlier pass's activations are gone
   std::vector<float> out(size_t(n) * size_t(w));
   // x_ and enc_ hold max_rays × samples rows.
   const int chunk = max_rays_ * cfg_.render.n_samples;

@@ -13,7 +13,9 @@
 //   band of render.head_weight_threshold) and returns a ForwardContext (forward_context.hpp):
 //   what the backward needs, and the pass number that says whether the activations are still
 //   this forward's;
-// - the loss terms (loss_terms.hpp: range, patch gradient, Chamfer, weight carving) each add
+// - the loss terms (loss_term.hpp; the config's in loss_terms.hpp: range, patch gradient,
+//   Chamfer, weight carving; a step part's: the cross-frame consistency, the flow supervision,
+//   which run a pass of their own first) each add
 //   their gradient, per ray or per sample, and report their values;
 // - the backward takes that context and the gradient through renderer → head → density →
 //   encoder into a parameter gradient (and the rays' gradients for the pose-free methods).
@@ -82,9 +84,11 @@ class LidarNerfModel {
   void init_params(uint64_t seed);
 
   // One training step in two parts, composed by the trainer: forward_backward enqueues the
-  // sampling, forward, loss and backward of one batch into the gradient buffer (and, with
-  // `ray_grads`, dL/d(origin) and dL/d(direction) of every ray for the pose-free methods, read
-  // with read_ray_grads()); update() enqueues the Adam step of every parameter group. No wait.
+  // step's gradient through the list of loss terms (loss_term.hpp: the terms' own passes, then
+  // the batch's sampling, forward, loss and backward, the two gradients summed) into the
+  // gradient buffer (and, with `ray_grads`, dL/d(origin) and dL/d(direction) of every batch ray
+  // for the pose-free methods, read with read_ray_grads()); update() enqueues the Adam step of
+  // every parameter group. No wait (but what a term's own pass reads back).
   void forward_backward(const RayBatch& b, uint64_t seed, long step, bool ray_grads = false);
   void update(float lr);
   // Both parts (the ground-truth-pose methods' step).
@@ -92,59 +96,41 @@ class LidarNerfModel {
     forward_backward(b, seed, step);
     update(lr);
   }
-  // Per ray (n_rays × 3 each, normalised frame) of the last forward_backward(..., true):
-  // gradients of the loss with respect to the ray origins and directions, through every
-  // evaluated sample position (early-terminated samples carry none: they are not in the
-  // truncated field) and the direction encoding. Importance-sample depths are held fixed, as
-  // in the peers' code (they come from a no-gradient coarse pass). Blocking.
-  struct RayGrads {
-    std::vector<float> origin, direction;
-  };
+  // Per ray (n_rays × 3, normalised frame) of the last backward that computed them (the batch's
+  // with ray_grads, or a term's own FieldPass::backward): gradients of the loss with respect to
+  // the ray origins and directions, through every evaluated sample position (early-terminated
+  // samples carry none: they are not in the truncated field) and the direction encoding.
+  // Importance-sample depths are held fixed, as in the peers' code (they come from a
+  // no-gradient coarse pass). Blocking.
   RayGrads read_ray_grads() const;
-  // The device profile's pose_grad when the model was made: device = the pose-free step takes
-  // read_ray_grad_sums() instead of read_ray_grads().
-  bool pose_grad_on_device() const { return pose_grad_device_; }
   // The same ray gradients summed on the device over the rays' world directions
   // (render::PoseGradSums: Σ dL/do and Σ d × dL/dd, the direction encoding's share included),
   // for render::pose_gradient_from_world_sums(): one kernel and one blocking read of 6 floats.
   render::RayGradSums read_ray_grad_sums();
-  // read_loss() and read_ray_grad_sums() in one blocking read (the pose-free step with
-  // reweighting: its only read of the step) when the profile's loss_reduce is device: the loss
-  // buffer and the sums copied on the device into one buffer. The same values as the two calls;
-  // otherwise it is the two calls.
+  // read_losses() and read_ray_grad_sums() in one blocking read (the pose-free step with
+  // reweighting under the device profile's pose_grad: device): the loss buffer and the sums
+  // copied on the device into one buffer. The same values as the two calls.
   struct LossAndRaySums {
-    render::LossValues loss;
+    LossReport loss;
     render::RayGradSums sums;
   };
-  LossAndRaySums read_loss_and_ray_grad_sums();
+  LossAndRaySums read_losses_and_ray_grad_sums();
 
-  // An externally given per-ray output gradient through the same backward chain (SG-NLF's
-  // adversarial consistency term, method.md §4.3–4.4): forward_rays() is the training-mode
-  // forward of the protocol's sampling (jitter per the config from (seed, step)) that keeps
-  // its ForwardContext and returns n × 3 (depth normalised, return probability, intensity);
-  // backward_external() takes dL/d(depth, return probability, intensity) per ray (n × 3, the
-  // caller's weight already applied) through that context's backward into a gradient buffer
-  // of its own, and, with `ray_grads`, the ray gradients read_ray_grads() returns. It throws
-  // when another pass (a training step, a render, an encoding) ran since forward_rays(): the
-  // activations are then that pass's; and it differentiates a forward once.
-  //
-  // Combination: the external gradient is ACCUMULATED into the gradient of the next update(),
-  // which adds it to the gradient forward_backward() wrote before the one Adam step (so the
-  // external term of a step is computed before that step's forward_backward, whose gradient
-  // buffer it does not touch). method.md §4.4 defines one total loss L = L_range + … +
-  // λ_con·L_con: one Adam step on the sum of the gradients is that loss's step, and λ_con
-  // keeps its meaning as a relative weight. Its own Adam step would not: Adam divides by the
-  // running RMS, so a separate step moves the parameters by ≈ lr whatever λ_con is, and it
-  // would advance Adam's step count (bias correction, lr schedule) twice per iteration.
-  // Without a pending external gradient update() is exactly what it was.
-  std::vector<float> forward_rays(const std::vector<float>& origins,
-                                  const std::vector<float>& directions, int n, uint64_t seed,
-                                  long step);
-  void backward_external(const std::vector<float>& grad_out, bool ray_grads);
-  bool external_gradient_pending() const { return ext_pending_; }
-  // The parameter gradient of the last update() (range loss + any external term), or of the
-  // last forward_backward() before its update. Blocking; for tests.
+  // The list of loss terms (loss_terms.hpp): the config's, then those added here (a step part's:
+  // the cross-frame consistency, the flow supervision), run in that order by every following
+  // forward_backward. Returns the added term.
+  LossTerm& add_loss(std::unique_ptr<LossTerm> term) { return losses_.add(std::move(term)); }
+  std::vector<std::string> loss_names() const { return losses_.names(); }
+  // The loss terms' values of the last step, in the list's order (blocks until it finished):
+  // the loss buffer read once, then each term's own values.
+  LossReport read_losses() const;
+  // The parameter gradient of the last forward_backward() (every term's). Blocking; for tests.
   std::vector<float> read_gradient() const { return grad_.read_vec<float>(layout_.total()); }
+  // The share of the terms' own passes in it (FieldPass; zeros before the first). Blocking; for
+  // tests.
+  std::vector<float> read_term_gradient() {
+    return own_gradient().read_vec<float>(layout_.total());
+  }
 
   // Coarse-to-fine mask of the hash-grid levels (field::barf_level_weights); all ones by default.
   void set_level_weights(const std::vector<float>& w) { encoder_->set_level_weights(w); }
@@ -162,40 +148,13 @@ class LidarNerfModel {
   // (field::frame_time); a no-op for the other encoders, which have no time.
   void set_frame(int frame, int frames);
   bool temporal() const { return four_d_ != nullptr; }
-  // LiDAR4D's flow supervision (model_four_d.cpp): the flow field at n points x (n × 3,
-  // normalised box) at the time set_frame() set; `loss` maps the flow (n × 6: forward, backward)
-  // to its loss and writes dL/dflow (n × 6). The flow field's parameter gradient is pending
-  // like an external one (backward_external) and joins the next update(). Returns the loss.
-  // Blocking (one read of the flow). Needs the 4D encoder.
-  using FlowLoss = std::function<double(const std::vector<float>& flow, std::vector<float>& d_flow)>;
-  double flow_supervision(const std::vector<float>& x, int n, const FlowLoss& loss);
-  // The same with the points on the device (x: n × 3, unchanged until the next update()) and
-  // the loss on the device: `loss` enqueues dL/dflow (d_flow, n × 6) from the flow (n × 6).
-  // The time is written without blocking; nothing is read back (the device profile's
-  // chamfer: device, FlowSupervisionStep).
-  using DeviceFlowLoss = std::function<void(const cl::Buffer& flow, cl::Buffer& d_flow)>;
-  void flow_supervision_device(const cl::Buffer& x, int n, const DeviceFlowLoss& loss);
-  // The device profile's chamfer is device (when the model was made): LiDAR4D's Chamfer term
-  // and flow supervision run on the device, their values read only when asked.
-  bool chamfer_on_device() const { return chamfer_device_; }
   cl::Runtime& runtime() const { return rt_; }
-  // LiDAR4D's Chamfer term (config lidar4d.chamfer_weight) of the last forward_backward, 0 when
-  // off; read back with the step (the term needs the batch's depths on the host), or (chamfer:
-  // device) read from the device when asked.
-  double last_chamfer() const { return loss_value("chamfer"); }
-  // The training loss terms in the order they run (loss_terms.hpp), and the value of the named
-  // one in the last forward_backward (0 when the config has no such term). Blocking.
-  std::vector<std::string> loss_names() const;
-  double loss_value(const std::string& name) const;
 
   // Encodings f (N × encoder().width()) at n points (N × 3, normalised box): the per-point
   // features of the pose graph's matching (method.md §4.2). Blocking; chunks of max_rays.
   std::vector<float> encode_points(const std::vector<float>& x, int n);
-  // The loss values of the last train_step, each term's fields (blocks until it finished).
-  render::LossValues read_loss() const;
   // dL/d(depth, return probability, intensity) per ray (n_rays × 3) of the last
-  // forward_backward, all loss terms added (or the external one of backward_external).
-  // Blocking; for tests.
+  // pass's backward (the batch's: all loss terms added). Blocking; for tests.
   std::vector<float> read_output_gradient() const;
 
   // Renders rays (n ≤ max_rays; origins/directions n × 3, normalised frame) without jitter:
@@ -250,8 +209,8 @@ class LidarNerfModel {
   // (the protocol's): render.training_sampler_name() and render.sampler_name().
   const std::string& training_strategy() const { return training_->name(); }
   const std::string& protocol_strategy() const { return protocol_->name(); }
-  // The context of the last sampled pass (train_step, forward_rays, render_rays): its samples
-  // and head rows; valid() false before the first.
+  // The context of the last sampled pass (train_step, a term's FieldPass::render, render_rays):
+  // its samples and head rows; valid() false before the first.
   const ForwardContext& last_forward() const { return last_; }
 
   // Early ray termination (render.stop_transmittance > 0): merged samples behind the point
@@ -282,9 +241,11 @@ class LidarNerfModel {
   long head_band(int n_rays, int M);
   // The backward of the forward `ctx` (throws when its activations were overwritten) from
   // grad_out_ into `grad` (every slice overwritten), and the ray gradients when `ray_grads`.
-  // `pass`: the loss terms' per-sample gradients join the renderer's (null: none, the external
-  // gradient's backward).
+  // `pass`: the loss terms' per-sample gradients join the renderer's (null: none, a term's own
+  // pass).
   void backward(const ForwardContext& ctx, cl::Buffer& grad, bool ray_grads, LossPass* pass);
+  // A term's own pass (loss_term.hpp's FieldPass, model_field_pass.cpp) reaches the field here.
+  friend class FieldPass;
 
   cl::Runtime& rt_;
   TrainConfig cfg_;
@@ -293,16 +254,21 @@ class LidarNerfModel {
   spectral::HybridEncoder* hybrid_ = nullptr;  // encoder_ when it is the hybrid one (set first)
   field::Lidar4DEncoder* four_d_ = nullptr;    // encoder_ when it is LiDAR4D's (set first)
   float scene_scale_ = 1.0f;
-  // Flow supervision: points, times, flow and its gradient (capacity flow_cap_ points).
+  // Flow supervision (FieldPass::flow): points, times, flow and its gradient (capacity
+  // flow_cap_ points); the times of the device variant, written without blocking.
   cl::Buffer fx_, ft_, fflow_, fdflow_;
   int flow_cap_ = 0;
-  cl::StagedUpload up_ft_;  // flow_supervision_device(): the times, written without blocking
-  bool chamfer_device_ = false;
-  // The flow supervision's buffers for n points and its pending gradient's slice, readied.
+  cl::StagedUpload up_ft_;
+  // The flow's buffers for n points and the second gradient readied for its slice.
   field::SceneFlow& begin_flow(int n, const char* who);
-  // grad_ext_ holds only the flow slice's gradient (zero elsewhere) unless backward_external
-  // wrote every slice since it was last cleared.
-  bool ext_full_ = false;
+  // The second gradient (the terms' own passes: FieldPass), allocated on first use; the model
+  // adds it to grad_ at the end of the step whose term wrote it. grad_own_ holds only the flow
+  // slice's gradient (zero elsewhere) unless a rendered rays' backward wrote every slice since
+  // it was last cleared (own_full_).
+  cl::Buffer& own_gradient();
+  cl::Buffer grad_own_;
+  cl::Kernel add_k_;
+  bool own_full_ = false;
   std::unique_ptr<field::Encoder> encoder_;
   field::Mlp density_, head_;
   field::DirEncoding dirs_;
@@ -315,10 +281,9 @@ class LidarNerfModel {
   // (field/columns.cl), the clamp of sample positions to the scene box (render/sample.cl).
   cl::Kernel col_get_, col_set_, clamp_;
   bool reuse_coarse_ = true;
-  // The pass counter (begin_pass), the last sampled pass's context, forward_rays()'s context
-  // (invalid once differentiated).
+  // The pass counter (begin_pass), the last sampled pass's context.
   uint64_t pass_ = 0;
-  ForwardContext last_, rays_ctx_;
+  ForwardContext last_;
   size_t off_grid_, off_density_, off_head_;
   field::MlpContext density_ctx_, head_ctx_;
   cl::Buffer params_, grad_;
@@ -332,17 +297,9 @@ class LidarNerfModel {
   // encoding's share of dL/dd.
   cl::Buffer g_x_, g_o_, g_d_, g_dir_;
   int grad_rays_ = 0;
-  // The profile's pose_grad: device; the launcher of the sums, made on first use.
-  bool pose_grad_device_ = false;
+  // The launcher of the ray gradients' sums, made on first use.
   std::unique_ptr<render::PoseGradSums> pose_sums_;
-  cl::Buffer loss_and_sums_;  // read_loss_and_ray_grad_sums(): the loss buffer, then the sums
-  // The profile's loss_reduce: device (read_loss() reads the loss buffer once).
-  bool loss_device_ = false;
-  // External gradient (backward_external): its parameter gradient, pending until update(),
-  // when field/accumulate.cl adds it to grad_.
-  cl::Buffer grad_ext_;
-  cl::Kernel add_k_;
-  bool ext_pending_ = false;
+  cl::Buffer loss_and_sums_;  // read_losses_and_ray_grad_sums(): the loss buffer, then the sums
   // The optional sampling modes' launchers the forward shares with the samplers, null when the
   // config does not use the mode: importance sampling (n_importance > 0), early termination
   // (stop_transmittance > 0), and with it the head band (head_weight_threshold > 0).
@@ -353,10 +310,10 @@ class LidarNerfModel {
   std::unique_ptr<render::WeightCarving> carve_;
   // The samplers (sampler.hpp), made by name: the protocol's (render.sampler_name()), and the
   // training rays' (render.training_sampler_name(): training_sampler_ where it is another
-  // strategy, else the protocol's); the training loss terms (loss_terms.hpp).
+  // strategy, else the protocol's); the loss terms (loss_terms.hpp).
   std::unique_ptr<Sampler> protocol_, training_sampler_;
   Sampler* training_ = nullptr;
-  std::vector<std::unique_ptr<LossTerm>> losses_;
+  LossList losses_;
   // depth_stats(): the last render_rays()'s rays and samples, and its outputs.
   int stats_rays_ = 0, stats_samples_ = 0;
   cl::Buffer stats_median_, stats_spread_;

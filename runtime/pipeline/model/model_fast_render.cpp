@@ -16,7 +16,7 @@ std::vector<float> LidarNerfModel::density_logits(const std::vector<float>& x, i
   require(n >= 0 && x.size() == size_t(n) * 3,
           "LidarNerfModel::density_logits: " + std::to_string(x.size()) + " floats for " +
               std::to_string(n) + " points");
-  begin_pass();  // x_, enc_ and dens_ are overwritten: forward_rays()'s activations are gone
+  begin_pass();  // x_, enc_ and dens_ are overwritten: an earlier pass's activations are gone
   std::vector<float> out(static_cast<size_t>(n));
   const int chunk = sample_capacity();
   for (int b = 0; b < n; b += chunk) {

@@ -1,8 +1,8 @@
-// LidarNerfModel's read-backs (model.hpp): what the host reads of a pass, the loss, the ray
-// gradients (whole, or summed on the device for the pose gradient), the live counts and the
-// output gradient. Under the device profile's loss_reduce: device, the loss and the ray-gradient
-// sums come back in one read (read_loss_and_ray_grad_sums), the pose-free step's only blocking
-// transfer (tests/pipeline/test_step_parallelism.cpp).
+// LidarNerfModel's read-backs (model.hpp): what the host reads of a pass, the loss terms' values,
+// the ray gradients (whole, or summed on the device for the pose gradient), the live counts and
+// the output gradient. The loss buffer is read once for every term; with the ray-gradient sums
+// it comes back in one read (read_losses_and_ray_grad_sums), under the gpu profile the pose-free
+// step's only blocking transfer (tests/pipeline/test_step_parallelism.cpp).
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -14,7 +14,7 @@
 namespace sgnlf::pipeline {
 using namespace model_detail;
 
-LidarNerfModel::RayGrads LidarNerfModel::read_ray_grads() const {
+RayGrads LidarNerfModel::read_ray_grads() const {
   if (grad_rays_ == 0) throw Error("LidarNerfModel::read_ray_grads: no step computed ray gradients");
   RayGrads g;
   const size_t n = size_t(grad_rays_) * 3;
@@ -34,10 +34,9 @@ render::RayGradSums LidarNerfModel::read_ray_grad_sums() {
   return pose_sums_->read();
 }
 
-LidarNerfModel::LossAndRaySums LidarNerfModel::read_loss_and_ray_grad_sums() {
-  if (!loss_device_) return {read_loss(), read_ray_grad_sums()};
+LidarNerfModel::LossAndRaySums LidarNerfModel::read_losses_and_ray_grad_sums() {
   if (grad_rays_ == 0)
-    throw Error("LidarNerfModel::read_loss_and_ray_grad_sums: no step computed ray gradients");
+    throw Error("LidarNerfModel::read_losses_and_ray_grad_sums: no step computed ray gradients");
   if (!pose_sums_) pose_sums_ = std::make_unique<render::PoseGradSums>(rt_);
   if (!loss_and_sums_) loss_and_sums_ = floats(rt_, kLossBufferFloats + 6);
   pose_sums_->reduce(grad_rays_, d_, g_o_, g_d_, g_dir_);
@@ -47,38 +46,22 @@ LidarNerfModel::LossAndRaySums LidarNerfModel::read_loss_and_ray_grad_sums() {
   const std::vector<float> all = loss_and_sums_.read_vec<float>(kLossBufferFloats + 6);
   LossAndRaySums r;
   const std::vector<float> loss(all.begin(), all.begin() + long(kLossBufferFloats));
-  for (const auto& term : losses_) term->read_copy(r.loss, loss);
+  losses_.each([&](const LossTerm& t) { t.report(r.loss, loss); });
   r.sums = render::PoseGradSums::from_floats(all.data() + kLossBufferFloats);
   return r;
 }
 
-render::LossValues LidarNerfModel::read_loss() const {
-  render::LossValues l;
-  if (loss_device_) {  // the device profile's loss_reduce: one read of the whole loss buffer
-    const std::vector<float> copy = loss_buf_.read_vec<float>(kLossBufferFloats);
-    for (const auto& term : losses_) term->read_copy(l, copy);
-    return l;
-  }
-  for (const auto& term : losses_) term->read(l);
-  return l;
+LossReport LidarNerfModel::read_losses() const {
+  const std::vector<float> loss = loss_buf_.read_vec<float>(kLossBufferFloats);
+  LossReport r;
+  losses_.each([&](const LossTerm& t) { t.report(r, loss); });
+  return r;
 }
 
 std::vector<int> LidarNerfModel::live_counts() const {
   if (!last_.samples.compacted || last_.pass != pass_)
     throw Error("LidarNerfModel::live_counts: the last pass did not terminate rays early");
   return live_->counts(last_.samples.n_rays);
-}
-
-std::vector<std::string> LidarNerfModel::loss_names() const {
-  std::vector<std::string> names;
-  for (const auto& term : losses_) names.emplace_back(term->name());
-  return names;
-}
-
-double LidarNerfModel::loss_value(const std::string& name) const {
-  for (const auto& term : losses_)
-    if (name == term->name()) return term->value();
-  return 0.0;
 }
 
 std::vector<float> LidarNerfModel::read_output_gradient() const {

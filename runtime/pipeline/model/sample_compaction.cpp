@@ -2,6 +2,7 @@
 #include "pipeline/model/sample_compaction.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "pipeline/model/model_detail.hpp"
@@ -13,6 +14,56 @@ namespace {
 constexpr size_t kOffsetsWg = 256;  // OFFSETS_WG of kernels/pipeline/sample_compaction.cl
 }
 
+// `count` launches the live counts into the buffer it is given; run() turns them into the per-ray
+// offsets (n_rays + 1 int32s) and returns the total, the step's one host sync before the loss:
+// the kernel sizes after it depend on it.
+class SampleCompaction::OffsetSum {
+ public:
+  virtual ~OffsetSum() = default;
+  virtual long run(int n_rays, const std::function<void(cl::Buffer&)>& count,
+                   cl::Buffer& offset) = 0;
+};
+
+// compaction: host: the counts read back, summed on the host and the offsets written back.
+class SampleCompaction::HostOffsetSum final : public OffsetSum {
+ public:
+  HostOffsetSum(cl::Runtime& rt, int max_rays) : count_(floats(rt, size_t(max_rays))) {}
+  long run(int n_rays, const std::function<void(cl::Buffer&)>& count,
+           cl::Buffer& offset) override {
+    count(count_);
+    const std::vector<int32_t> c = count_.read_vec<int32_t>(size_t(n_rays));
+    std::vector<int32_t> o(size_t(n_rays) + 1, 0);
+    for (int r = 0; r < n_rays; ++r) o[size_t(r) + 1] = o[size_t(r)] + c[size_t(r)];
+    offset.write_vec(o);
+    return o.back();
+  }
+
+ private:
+  cl::Buffer count_;
+};
+
+// compaction: device: the counts straight into the offsets, scanned there in one work-group;
+// only the total (4 bytes) is read.
+class SampleCompaction::DeviceOffsetSum final : public OffsetSum {
+ public:
+  explicit DeviceOffsetSum(cl::Runtime& rt)
+      : scan_k_(rt.kernel("pipeline/sample_compaction.cl", "pipeline_offsets_scan")) {}
+  long run(int n_rays, const std::function<void(cl::Buffer&)>& count,
+           cl::Buffer& offset) override {
+    count(offset);
+    scan_k_.set_args(n_rays, offset);
+    scan_k_.launch({kOffsetsWg}, {kOffsetsWg});
+    int32_t total = 0;
+    offset.read(&total, sizeof total, size_t(n_rays) * sizeof total);
+    return total;
+  }
+
+ private:
+  cl::Kernel scan_k_;
+};
+
+SampleCompaction::~SampleCompaction() = default;
+
 SampleCompaction::SampleCompaction(cl::Runtime& rt, int max_rays, int max_samples, int n_samples,
                                    int width, float eps)
     : S_(n_samples),
@@ -22,10 +73,12 @@ SampleCompaction::SampleCompaction(cl::Runtime& rt, int max_rays, int max_sample
       compact_rows_(rt.kernel("pipeline/sample_compaction.cl", "pipeline_compact_rows")),
       expand_(rt.kernel("pipeline/sample_compaction.cl", "pipeline_expand_outputs")),
       row_ray_k_(rt.kernel("pipeline/sample_compaction.cl", "pipeline_row_ray")),
-      device_scan_(rt.device_profile().compaction == cl::CompactionScan::Device),
       ray_wi_(rt.device_profile().ray_work_items),
       ray_wg_(rt.device_profile().local_size) {
-  if (device_scan_) scan_k_ = rt.kernel("pipeline/sample_compaction.cl", "pipeline_offsets_scan");
+  if (rt.device_profile().compaction == cl::CompactionScan::Device)
+    sum_ = std::make_unique<DeviceOffsetSum>(rt);
+  else
+    sum_ = std::make_unique<HostOffsetSum>(rt, max_rays);
   if (ray_wi_ > 1) {
     // The gpu profile's ray_work_items work-items per ray for the counts and the row → ray map
     // (integer results, the same as the per-ray kernels'), in work-groups of local_size.
@@ -35,33 +88,20 @@ SampleCompaction::SampleCompaction(cl::Runtime& rt, int max_rays, int max_sample
     row_ray_k_ = rt.kernel("pipeline/sample_compaction.cl", "pipeline_row_ray_wide", opt);
   }
   const size_t R = size_t(max_rays), N = R * size_t(max_samples);
-  count_ = floats(rt, R), offset_ = floats(rt, R + 1), row_ray_ = floats(rt, N);
+  offset_ = floats(rt, R + 1), row_ray_ = floats(rt, N);
   x_l_ = floats(rt, N * 3), enc_l_ = floats(rt, N * size_t(width)), head_l_ = floats(rt, N * 2);
   g_h0_l_ = floats(rt, N), g_head_l_ = floats(rt, N * 2);
 }
 
 long SampleCompaction::select(int n_rays, int M, const cl::Buffer& t_c, const cl::Buffer& w_c,
                               const cl::Buffer& t, const cl::Buffer& x) {
-  if (device_scan_) {
-    // The counts straight into the offsets, scanned there; the one host sync of the step before
-    // the loss is the total (4 bytes): the kernel sizes below depend on it.
-    live_count_.set_args(n_rays, S_, M, eps_, t_c, w_c, t, offset_);
-    launch_live_count(n_rays);
-    scan_k_.set_args(n_rays, offset_);
-    scan_k_.launch({kOffsetsWg}, {kOffsetsWg});
-    int32_t total = 0;
-    offset_.read(&total, sizeof total, size_t(n_rays) * sizeof total);
-    rows_ = total;
-  } else {
-    live_count_.set_args(n_rays, S_, M, eps_, t_c, w_c, t, count_);
-    launch_live_count(n_rays);
-    // The one host sync of the step before the loss: kernel sizes below depend on the total.
-    const std::vector<int32_t> count = count_.read_vec<int32_t>(size_t(n_rays));
-    std::vector<int32_t> offset(size_t(n_rays) + 1, 0);
-    for (int r = 0; r < n_rays; ++r) offset[size_t(r) + 1] = offset[size_t(r)] + count[size_t(r)];
-    rows_ = offset.back();
-    offset_.write_vec(offset);
-  }
+  rows_ = sum_->run(
+      n_rays,
+      [&](cl::Buffer& counts) {
+        live_count_.set_args(n_rays, S_, M, eps_, t_c, w_c, t, counts);
+        launch_live_count(n_rays);
+      },
+      offset_);
   row_rays(n_rays, offset_, row_ray_);
   compact_rows_.set_args(n_rays, M, 3, offset_, x, x_l_);
   compact_rows_.launch({cl::round_up(size_t(n_rays) * M, 64)}, {64});

@@ -8,6 +8,7 @@
 // positions, encodings, head outputs and gradients. select() and counts() block; the other
 // calls only enqueue.
 #pragma once
+#include <memory>
 #include <vector>
 
 #include "cl/runtime.hpp"
@@ -22,13 +23,15 @@ class SampleCompaction {
   // `width` floats per encoding; eps = render.stop_transmittance.
   SampleCompaction(cl::Runtime& rt, int max_rays, int max_samples, int n_samples, int width,
                    float eps);
+  ~SampleCompaction();
 
   // Counts the live samples of each of n_rays rays (M per ray at t, the coarse pass's t_c and
   // weights w_c: n_samples per ray), sums them into the per-ray offsets and gathers the live
   // rows of the positions x (n_rays × M × 3) into positions(). Returns the live rows. The
-  // device profile's `compaction` says where the sum runs: host = one blocking read of n_rays
-  // ints and one blocking write of the offsets; device = the scan on the device
-  // (pipeline_offsets_scan) and one blocking read of the total. The same offsets either way.
+  // device profile's `compaction` chooses, when this object is made, where the sum runs (an
+  // OffsetSum): host = one blocking read of n_rays ints and one blocking write of the offsets;
+  // device = the scan on the device (pipeline_offsets_scan) and one blocking read of the total.
+  // The same offsets either way.
   long select(int n_rays, int M, const cl::Buffer& t_c, const cl::Buffer& w_c,
               const cl::Buffer& t, const cl::Buffer& x);
   // encodings() from the live rows of enc (n_rays × M × width, already encoded), or by
@@ -62,15 +65,20 @@ class SampleCompaction {
   int S_, width_;
   float eps_;
   long rows_ = 0;
-  cl::Kernel live_count_, compact_rows_, expand_, row_ray_k_, scan_k_;
-  bool device_scan_;  // the profile's compaction: device (read when made)
+  cl::Kernel live_count_, compact_rows_, expand_, row_ray_k_;
+  // The per-ray counts' sum into offsets: one class per value of the profile's compaction
+  // (sample_compaction.cpp), chosen when made.
+  class OffsetSum;
+  class HostOffsetSum;
+  class DeviceOffsetSum;
+  std::unique_ptr<OffsetSum> sum_;
   // The profile's ray_work_items and local_size when made: above 1, the counts and the row →
   // ray map run ray_wi_ work-items per ray (pipeline_live_count_wide, pipeline_row_ray_wide).
   int ray_wi_, ray_wg_;
   void launch_live_count(int n_rays);
-  // Per-ray live counts and offsets (int32), each live row's ray, and the live rows' positions,
+  // Per-ray live offsets (int32), each live row's ray, and the live rows' positions,
   // encodings, head outputs and their gradients.
-  cl::Buffer count_, offset_, row_ray_, x_l_, enc_l_, head_l_, g_h0_l_, g_head_l_;
+  cl::Buffer offset_, row_ray_, x_l_, enc_l_, head_l_, g_h0_l_, g_head_l_;
 };
 
 }  // namespace sgnlf::pipeline

@@ -22,19 +22,13 @@
 #include "pipeline/methods/registry.hpp"
 #include "pipeline/train/pose_check.hpp"
 #include "pipeline/train/step_parts.hpp"
+#include "pipeline/train/trainer.hpp"
 #include "pipeline/run/trajectory_files.hpp"
 
 namespace sgnlf::pipeline {
 namespace fs = std::filesystem;
 
 namespace {
-
-Json loss_json(const render::LossValues& l) {
-  Json j{{"total", l.total()}, {"depth", l.depth}, {"return", l.ret},
-         {"intensity", l.intensity}, {"grad", l.grad}};
-  if (l.carve != 0.0f) j["carve"] = l.carve;  // written only with weight carving on
-  return j;
-}
 
 // Two pictures stacked with a gap of black rows.
 io::RgbImage stack(const io::RgbImage& a, const io::RgbImage& b, int gap) {

@@ -8,7 +8,6 @@
 #include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
-#include "field/hash_grid.hpp"
 #include "pipeline/model/ray_batch.hpp"
 
 namespace sgnlf::pipeline {
@@ -18,26 +17,24 @@ constexpr uint32_t kPairStream = 0xc0a5;  // partner draw, keyed by (seed, step)
 
 }  // namespace
 
-ConsistencySchedule::ConsistencySchedule(StepPolicy& inner, cl::Runtime& rt, const Scene& scene,
-                                         const TrainConfig& cfg, PoseSet& poses, int max_rays,
-                                         uint64_t seed)
-    : inner_(inner),
-      scene_(scene),
+ConsistencyLoss::ConsistencyLoss(cl::Runtime& rt, const Scene& scene, const TrainConfig& cfg,
+                                 PoseSet& poses, int max_rays, uint64_t seed)
+    : scene_(scene),
       cfg_(cfg),
       poses_(poses),
       seed_(seed),
       term_(rt, scene, *cfg.consistency, max_rays) {
   require(poses.size() == scene.T_world_lidar.size(),
-          "ConsistencySchedule: " + std::to_string(poses.size()) + " poses for " +
+          "ConsistencyLoss: " + std::to_string(poses.size()) + " poses for " +
               std::to_string(scene.T_world_lidar.size()) + " frames");
 }
 
-bool ConsistencySchedule::trainable(int f) const {
+bool ConsistencyLoss::trainable(int f) const {
   return std::find(scene_.train.begin(), scene_.train.end(), f) != scene_.train.end() &&
          std::find(scene_.pose_only.begin(), scene_.pose_only.end(), f) == scene_.pose_only.end();
 }
 
-std::pair<int, int> ConsistencySchedule::pair_at(uint64_t seed, long step) const {
+std::pair<int, int> ConsistencyLoss::pair_at(uint64_t seed, long step) const {
   const int i = batch_frame(scene_, seed, step);
   if (!trainable(i)) return {-1, -1};
   std::vector<int> partners;
@@ -50,58 +47,71 @@ std::pair<int, int> ConsistencySchedule::pair_at(uint64_t seed, long step) const
   return {i, partners[rng.below(uint32_t(partners.size()))]};
 }
 
-void ConsistencySchedule::step(LidarNerfModel& model, uint64_t seed, long step, float lr) {
-  if (cfg_.consistency->active_at(step)) {
-    const auto [i, j] = pair_at(seed, step);
-    if (i >= 0) {
-      const auto t0 = std::chrono::steady_clock::now();
-      // The coarse-to-fine mask of this step (the wrapped step sets the same one after us):
-      // rendering with the previous step's mask would make a resumed run differ.
-      if (cfg_.pose_free->coarse_to_fine)
-        model.set_level_weights(field::barf_level_weights(
-            double(step) / double(cfg_.schedule.iterations), model.levels()));
-      ConsistencyPair p;
-      p.i = i, p.j = j;
-      p.T_init_i = poses_.initial(size_t(i)), p.xi_i = poses_.correction(size_t(i));
-      p.T_init_j = poses_.initial(size_t(j)), p.xi_j = poses_.correction(size_t(j));
-      const bool optimize = cfg_.pose_free->pose_optim.optimize;
-      last_ = term_.run(model, p, seed, step, true, optimize);
-      if (optimize) {
-        poses_.add_pending(size_t(i), last_.grad_xi_i);
-        poses_.add_pending(size_t(j), last_.grad_xi_j);
-      }
-      last_i_ = i, last_j_ = j, last_step_ = step;
-      ++steps_;
-      seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    }
+void ConsistencyLoss::add_field_gradient(FieldPass& field) {
+  const long step = field.step;
+  if (!cfg_.consistency->active_at(step)) return;
+  const auto [i, j] = pair_at(field.seed, step);
+  if (i < 0) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  ConsistencyPair p;
+  p.i = i, p.j = j;
+  p.T_init_i = poses_.initial(size_t(i)), p.xi_i = poses_.correction(size_t(i));
+  p.T_init_j = poses_.initial(size_t(j)), p.xi_j = poses_.correction(size_t(j));
+  const bool optimize = cfg_.pose_free->pose_optim.optimize;
+  last_ = term_.run(field, p, true, optimize);
+  if (optimize) {
+    poses_.add_pending(size_t(i), last_.grad_xi_i);
+    poses_.add_pending(size_t(j), last_.grad_xi_j);
   }
-  inner_.step(model, seed, step, lr);
+  last_i_ = i, last_j_ = j, last_step_ = step;
+  ++steps_;
+  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void ConsistencyLoss::report(LossReport& r, const std::vector<float>&) const {
+  r.add("consistency", cfg_.consistency->weight * last_.l_con, false);
+}
+
+Json ConsistencyLoss::log_fields() const {
+  if (last_step_ < 0) return Json();
+  return Json{{"l_d", last_.l_d},
+              {"l_con", last_.l_con},
+              {"d_real", last_.d_real_mean},
+              {"d_fake", last_.d_fake_mean},
+              {"coverage", last_.coverage},
+              {"rendered_points", last_.rendered_points},
+              {"pair", {last_i_, last_j_}},
+              {"step", last_step_},
+              {"steps", steps_}};
 }
 
 Json ConsistencySchedule::log_fields() {
   Json j = inner_.log_fields();
-  if (last_step_ < 0) return j;
-  j["consistency"] = Json{{"l_d", last_.l_d},
-                          {"l_con", last_.l_con},
-                          {"d_real", last_.d_real_mean},
-                          {"d_fake", last_.d_fake_mean},
-                          {"coverage", last_.coverage},
-                          {"rendered_points", last_.rendered_points},
-                          {"pair", {last_i_, last_j_}},
-                          {"step", last_step_},
-                          {"steps", steps_}};
+  Json c = loss_.log_fields();
+  if (!c.is_null()) j["consistency"] = std::move(c);
   return j;
 }
 
 std::string ConsistencySchedule::progress_text() {
-  if (last_step_ < 0) return inner_.progress_text();
+  if (loss_.log_fields().is_null()) return inner_.progress_text();
   char buf[64];
-  std::snprintf(buf, sizeof buf, " LD %.3g Lcon %.3g", last_.l_d, last_.l_con);
+  std::snprintf(buf, sizeof buf, " LD %.3g Lcon %.3g", loss_.last().l_d, loss_.last().l_con);
   return inner_.progress_text() + buf;
 }
 
 NamedArrays ConsistencySchedule::state() const {
   NamedArrays a = inner_.state();
+  for (auto& x : loss_.state()) a.push_back(std::move(x));
+  return a;
+}
+
+void ConsistencySchedule::load_state(const Checkpoint& ck, LidarNerfModel& model) {
+  inner_.load_state(ck, model);
+  loss_.load_state(ck);
+}
+
+NamedArrays ConsistencyLoss::state() const {
+  NamedArrays a;
   // Reads only: PatchDiscriminator has no const accessors for its buffers and Adam.
   auto& disc = const_cast<ConsistencyTerm&>(term_).discriminator();
   const size_t n = disc.n_params();
@@ -117,8 +127,7 @@ NamedArrays ConsistencySchedule::state() const {
   return a;
 }
 
-void ConsistencySchedule::load_state(const Checkpoint& ck, LidarNerfModel& model) {
-  inner_.load_state(ck, model);
+void ConsistencyLoss::load_state(const Checkpoint& ck) {
   auto& disc = term_.discriminator();
   const size_t n = disc.n_params();
   disc.params().write_vec(ck.array("consistency.disc.params", n));

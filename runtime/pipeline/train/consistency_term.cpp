@@ -46,9 +46,8 @@ ConsistencyTerm::ConsistencyTerm(cl::Runtime& rt, const Scene& scene,
   d_fake_m_ = cl::Buffer(rt, n_j * 8);
 }
 
-ConsistencyResult ConsistencyTerm::run(LidarNerfModel& model, const ConsistencyPair& p,
-                                       uint64_t seed, long step, bool train_discriminator,
-                                       bool pose_grads) {
+ConsistencyResult ConsistencyTerm::run(FieldPass& field, const ConsistencyPair& p,
+                                       bool train_discriminator, bool pose_grads) {
   ConsistencyResult res;
   const int n_i = sensor_i_.height * sensor_i_.width;
   const int h = sensor_j_.height, w = sensor_j_.width;
@@ -64,7 +63,8 @@ ConsistencyResult ConsistencyTerm::run(LidarNerfModel& model, const ConsistencyP
                                                    dirs_i_[3 * size_t(k) + 2]);
     for (int a = 0; a < 3; ++a) o[3 * size_t(k) + a] = t[a], d[3 * size_t(k) + a] = dw[a];
   }
-  const std::vector<float> out = model.forward_rays(o, d, n_i, seed, step);
+  const RenderedRays rays = field.render(o, d, n_i);
+  const std::vector<float>& out = rays.out;
   std::vector<float> depth(static_cast<size_t>(n_i), 0.0f);
   for (int k = 0; k < n_i; ++k) {
     const bool hit = out[3 * size_t(k) + 1] > float(cfg_.return_threshold);
@@ -107,7 +107,7 @@ ConsistencyResult ConsistencyTerm::run(LidarNerfModel& model, const ConsistencyP
   disc_->generator_grad(fake_m_, 1, h, w, d_fake_m_);
   res.l_con = disc_->read_losses().con;
   if (!std::isfinite(res.l_con))
-    throw NumericError("consistency term: L_con not finite at step " + std::to_string(step) +
+    throw NumericError("consistency term: L_con not finite at step " + std::to_string(field.step) +
                        " (pair " + std::to_string(p.i) + " → " + std::to_string(p.j) + ")");
   const std::vector<float> d_fake = d_fake_m_.read_vec<float>(2 * n_j);
   std::vector<float> grad_range(n_j);
@@ -116,13 +116,12 @@ ConsistencyResult ConsistencyTerm::run(LidarNerfModel& model, const ConsistencyP
   grad_range_.write_vec(grad_range);
   const render::ReprojectionPoseGradient pg = reproj_->backward(
       ctx, depth_i_, out_, grad_range_, grad_depth_i_, p.xi_i, p.xi_j);
-  // Frame i's depths → the field (pending until the step's update), and its rays → ξ_i.
+  // Frame i's depths → the field (this step's gradient), and its rays → ξ_i.
   const std::vector<float> g_depth = grad_depth_i_.read_vec<float>(size_t(n_i));
   std::vector<float> g_out(size_t(n_i) * 3, 0.0f);
   for (int k = 0; k < n_i; ++k) g_out[3 * size_t(k)] = g_depth[size_t(k)];
-  model.backward_external(g_out, pose_grads);
+  const RayGrads rg = field.backward(rays, g_out, pose_grads);
   if (pose_grads) {
-    const LidarNerfModel::RayGrads rg = model.read_ray_grads();
     res.grad_xi_i = pg.xi_i + render::pose_gradient(p.T_init_i, p.xi_i, {}, dirs_i_, rg.origin,
                                                     rg.direction);
     res.grad_xi_j = pg.xi_j;

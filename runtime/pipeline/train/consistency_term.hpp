@@ -5,7 +5,7 @@
 // and M_ij; fake = [D_ij, D_j], real = [M_ij ⊙ D_j, D_j] with D_j frame j's observed range
 // image (metres); optionally one discriminator step (hinge L_D, its own Adam); then the
 // generator term L_con = −mean D(fake) and its gradient, chained through the reprojection to
-// frame i's depths (→ the field, LidarNerfModel::backward_external: accumulated into this
+// frame i's depths (→ the field: the FieldPass's backward of the rays it rendered, into this
 // training step's gradient) and to both poses' corrections ξ_i, ξ_j, all scaled by λ_con.
 // One concept: the term and its gradient. When it runs and what the poses do with its
 // gradient is the schedule's business (consistency_schedule.hpp).
@@ -48,11 +48,12 @@ class ConsistencyTerm {
   ConsistencyTerm(cl::Runtime& rt, const Scene& scene, const ConsistencyConfig& cfg,
                   int max_rays);
 
-  // Renders, reprojects, steps the discriminator when `train_discriminator`, and leaves the
-  // field's share of λ_con·dL_con as the model's pending external gradient. Pose gradients are
-  // computed when `pose_grads` (else zero). Blocking (small read-backs).
-  ConsistencyResult run(LidarNerfModel& model, const ConsistencyPair& p, uint64_t seed,
-                        long step, bool train_discriminator, bool pose_grads);
+  // Renders frame i through `field` (jitter from its seed and step), reprojects, steps the
+  // discriminator when `train_discriminator`, and writes the field's share of λ_con·dL_con
+  // through the rendered rays' backward into the step's gradient. Pose gradients are computed
+  // when `pose_grads` (else zero). Blocking (small read-backs).
+  ConsistencyResult run(FieldPass& field, const ConsistencyPair& p, bool train_discriminator,
+                        bool pose_grads);
 
   adversarial::PatchDiscriminator& discriminator() { return *disc_; }
   const Sensor& render_sensor() const { return sensor_i_; }

@@ -6,14 +6,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <optional>
 
 #include "core/config.hpp"
 #include "core/error.hpp"
 #include "field/hash_grid.hpp"
 #include "metrics/evaluate.hpp"
 #include "pipeline/model/ray_batch.hpp"
-#include "render/pose_gradient.hpp"
 
 namespace sgnlf::pipeline {
 namespace fs = std::filesystem;
@@ -84,6 +82,7 @@ double PoseFreeStep::reweight(int frame) const {
 
 void PoseFreeStep::step(LidarNerfModel& model, uint64_t seed, long step, float lr) {
   const PoseFreeConfig& pc = *cfg_.pose_free;
+  if (!grad_reader_) grad_reader_ = make_pose_grad_reader(model.runtime().device_profile().pose_grad);
   const double progress = double(step) / double(cfg_.schedule.iterations);
   if (pc.coarse_to_fine) {
     auto w = field::barf_level_weights(progress, model.levels());
@@ -91,45 +90,21 @@ void PoseFreeStep::step(LidarNerfModel& model, uint64_t seed, long step, float l
   }
   const RayBatch b = draw_ray_batch(scene_, cfg_, seed, step, [&](int f) { return poses_.pose(size_t(f)); });
   const bool optimize = pc.pose_optim.optimize && step >= pc.pose_optim.start_step;
-  if (!optimize) poses_.drop_pending(size_t(b.frame));  // no pose step: a pending term is void
-  model.forward_backward(b, seed, step, optimize);
   const bool pose_only =
       std::find(scene_.pose_only.begin(), scene_.pose_only.end(), b.frame) != scene_.pose_only.end();
-  model.update(pose_only ? 0.0f : float(lr * reweight(b.frame)));
-  // With the pose gradient summed on the device, the loss and the sums come in one read.
-  std::optional<render::RayGradSums> sums;
+  const float lr_frame = pose_only ? 0.0f : float(lr * reweight(b.frame));
+  model.forward_backward(b, seed, step, optimize);
+  // No pose step: any pose gradient pending for the frame is void (a loss term's included).
+  if (!optimize) poses_.drop_pending(size_t(b.frame));
+  model.update(lr_frame);
   if (pc.reweight) {
-    double l = 0.0;
-    if (optimize && model.pose_grad_on_device()) {
-      const LidarNerfModel::LossAndRaySums r = model.read_loss_and_ray_grad_sums();
-      l = r.loss.total(), sums = r.sums;
-    } else {
-      l = model.read_loss().total();
-    }
+    const double l = grad_reader_->read_losses(model, optimize).total();
     double& e = ema_[size_t(b.frame)];
     e = seen_[size_t(b.frame)] == 0.0 ? l : pc.reweight->ema * e + (1.0 - pc.reweight->ema) * l;
     seen_[size_t(b.frame)] = 1.0;
   }
   if (!optimize) return;
-  const size_t f = size_t(b.frame);
-  poses_.step(f, pose_gradient(model, b, sums), progress);
-}
-
-Vec6 PoseFreeStep::pose_gradient(LidarNerfModel& model, const RayBatch& b,
-                                 const std::optional<render::RayGradSums>& sums) const {
-  const size_t f = size_t(b.frame);
-  if (model.pose_grad_on_device()) {  // the device profile's pose_grad: device
-    const render::RayGradSums s = sums ? *sums : model.read_ray_grad_sums();
-    return render::pose_gradient_from_world_sums(poses_.initial(f), poses_.correction(f),
-                                                 s.origin, s.cross);
-  }
-  const auto g = model.read_ray_grads();
-  std::vector<float> dirs_lidar(size_t(b.n_rays) * 3);
-  for (int i = 0; i < b.n_rays; ++i)
-    for (int a = 0; a < 3; ++a)
-      dirs_lidar[3 * size_t(i) + a] = scene_.directions[3 * size_t(b.pixels[size_t(i)]) + a];
-  return render::pose_gradient(poses_.initial(f), poses_.correction(f), {}, dirs_lidar, g.origin,
-                               g.direction);
+  poses_.step(size_t(b.frame), grad_reader_->pose_gradient(model, scene_, poses_, b), progress);
 }
 
 Json PoseFreeStep::log_fields() {

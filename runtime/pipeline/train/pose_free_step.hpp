@@ -9,15 +9,15 @@
 // <run>/geometric_log.jsonl.
 #pragma once
 #include <functional>
-#include <optional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "metrics/evaluate.hpp"
 #include "pipeline/model/ray_batch.hpp"
+#include "pipeline/train/pose_grad_reader.hpp"
 #include "pipeline/train/pose_set.hpp"
 #include "pipeline/train/step_policy.hpp"
-#include "render/pose_grad_sums.hpp"
 
 namespace sgnlf::pipeline {
 
@@ -63,12 +63,6 @@ class PoseFreeStep : public StepPolicy {
 
  private:
   Json pose_errors() const;
-  // dL/dξ of the batch's frame from the step's ray gradients: on the host from the per-ray
-  // gradients, or from their sums on the device (the device profile's pose_grad, read by the
-  // model: LidarNerfModel::pose_grad_on_device()); `sums`: the device's sums when the step read
-  // them already (with the loss, read_loss_and_ray_grad_sums).
-  Vec6 pose_gradient(LidarNerfModel& model, const RayBatch& b,
-                     const std::optional<render::RayGradSums>& sums) const;
   const Scene& scene_;
   const TrainConfig& cfg_;
   PoseSet& poses_;
@@ -81,6 +75,8 @@ class PoseFreeStep : public StepPolicy {
   std::vector<double> seen_;  // per frame: 1 once a step came from it
   std::vector<float> level_w_;
   double geometric_seconds_ = 0.0;
+  // The device profile's pose_grad, chosen on the first step.
+  std::unique_ptr<PoseGradReader> grad_reader_;
 };
 
 }  // namespace sgnlf::pipeline

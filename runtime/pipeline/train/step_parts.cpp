@@ -37,8 +37,10 @@ StepPolicy& RunStepParts::pose_free() {
 StepPolicy& RunStepParts::consistency(StepPolicy& inner) {
   if (!c_.consistency_term()) return inner;
   require(poses_ != nullptr, "the cross-frame consistency needs a pose-free method");
-  consistency_step_ = std::make_unique<ConsistencySchedule>(inner, rt_, scene_, c_, *poses_,
-                                                            model_capacity(c_), seed_);
+  // The term runs in the model's step; the schedule logs it and checkpoints its state.
+  auto& loss = static_cast<ConsistencyLoss&>(model_.add_loss(std::make_unique<ConsistencyLoss>(
+      rt_, scene_, c_, *poses_, model_capacity(c_), seed_)));
+  consistency_step_ = std::make_unique<ConsistencySchedule>(inner, loss);
   return *consistency_step_;
 }
 
@@ -57,8 +59,10 @@ StepPolicy& RunStepParts::spectral(StepPolicy& inner) {
 StepPolicy& RunStepParts::scene_flow(StepPolicy& inner) {
   if (!c_.flow_supervision()) return inner;
   require(model_.temporal(), "the scene-flow supervision needs the 4D encoder (config 'lidar4d')");
-  flow_step_ = std::make_unique<FlowSupervisionStep>(inner, d_, scene_, c_, seed_);
-  return *flow_step_;
+  // A loss term of the model's step: `inner` is the step.
+  flow_ = &static_cast<FlowSupervision&>(model_.add_loss(
+      make_flow_supervision(rt_.device_profile().chamfer, d_, scene_, c_, seed_)));
+  return inner;
 }
 
 }  // namespace sgnlf::pipeline

@@ -1,7 +1,8 @@
 // The step parts of a training run (methods/method.hpp's StepParts) built on the device: a
-// method's compose() asks for them, in its order, and this object owns what it built. Each part
-// is built only when the config turns its feature on (TrainConfig::confidence_graph(),
-// consistency_term(), hybrid_encoder()), else it hands back the policy it was given.
+// method's compose() asks for them, in its order, and this object owns what it built (the loss
+// terms a part adds, the model's list owns). Each part is built only when the config turns its
+// feature on (TrainConfig::confidence_graph(), consistency_term(), hybrid_encoder(),
+// flow_supervision()), else it hands back the policy it was given.
 #pragma once
 #include <memory>
 #include <string>
@@ -31,7 +32,7 @@ class RunStepParts : public StepParts {
   PoseFreeStep* pose_step() { return pose_step_.get(); }
   ConsistencySchedule* consistency_step() { return consistency_step_.get(); }
   SpectralSchedule* spectral_step() { return spectral_step_.get(); }
-  FlowSupervisionStep* flow_step() { return flow_step_.get(); }
+  FlowSupervision* flow_term() { return flow_; }
 
  private:
   cl::Runtime& rt_;
@@ -46,7 +47,7 @@ class RunStepParts : public StepParts {
   std::unique_ptr<PoseFreeStep> pose_step_;
   std::unique_ptr<ConsistencySchedule> consistency_step_;
   std::unique_ptr<SpectralSchedule> spectral_step_;
-  std::unique_ptr<FlowSupervisionStep> flow_step_;
+  FlowSupervision* flow_ = nullptr;  // owned by the model's list of loss terms
 };
 
 }  // namespace sgnlf::pipeline

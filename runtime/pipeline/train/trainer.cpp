@@ -19,14 +19,13 @@ std::string checkpoint_path(const std::string& run_dir) {
   return (fs::path(run_dir) / "checkpoints" / "latest.ckpt").string();
 }
 
-namespace {
-
-Json loss_json(const render::LossValues& l) {
-  Json j{{"total", l.total()}, {"depth", l.depth}, {"return", l.ret},
-         {"intensity", l.intensity}, {"grad", l.grad}};
-  if (l.carve != 0.0f) j["carve"] = l.carve;  // written only with weight carving on
+Json loss_json(const LossReport& l) {
+  Json j{{"total", l.total()}};
+  for (const LossRecord& r : l.records()) j[r.name] = r.value;
   return j;
 }
+
+namespace {
 
 void append_line(const std::string& path, const Json& j) {
   std::ofstream out(path, std::ios::app);
@@ -166,9 +165,9 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
     const bool eval_due = cfg.schedule.eval_every > 0 && done % cfg.schedule.eval_every == 0 &&
                           opt.evaluate;
     if (done % cfg.schedule.log_every == 0 || ck_due || eval_due || (first && log_first)) {
-      const auto loss = model.read_loss();  // waits for the step
+      const LossReport loss = model.read_losses();  // waits for the step
       const double total_loss = loss.total();
-      if (!std::isfinite(total_loss))
+      if (!std::isfinite(total_loss) || !loss.finite())
         throw NumericError("training diverged at step " + std::to_string(done) + ": loss = " +
                            std::to_string(total_loss) + " (lr " + std::to_string(lr) +
                            "); the last good checkpoint (step " + std::to_string(last_good) +

@@ -44,11 +44,15 @@ struct TrainSummary {
   double samples_per_s = 0.0;  // rays × (uniform + importance) per second
   // Mean fraction of those samples evaluated (< 1 with early ray termination).
   double live_fraction = 1.0;
-  render::LossValues first_loss, last_loss;  // first and last logged losses of this run
+  LossReport first_loss, last_loss;  // first and last logged losses of this run
   bool finished = false;      // reached config.schedule.iterations
 };
 
 std::string checkpoint_path(const std::string& run_dir);
+
+// The loss terms' values as train_log.jsonl and summary.json write them: {"total", then each
+// record by its name}.
+Json loss_json(const LossReport& l);
 
 // Trains `model` (initialised here from the seed unless a checkpoint is resumed).
 // Throws NumericError on NaN/Inf or divergence, naming the step and the kept checkpoint.
