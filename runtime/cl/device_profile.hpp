@@ -9,7 +9,7 @@
 // existed (local size 64, the serial per-level backward, hash-grid chunks of 256 points, plane
 // chunks of 64, the float16 register-tiled GEMMs of kernels/field/mlp.cl); "gpu" keeps local
 // size 64, runs one point per work-item, the deterministic parallel backward (sorted by entry,
-// summed in point order, bit-identical to the serial one: docs/architecture.md), the
+// summed in point order, bit-identical to the serial one: docs/opencl-layer.md), the
 // local-memory tiled GEMMs of kernels/field/mlp_tiles.cl, compaction's scan, the pose
 // gradient's sums and the loss's on the device.
 // A device of type CPU gets "cpu", any other device (GPU, accelerator) "gpu"; the vendor is recorded in the result's context but
