@@ -179,7 +179,9 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
   // different ones are refused unless the later input wins.
   std::map<CellKey, Claim> chosen;
   for (const auto& [key, list] : claims) {
-    const auto& [method, sequence, seed] = key;
+    // Copies, not structured bindings: a lambda may not capture those in C++17 (clang refuses).
+    const std::string method = std::get<0>(key), sequence = std::get<1>(key);
+    const uint64_t seed = std::get<2>(key);
     const auto record = [&](Json& to, const Claim& was, const Claim& by) {
       to.push_back(Json{{"method", method}, {"sequence", sequence}, {"seed", seed},
                         {"source", was.source}, {"by", by.source}});
