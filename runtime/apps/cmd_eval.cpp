@@ -42,10 +42,16 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
   sub.add_option("--importance", a->sampling.n_importance,
                  "Importance samples per ray when rendering (default: the config's render.eval_importance, else as trained)");
   sub.add_option("--depth", a->sampling.depth,
-                 "Rendered depth: expected (sum of w_i t_i, as trained and published) or median "
-                 "(where the accumulated weight reaches 1/2; a diagnostic). Default: the config's "
-                 "render.eval_depth, else expected")
-      ->check(CLI::IsMember({"expected", "median"}));
+                 "Rendered depth: expected (sum of w_i t_i, as trained and published), median "
+                 "(where the accumulated weight reaches 1/2) or mix (the median on the rays "
+                 "whose depth variance exceeds 10x the frame's median, GS-LiDAR's; protocol "
+                 "renderer). Default: the config's render.eval_depth, else expected")
+      ->check(CLI::IsMember({"expected", "median", "mix"}));
+  sub.add_option("--out-of-range", a->sampling.out_of_range,
+                 "drop: a rendered return at a range the sensor cannot report (within its "
+                 "min_range_m or beyond max_range_m) is a drop; keep: scored as rendered. "
+                 "Default: the config's render.eval_drop_out_of_range, else keep")
+      ->check(CLI::IsMember({"drop", "keep"}));
   sub.add_flag("--json", a->json, "Print the metrics JSON");
   a->sensor_rate.add(sub);
   sub.get_option("--sensor")->description(

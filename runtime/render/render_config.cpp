@@ -28,9 +28,9 @@ void RenderConfig::validate(const std::string& where) const {
   if (!(far_m > near_m))
     throw ConfigError(where + ": 'far_m' = " + std::to_string(far_m) +
                       " must exceed 'near_m' = " + std::to_string(near_m));
-  if (eval_depth != "expected" && eval_depth != "median")
+  if (eval_depth != "expected" && eval_depth != "median" && eval_depth != "mix")
     throw ConfigError(where + ": 'eval_depth' = '" + eval_depth +
-                      "' (expected \"expected\" or \"median\")");
+                      "' (expected \"expected\", \"median\" or \"mix\")");
   if (head_weight_threshold > 0.0f && !(stop_transmittance > 0.0f))
     throw ConfigError(where + ": 'head_weight_threshold' = " +
                       std::to_string(head_weight_threshold) +

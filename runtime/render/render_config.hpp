@@ -43,9 +43,17 @@ struct RenderConfig {
   int eval_importance = -1;
   // Depth of a rendered (evaluated) ray: "expected" = sum w_i t_i (method.md §0, what every
   // method here trains with and the tables report) or "median" = the t where the accumulated
-  // weight reaches 1/2 (a diagnostic: it cannot blend a foreground edge with the background).
+  // weight reaches 1/2 (it cannot blend a foreground edge with the background) or "mix"
+  // (GS-LiDAR's: the median where a ray's depth variance exceeds 10x the frame's median
+  // variance, the expected depth elsewhere: view_rules.hpp; the fast renderer, which keeps no
+  // variance, renders the median for it).
   // Training always uses the expected depth.
   std::string eval_depth = "expected";
+  // "mix"'s factor on the frame's median depth variance (GS-LiDAR's 10).
+  float eval_mix_factor = 10.0f;
+  // A rendered return at a range the sensor cannot report (Sensor::in_range) becomes a drop, as
+  // the loaders treat such points in the observed images (view_rules.hpp). Evaluation only.
+  bool eval_drop_out_of_range = false;
   // Early ray termination (instant-ngp / torch-ngp's transmittance threshold): samples behind
   // the point where a density-only pass's transmittance drops below this (plus one coarse bin)
   // are not evaluated; their weight is below it. With importance sampling that pass is the
@@ -112,6 +120,8 @@ struct RenderConfig {
     v("eval_samples", s.eval_samples, 0, 1 << 16, config::omit_when(0));
     v("eval_importance", s.eval_importance, -1, 1 << 16, config::omit_when(-1));
     v("eval_depth", s.eval_depth, config::omit_when<std::string>("expected"));
+    v("eval_mix_factor", s.eval_mix_factor, 1e-3f, 1e6f, config::omit_when(10.0f));
+    v("eval_drop_out_of_range", s.eval_drop_out_of_range, config::omit_when(false));
     v("stop_transmittance", s.stop_transmittance, 0.0f, 0.5f, config::omit_when(0.0f));
     v("coarse_waves", s.coarse_waves, config::omit_when(1));
     v("head_weight_threshold", s.head_weight_threshold, 0.0f, 0.1f, config::omit_when(0.0f));

@@ -3,6 +3,7 @@
 // a folder holding another run is refused.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -12,6 +13,7 @@
 #include "pipeline/run/anatomy_run.hpp"
 #include "pipeline/run/evaluate.hpp"
 #include "pipeline/model/render_view.hpp"
+#include "pipeline/model/view_rules.hpp"
 #include "pipeline/run/session.hpp"
 #include "support/test_device.hpp"
 #include "tiny_scene.hpp"
@@ -124,17 +126,17 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
 
   // A finer render sampling than training's loads the same checkpoint and is recorded.
   const int trained_samples = run.manifest.config.render.n_samples;
-  LoadedRun fine = load_run(test::runtime(), run_dir, "", RenderSampling{2 * trained_samples, 8, ""});
+  LoadedRun fine = load_run(test::runtime(), run_dir, "", RenderSampling{2 * trained_samples, 8, "", ""});
   CHECK(fine.step == 12);
   CHECK(fine.manifest.config.render.n_samples == 2 * trained_samples);
   const Json mf = eval_run(fine, run_dir);
   CHECK(mf.at("render_sampling").at("n_samples").get<int>() == 2 * trained_samples);
   CHECK(mf.at("render_sampling").at("n_importance").get<int>() == 8);
   CHECK(std::isfinite(mf.at("metrics").at("depth_rmse").get<double>()));
-  CHECK_THROWS_AS(load_run(test::runtime(), run_dir, "", RenderSampling{-1, -1, ""}), ConfigError);
+  CHECK_THROWS_AS(load_run(test::runtime(), run_dir, "", RenderSampling{-1, -1, "", ""}), ConfigError);
 
   // The median-depth diagnostic changes the rendered depth only, and is recorded.
-  LoadedRun med = load_run(test::runtime(), run_dir, "", RenderSampling{0, -1, "median"});
+  LoadedRun med = load_run(test::runtime(), run_dir, "", RenderSampling{0, -1, "median", ""});
   CHECK(med.manifest.config.render.eval_depth == "median");
   const Json mm = eval_run(med, run_dir);
   CHECK(mm.at("render_sampling").at("depth") == "median");
@@ -144,7 +146,61 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
   CHECK(med_img.ray_drop == from_run.ray_drop);
   CHECK(med_img.intensity == from_run.intensity);
   CHECK(med_img.range != from_run.range);
-  CHECK_THROWS_AS(load_run(test::runtime(), run_dir, "", RenderSampling{0, -1, "mean"}),
+  CHECK_THROWS_AS(load_run(test::runtime(), run_dir, "", RenderSampling{0, -1, "mean", ""}),
+                  ConfigError);
+
+  // "mix": the median depth exactly where the render's variance exceeds the factor (GS-LiDAR's
+  // 10 by default) times the frame's median, the expected depth elsewhere; the return mask and
+  // intensity untouched. This short training's variances are too even for 10x (or 2x) to pick any ray,
+  // so the factor here is 1 (the rays above the median).
+  LoadedRun mixr = load_run(test::runtime(), run_dir, "", RenderSampling{0, -1, "mix", ""});
+  mixr.manifest.config.render.eval_mix_factor = 1.0f;
+  {
+    const ModelState trained = mixr.model->state();
+    mixr.model = std::make_unique<LidarNerfModel>(test::runtime(), mixr.manifest.config,
+                                                  float(mixr.scene->norm.scale),
+                                                  model_capacity(mixr.manifest.config));
+    mixr.model->set_state(trained);
+  }
+  DepthStats st;
+  const RangeImage exp_img = render_view(*run.model, *run.scene, T_test,
+                                         run.manifest.config.schedule.render_chunk_rays, -1,
+                                         nullptr, &st);
+  const RangeImage mix_img = render_view(*mixr.model, *mixr.scene, T_test,
+                                         mixr.manifest.config.schedule.render_chunk_rays);
+  const double thr = mix_variance_threshold(st.variance_m2, 1.0);
+  size_t n_med = 0;
+  for (size_t p = 0; p < mix_img.size(); ++p) {
+    const bool med_px = double(st.variance_m2[p]) > thr;
+    n_med += med_px;
+    if (mix_img.range[p] != (med_px ? st.median_m[p] : exp_img.range[p])) FAIL("pixel " << p);
+  }
+  CHECK(n_med > 0);
+  CHECK(n_med < mix_img.size());
+  CHECK(mix_img.ray_drop == exp_img.ray_drop);
+  CHECK(mix_img.intensity == exp_img.intensity);
+  CHECK(eval_run(mixr, run_dir).at("render_sampling").at("depth") == "mix");
+
+  // Out-of-range returns: with "drop", exactly the predicted returns outside the sensor's range
+  // become drops. A sensor reaching 60 % of the farthest rendered return makes some.
+  LoadedRun dropr = load_run(test::runtime(), run_dir, "", RenderSampling{0, -1, "", "drop"});
+  CHECK(dropr.manifest.config.render.eval_drop_out_of_range);
+  float far_m = 0.0f;
+  for (size_t p = 0; p < exp_img.size(); ++p)
+    if (exp_img.ray_drop[p] > 0.5f) far_m = std::max(far_m, exp_img.range[p]);
+  dropr.scene->sensor.max_range_m = 0.6 * double(far_m);
+  const RangeImage drop_img = render_view(*dropr.model, *dropr.scene, T_test,
+                                          dropr.manifest.config.schedule.render_chunk_rays);
+  size_t n_dropped = 0;
+  for (size_t p = 0; p < drop_img.size(); ++p) {
+    const bool out = exp_img.ray_drop[p] > 0.5f &&
+                     !dropr.scene->sensor.in_range(double(exp_img.range[p]));
+    n_dropped += out;
+    if (drop_img.ray_drop[p] != (out ? 0.0f : exp_img.ray_drop[p])) FAIL("pixel " << p);
+  }
+  CHECK(n_dropped > 0);
+  CHECK(drop_img.range == exp_img.range);
+  CHECK_THROWS_AS(load_run(test::runtime(), run_dir, "", RenderSampling{0, -1, "", "cut"}),
                   ConfigError);
 
   // A config's eval sampling is what eval uses unless overridden; training does not see it.
@@ -157,7 +213,7 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
   CHECK(by_config.manifest.config.render.n_samples == 3 * trained_samples);
   CHECK(by_config.manifest.config.render.n_importance == 5);
   CHECK(by_config.model->state().params == run.model->state().params);  // same training
-  LoadedRun overridden = load_run(test::runtime(), ev.run_dir, "", RenderSampling{0, 2, ""});
+  LoadedRun overridden = load_run(test::runtime(), ev.run_dir, "", RenderSampling{0, 2, "", ""});
   CHECK(overridden.manifest.config.render.n_samples == 3 * trained_samples);
   CHECK(overridden.manifest.config.render.n_importance == 2);
 

@@ -42,6 +42,10 @@ FastRenderer::FastRenderer(cl::Runtime& rt, LidarNerfModel& model, const Scene& 
     : rt_(rt), model_(model), scene_(scene), cfg_(cfg), chunk_(chunk_rays),
       points_(scene_points(scene)), box_(points_box(points_)) {
   cfg_.validate();
+  if (model_.render_config().eval_depth == "mix")
+    log::info("fast renderer: render.eval_depth \"mix\" needs the protocol renderer's depth "
+              "variance; the fast renderer renders the median depth on every ray (--renderer "
+              "protocol for mix)");
 }
 
 const render::OccupancyGrid& FastRenderer::grid(int frame) {

@@ -159,7 +159,8 @@ class LidarNerfModel {
 
   // Renders rays (n ≤ max_rays; origins/directions n × 3, normalised frame) without jitter:
   // returns n × 3 (depth normalised, return probability, intensity). Blocking. The depth is the
-  // expected depth, or the median depth when the config's render.eval_depth is "median".
+  // expected depth, or the median depth when the config's render.eval_depth is "median" ("mix"
+  // is a frame's rule: render_view applies it from depth_stats()).
   std::vector<float> render_rays(const std::vector<float>& origins,
                                  const std::vector<float>& directions, int n);
 
@@ -195,6 +196,8 @@ class LidarNerfModel {
   // n × 2 (return probability, intensity) after the sigmoid, as the renderer weights them
   // (model_bake.cpp; what `sgnlf bake` stores per vertex). Blocking; chunks of max_rays.
   std::vector<float> head_at(const std::vector<float>& x, const std::vector<float>& dirs, int n);
+  // The render settings the model was built with (render_view reads the evaluation rules).
+  const render::RenderConfig& render_config() const { return cfg_.render; }
   // The renderer's uniform bin width in the normalised frame (the last sample's δ).
   float bin_width() const { return cfg_.render.bin_width(scene_scale_); }
 

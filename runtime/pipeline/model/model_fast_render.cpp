@@ -69,7 +69,9 @@ std::vector<float> LidarNerfModel::render_rays_fast(const std::vector<float>& or
     L.samples = S;
     L.refine = cfg.refine;
     L.coarse = cfg.coarse;
-    march_->render(n, o_, d_, L, grid, cfg_.render.eval_depth == "median", density, head, out_);
+    // "mix" needs the frame's depth variance, which the fast paths do not keep: the median
+    // stands for it (FastRenderer says so when it is made).
+    march_->render(n, o_, d_, L, grid, cfg_.render.eval_depth != "expected", density, head, out_);
     fast_evaluated_ = march_->evaluated();
     fast_head_ = march_->head_rows();
     march_rows_ = march_->rows();
@@ -110,7 +112,7 @@ std::vector<float> LidarNerfModel::render_rays_fast(const std::vector<float>& or
   };
   fast_head_ = fast_->head_pass(n, M, weights_, head_out_, head);
   renderer_.forward(t_, h0_, head_out_, n, M, out_, weights_);
-  if (cfg_.render.eval_depth == "median") renderer_.median_depth(t_, weights_, n, M, out_);
+  if (cfg_.render.eval_depth != "expected") renderer_.median_depth(t_, weights_, n, M, out_);
   return out_.read_vec<float>(size_t(n) * 3);
 }
 

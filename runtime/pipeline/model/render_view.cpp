@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "pipeline/model/ray_batch.hpp"
+#include "pipeline/model/view_rules.hpp"
 
 namespace sgnlf::pipeline {
 
@@ -29,6 +30,11 @@ RangeImage render_view(LidarNerfModel& model, const Scene& scene, const Pose& T_
                     int(scene.T_world_lidar.size()));
   const size_t n = img.size();
   require(!(fast && stats), "render_view: depth statistics come from the protocol renderer only");
+  const render::RenderConfig& rc = model.render_config();
+  // "mix" is the protocol renderer's (the fast one renders the median depth for it).
+  const bool mix = rc.eval_depth == "mix" && !fast;
+  DepthStats own;
+  if (mix && !stats) stats = &own;
   if (stats) {
     stats->median_m.assign(n, 0.0f);
     stats->opacity.assign(n, 0.0f);
@@ -63,6 +69,8 @@ RangeImage render_view(LidarNerfModel& model, const Scene& scene, const Pose& T_
       }
     }
   }
+  if (mix) apply_mix_depth(img, *stats, double(rc.eval_mix_factor));
+  if (rc.eval_drop_out_of_range) drop_out_of_range(img, scene.sensor);
   return img;
 }
 

@@ -9,6 +9,7 @@
 #include "metrics/evaluate.hpp"
 #include "metrics/naive_baseline.hpp"
 #include "pipeline/model/render_view.hpp"
+#include "pipeline/model/view_rules.hpp"
 #include "pipeline/run/ray_drop_stage.hpp"
 
 namespace sgnlf::pipeline {
@@ -25,15 +26,12 @@ constexpr const char* kAltDepthKeys[] = {"cd", "cd_gt_to_pred", "cd_pred_to_gt",
 void add_depth_variants(Json& m, const Dataset& d, int f, const RangeImage& pred,
                         const DepthStats& st) {
   const RangeImage& gt = d.frames[size_t(f)].image;
-  std::vector<float> var = st.variance_m2;
-  std::nth_element(var.begin(), var.begin() + long(var.size() / 2), var.end());
-  const double threshold = 10.0 * double(var[var.size() / 2]);
   RangeImage med = pred, mix = pred;
-  size_t mixed = 0, returning = 0;
+  const size_t mixed = apply_mix_depth(mix, st);
+  size_t returning = 0;
   double opacity = 0.0;
   for (size_t p = 0; p < pred.size(); ++p) {
     med.range[p] = st.median_m[p];
-    if (double(st.variance_m2[p]) > threshold) mix.range[p] = st.median_m[p], ++mixed;
     if (pred.ray_drop[p] > 0.5f) opacity += st.opacity[p], ++returning;
   }
   const Json jm = metrics::evaluate_view(d.sensor, med, gt);

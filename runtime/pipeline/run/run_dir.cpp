@@ -103,6 +103,12 @@ LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
     run.manifest.config.render.eval_depth = sampling.depth;
     run.manifest.config.render.validate("render depth override");
   }
+  if (!sampling.out_of_range.empty()) {
+    if (sampling.out_of_range != "drop" && sampling.out_of_range != "keep")
+      throw ConfigError("out-of-range override: '" + sampling.out_of_range +
+                        "' (expected \"drop\" or \"keep\")");
+    run.manifest.config.render.eval_drop_out_of_range = sampling.out_of_range == "drop";
+  }
   const std::string data = dataset_override.empty() ? run.manifest.dataset : dataset_override;
   if (data_options) run.manifest.data_options = *data_options;
   run.dataset = std::make_unique<Dataset>(

@@ -72,7 +72,10 @@ struct LoadedRun {
 struct RenderSampling {
   int n_samples = 0;
   int n_importance = -1;
-  std::string depth;  // "expected" or "median" (render.eval_depth); empty keeps the config's
+  std::string depth;  // "expected", "median" or "mix" (render.eval_depth); empty keeps the config's
+  // "drop" or "keep" a rendered return the sensor cannot report (render.eval_drop_out_of_range);
+  // empty keeps the config's
+  std::string out_of_range;
 };
 
 // `dataset_override` replaces the manifest's dataset path when not empty. The checkpoint is
