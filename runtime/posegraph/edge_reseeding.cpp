@@ -42,6 +42,13 @@ std::vector<Edge> crossing_edges(const std::vector<Edge>& edges, int k) {
   return out;
 }
 
+std::vector<Edge> touching_edges(const std::vector<Edge>& edges, int k) {
+  std::vector<Edge> out;
+  for (const Edge& e : edges)
+    if (e.i == k || e.j == k) out.push_back(e);
+  return out;
+}
+
 namespace {
 
 // T_k⁻¹ · T_{k+1}.
@@ -81,6 +88,49 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
   // alike; made again only after a kept move.
   std::vector<Pose> cur;
   bool cur_valid = false;
+  // Refines `cand` and judges it against the current poses on `local_edges` (the judge's: the
+  // edges crossing the cut, or touching the frame) and on every other edge; keeps it under the
+  // rule of the header. Fills t's losses and t.kept.
+  const auto judge_hypothesis = [&](const std::vector<Edge>& local_edges,
+                                    const std::vector<Edge>& stage_edges, std::vector<Pose> cand,
+                                    ReseedTrial& t) {
+    const GraphLoss local(judge->clouds(), local_edges, judge->min_distance(), 1,
+                          judge->direction(), judge->max_distance());
+    const GraphLoss stage_local(loss->clouds(), stage_edges, loss->min_distance(), 1,
+                                loss->direction(), loss->max_distance());
+    std::vector<Edge> rest_edges;  // the others: a rigid move leaves them alone, the refinement not
+    for (const Edge& x : judge->edges())
+      if (std::find_if(local_edges.begin(), local_edges.end(), [&](const Edge& y) {
+            return y.i == x.i && y.j == x.j;
+          }) == local_edges.end())
+        rest_edges.push_back(x);
+    std::optional<GraphLoss> rest;
+    if (!rest_edges.empty())
+      rest.emplace(judge->clouds(), rest_edges, judge->min_distance(), base.threads,
+                   judge->direction(), judge->max_distance());
+    if (!cur_valid) {
+      cur = T;
+      polish(cur);
+      cur_valid = true;
+    }
+    t.crossing_before = loss_at(local, cur, tau);
+    t.stage_crossing_before = loss_at(stage_local, cur, tau);
+    t.rest_before = rest ? loss_at(*rest, cur, tau) : 0.0;
+    polish(cand);
+    t.crossing_after = loss_at(local, cand, tau);
+    t.stage_crossing_after = loss_at(stage_local, cand, tau);
+    t.rest_after = rest ? loss_at(*rest, cand, tau) : 0.0;
+    t.kept = std::isfinite(t.crossing_after) &&
+             t.crossing_after < (1.0 - cfg.min_gain) * t.crossing_before &&
+             t.rest_after <= (1.0 + cfg.min_gain) * t.rest_before;
+    out.trials.push_back(t);
+    if (t.kept) {
+      T = std::move(cand);
+      cur_valid = false;
+      ++out.kept;
+    }
+    return t.kept;
+  };
   for (int round = 0; round < cfg.max_rounds; ++round) {
     int kept_this_round = 0;
     // A spike: edge e's motion differs from both neighbours' by more than min_difference_m while
@@ -93,28 +143,8 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
       if (!(d_a > cfg.min_difference_m && d_b > cfg.min_difference_m &&
             d_ab <= cfg.min_difference_m))
         continue;
-      const GraphLoss local(judge->clouds(), crossing_edges(judge->edges(), e),
-                            judge->min_distance(), 1, judge->direction(), judge->max_distance());
-      const GraphLoss stage_local(loss->clouds(), crossing_edges(loss->edges(), e),
-                                  loss->min_distance(), 1, loss->direction(),
-                                  loss->max_distance());
-      std::vector<Edge> rest_edges;  // the others: a rigid move leaves them alone, the refinement not
-      for (const Edge& x : judge->edges())
-        if (!(std::min(x.i, x.j) <= e && std::max(x.i, x.j) > e)) rest_edges.push_back(x);
-      std::optional<GraphLoss> rest;
-      if (!rest_edges.empty())
-        rest.emplace(judge->clouds(), rest_edges, judge->min_distance(), base.threads,
-                     judge->direction(), judge->max_distance());
-      if (!cur_valid) {
-        cur = T;
-        polish(cur);
-        cur_valid = true;
-      }
       ReseedTrial t;
       t.round = round, t.edge = e, t.difference_m = std::min(d_a, d_b);
-      t.crossing_before = loss_at(local, cur, tau);
-      t.stage_crossing_before = loss_at(stage_local, cur, tau);
-      t.rest_before = rest ? loss_at(*rest, cur, tau) : 0.0;
       // The hypothesis: frames e+1 … moved rigidly so that edge e takes the neighbours' mean
       // motion (a rigid move of the suffix changes no other edge).
       const Eigen::Quaterniond qa(a.rotation()), qb(b.rotation());
@@ -124,20 +154,27 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
       std::vector<Pose> cand = T;
       const Pose C = (T[size_t(e)] * hyp) * T[size_t(e) + 1].inverse();
       for (int j = e + 1; j < n; ++j) cand[size_t(j)] = C * T[size_t(j)];
-      polish(cand);
-      t.crossing_after = loss_at(local, cand, tau);
-      t.stage_crossing_after = loss_at(stage_local, cand, tau);
-      t.rest_after = rest ? loss_at(*rest, cand, tau) : 0.0;
-      t.kept = std::isfinite(t.crossing_after) &&
-               t.crossing_after < (1.0 - cfg.min_gain) * t.crossing_before &&
-               t.rest_after <= (1.0 + cfg.min_gain) * t.rest_before;
-      out.trials.push_back(t);
-      if (t.kept) {
-        T = std::move(cand);
-        cur_valid = false;
-        ++out.kept;
-        ++kept_this_round;
-      }
+      kept_this_round += judge_hypothesis(crossing_edges(judge->edges(), e),
+                                          crossing_edges(loss->edges(), e), std::move(cand), t);
+    }
+    // A frame alone: both of frame k's edges differ from their outer neighbours'. Its
+    // hypothesis is frame k halfway between frames k-1 and k+1.
+    for (int k = 2; cfg.frames && k + 2 < n; ++k) {
+      const Pose a = relative(T, k - 2), e1 = relative(T, k - 1), e2 = relative(T, k),
+                 b = relative(T, k + 1);
+      const double d1 = (e1.translation() - a.translation()).norm();
+      const double d2 = (e2.translation() - b.translation()).norm();
+      if (!(d1 > cfg.min_difference_m && d2 > cfg.min_difference_m)) continue;
+      ReseedTrial t;
+      t.round = round, t.edge = k - 1, t.frame = k, t.difference_m = std::min(d1, d2);
+      const Pose& P = T[size_t(k) - 1];
+      const Pose& N = T[size_t(k) + 1];
+      const Eigen::Quaterniond qp(P.rotation()), qn(N.rotation());
+      std::vector<Pose> cand = T;
+      cand[size_t(k)].linear() = qp.slerp(0.5, qn).toRotationMatrix();
+      cand[size_t(k)].translation() = 0.5 * (P.translation() + N.translation());
+      kept_this_round += judge_hypothesis(touching_edges(judge->edges(), k),
+                                          touching_edges(loss->edges(), k), std::move(cand), t);
     }
     if (kept_this_round == 0) break;
   }
@@ -146,17 +183,22 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
 
 Json reseed_json(const ReseedResult& r) {
   Json trials = Json::array();
-  for (const auto& t : r.trials)
-    trials.push_back({{"round", t.round},
-                      {"edge", Json::array({t.edge, t.edge + 1})},
-                      {"difference_m", t.difference_m},
-                      {"crossing_before", t.crossing_before},
-                      {"crossing_after", t.crossing_after},
-                      {"stage_crossing_before", t.stage_crossing_before},
-                      {"stage_crossing_after", t.stage_crossing_after},
-                      {"rest_before", t.rest_before},
-                      {"rest_after", t.rest_after},
-                      {"kept", t.kept}});
+  for (const auto& t : r.trials) {
+    Json j{{"round", t.round}};
+    if (t.frame >= 0)
+      j["frame"] = t.frame;
+    else
+      j["edge"] = Json::array({t.edge, t.edge + 1});
+    j.update(Json{{"difference_m", t.difference_m},
+                  {"crossing_before", t.crossing_before},
+                  {"crossing_after", t.crossing_after},
+                  {"stage_crossing_before", t.stage_crossing_before},
+                  {"stage_crossing_after", t.stage_crossing_after},
+                  {"rest_before", t.rest_before},
+                  {"rest_after", t.rest_after},
+                  {"kept", t.kept}});
+    trials.push_back(j);
+  }
   return Json{{"kept", r.kept}, {"trials", trials}};
 }
 

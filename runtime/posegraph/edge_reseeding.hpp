@@ -22,6 +22,14 @@
 // plane normals see the along-road offset of every pole and facade, tells them apart. Annealing
 // with point-to-plane itself does worse on another twin (docs/studies/pose-reseeding), so the
 // hypotheses are refined with the stage's own loss and only judged with `judge`.
+//
+// A frame can be wrong alone (`frames`): at a sharp turn of nuScenes scene-0916 at 1 Hz one
+// frame settles about 42° off in rotation, and both of its edges carry the error, so neither is
+// a spike between agreeing neighbours and no edge hypothesis is tried. A frame k whose two edges
+// both differ from their outer neighbours ((k-2, k-1) and (k+1, k+2)) by more than
+// min_difference_m is a candidate; its hypothesis puts frame k halfway between frames k-1 and
+// k+1 (rotation slerped, translation averaged), refined alike and kept under the same rule, with
+// the edges that touch k in place of the crossing ones.
 #pragma once
 #include <memory>
 #include <string>
@@ -44,6 +52,7 @@ struct ReseedConfig {
   int max_rounds = 2;             // passes over the edges (a kept move can expose another)
   // The residual that decides ("point_to_point" or "point_to_plane"; "" = the stage's own).
   std::string judge;
+  bool frames = false;  // also single-frame hypotheses (above)
 
   template <class Self, class V>
   static void fields(Self& s, V& v) {
@@ -53,6 +62,7 @@ struct ReseedConfig {
     v("min_gain", s.min_gain, 0.0, 1.0);
     v("max_rounds", s.max_rounds, 1, 100);
     v("judge", s.judge, config::omit_when(std::string()));  // added later
+    v("frames", s.frames, config::omit_when(false));        // added later
   }
   // ConfigError naming the field.
   void validate(const std::string& where = "reseed") const;
@@ -60,7 +70,8 @@ struct ReseedConfig {
 
 struct ReseedTrial {
   int round = 0;
-  int edge = 0;       // k: the edge (k, k+1)
+  int edge = 0;       // k: the edge (k, k+1); for a frame trial, the frame's first edge (k-1, k)
+  int frame = -1;     // a frame trial's frame k (its edges' loss is the "crossing" one); -1: an edge trial
   double difference_m = 0.0;       // min over the neighbours of |t_rel(e) − t_rel(e ± 1)|
   double crossing_before = 0.0;    // loss of the edges crossing the cut, current poses refined
   double crossing_after = 0.0;     // the same with the hypothesis, refined
@@ -78,6 +89,8 @@ struct ReseedResult {
 
 // Edges (a, b) of `edges` with a ≤ k < b (either orientation): those crossing the cut after k.
 std::vector<Edge> crossing_edges(const std::vector<Edge>& edges, int k);
+// Edges of `edges` with frame k at either end.
+std::vector<Edge> touching_edges(const std::vector<Edge>& edges, int k);
 
 // The loss that judges the hypotheses: nullptr when cfg.judge is empty or names `base.residual`
 // (then `loss` judges). Otherwise the same edges over the same subsample of `scans` (base's
