@@ -148,6 +148,18 @@ Json claim_change_of_seed(const Claim& c, const Json& results, uint64_t seed) {
                      row_values(results, c.against, c.metric, seed));
 }
 
+bool claim_row_stale(const Json& results, const std::string& method) {
+  if (!at(results, "rows").is_array()) return false;
+  for (const auto& row : results["rows"]) {
+    if (at(row, "method") != Json(method)) continue;
+    if (at(row, "stale") == Json(true)) return true;
+    if (at(row, "sequences").is_array())
+      for (const auto& e : row["sequences"])
+        if (at(e, "stale") == Json(true)) return true;
+  }
+  return false;
+}
+
 std::vector<uint64_t> table_seeds(const Json& results) {
   const Json& config = at(results, "config");
   if (at(config, "seeds").is_array()) return config["seeds"].get<std::vector<uint64_t>>();
@@ -189,6 +201,10 @@ std::string claims_markdown(const std::string& root, const std::string& scale) {
         std::snprintf(ratio, sizeof ratio, "%.2f", c.paper_change != 0 ? v / c.paper_change : 0.0);
         agrees = same_sign ? std::string("in sign (") + ratio + " × the paper's)"
                            : "no: the opposite sign";
+        std::string stale;
+        for (const auto* m : {&c.row, &c.against})
+          if (claim_row_stale(table, *m)) stale += (stale.empty() ? "" : " and ") + *m;
+        if (!stale.empty()) agrees = "not judged: " + stale + " stale (an older preset)";
       } else {
         ours = ch.value("status", std::string("not run"));
       }

@@ -36,6 +36,10 @@ Json claim_change(const Claim& c, const Json& results);
 // The same from the runs of one seed alone (a sequence either row did not run with `seed`
 // does not count).
 Json claim_change_of_seed(const Claim& c, const Json& results, uint64_t seed);
+// Whether `method`'s row of a results table holds a stale run (made with an older preset: the
+// row's or a sequence entry's "stale" flag, as sgnlf merge sets them). A claim over a stale row
+// compares two presets and is marked so, not judged.
+bool claim_row_stale(const Json& results, const std::string& method);
 // A results table's seeds: config.seeds, else [config.seed].
 std::vector<uint64_t> table_seeds(const Json& results);
 

@@ -291,3 +291,18 @@ TEST_CASE("merge --keep-run-files and the plan, per seed", "[harness][combine][s
       }
   CHECK(done == 4);  // 2 sequences × 2 seeds
 }
+
+TEST_CASE("a claim over a stale row is marked, not judged", "[harness][claims]") {
+  Json t{{"rows", Json::array({Json{{"method", "sg-nlf"}, {"stale", false},
+                                    {"sequences", Json::array({Json{{"sequence", "a"}, {"stale", false}},
+                                                               Json{{"sequence", "b"}, {"stale", true}}})}},
+                               Json{{"method", "geonlf"}, {"stale", false},
+                                    {"sequences", Json::array({Json{{"sequence", "a"}, {"stale", false}}})}},
+                               Json{{"method", "lidar4d"}, {"stale", true}, {"sequences", Json::array()}}})}};
+  CHECK(harness::claim_row_stale(t, "sg-nlf"));      // one stale sequence
+  CHECK_FALSE(harness::claim_row_stale(t, "geonlf"));
+  CHECK(harness::claim_row_stale(t, "lidar4d"));     // the row's flag
+  CHECK_FALSE(harness::claim_row_stale(t, "lidar-nerf"));  // no such row
+  t["rows"][0]["sequences"][1]["stale"] = false;
+  CHECK_FALSE(harness::claim_row_stale(t, "sg-nlf"));
+}
