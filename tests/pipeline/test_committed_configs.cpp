@@ -84,8 +84,7 @@ TEST_CASE("committed results: every run's config_hash is its config's; current r
     }
   }
   CHECK(runs >= 50);
-  // Enough current runs for the read-back to mean something: 17 on 2026-12-07, when GeoNLF's
-  // and SG-NLF's quick presets moved (docs/studies/real-views) and left the smoke tables' and
-  // LiDAR-NeRF's and LiDAR4D's runs current; the reruns of the pose-free rows add theirs.
-  if (!write) CHECK(current >= 15);
+  // Enough current runs for the read-back to mean something (24 on 2026-12-07, after GeoNLF's
+  // cells were rerun with its moved quick preset).
+  if (!write) CHECK(current >= 20);
 }
