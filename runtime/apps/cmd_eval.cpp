@@ -7,6 +7,7 @@
 
 #include "apps/command.hpp"
 #include "apps/device_profile_option.hpp"
+#include "apps/render_sampling_options.hpp"
 #include "apps/fast_render_options.hpp"
 #include "apps/sensor_rate_options.hpp"
 #include "bake/baked_scene.hpp"
@@ -37,21 +38,7 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
   sub.add_option("--data", a->data, "Dataset folder (default: the one the run trained on)");
   sub.add_option("--device", a->device, "OpenCL device index or name substring");
   add_device_profile_option(sub, a->device_profile);
-  sub.add_option("--samples", a->sampling.n_samples,
-                 "Uniform samples per ray when rendering (default: the config's render.eval_samples, else as trained)");
-  sub.add_option("--importance", a->sampling.n_importance,
-                 "Importance samples per ray when rendering (default: the config's render.eval_importance, else as trained)");
-  sub.add_option("--depth", a->sampling.depth,
-                 "Rendered depth: expected (sum of w_i t_i, as trained and published), median "
-                 "(where the accumulated weight reaches 1/2) or mix (the median on the rays "
-                 "whose depth variance exceeds 10x the frame's median, GS-LiDAR's; protocol "
-                 "renderer). Default: the config's render.eval_depth, else expected")
-      ->check(CLI::IsMember({"expected", "median", "mix"}));
-  sub.add_option("--out-of-range", a->sampling.out_of_range,
-                 "drop: a rendered return at a range the sensor cannot report (within its "
-                 "min_range_m or beyond max_range_m) is a drop; keep: scored as rendered. "
-                 "Default: the config's render.eval_drop_out_of_range, else keep")
-      ->check(CLI::IsMember({"drop", "keep"}));
+  add_render_sampling_options(sub, a->sampling);
   sub.add_flag("--json", a->json, "Print the metrics JSON");
   a->sensor_rate.add(sub);
   sub.get_option("--sensor")->description(
