@@ -32,11 +32,14 @@ esac
 if [ "$SCOPE" = "all" ]; then
   cmake --build "$B" -j "$JOBS"
 else
-  mapfile -t tests < <(ctest --test-dir "$B" "${select[@]}" -N | sed -n 's/^ *Test *#[0-9]*: *//p')
-  [ ${#tests[@]} -gt 0 ] || { echo "sanitize: no tests selected (SCOPE=$SCOPE)"; exit 1; }
+  # The targets to build are the executables the selected tests run (a test's name need not be
+  # its target's: an app test runs bin/sgnlf).
+  mapfile -t exes < <(ctest --test-dir "$B" "${select[@]}" -N -V |
+                      sed -n -E 's/^[0-9]+: Test command: ([^ ]+).*/\1/p' | sort -u)
+  [ ${#exes[@]} -gt 0 ] || { echo "sanitize: no tests selected (SCOPE=$SCOPE)"; exit 1; }
   targets=()
-  for t in "${tests[@]}"; do targets+=(--target "test_$t"); done
-  echo "sanitize: building ${#tests[@]} test targets (SCOPE=$SCOPE: ${tests[*]})"
+  for e in "${exes[@]}"; do targets+=(--target "$(basename "$e")"); done
+  echo "sanitize: building ${#exes[@]} targets (SCOPE=$SCOPE: ${targets[*]})"
   cmake --build "$B" -j "$JOBS" "${targets[@]}"
 fi
 ctest --test-dir "$B" "${select[@]}" --output-on-failure -j "$JOBS" "$@"
