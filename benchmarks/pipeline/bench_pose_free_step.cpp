@@ -32,7 +32,7 @@ void BM_PoseFreeStep(benchmark::State& state, const char* method) {
   const TrainConfig c = resolve_config(method, "quick");
   LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), c.schedule.rays_per_batch);
   model.init_params(1);
-  if (auto* h = dynamic_cast<spectral::HybridEncoder*>(&model.encoder())) h->set_lambda(1.0f);
+  if (model.hybrid()) model.set_fusion_weight(1.0f);
   long step = 0;
   auto one = [&] {
     const RayBatch b = draw_ray_batch(scene, c, 1, step);
@@ -53,12 +53,12 @@ void BM_SpectralStep(benchmark::State& state) {
   const Scene scene = make_scene(bench_dataset());
   LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), c.schedule.rays_per_batch);
   model.init_params(1);
-  auto& h = dynamic_cast<spectral::HybridEncoder&>(model.encoder());
+  OwnGroupStep psi(model, 1, 0);  // Ψ's own step, as the spectral loss term takes it
   const auto shape = spectral::make_shape(spectral::ShapeSpec::preset(spectral::ShapeKind::sphere));
   Rng rng(3, 1);
   auto batch = shape->sample(rng, size_t(c.spectral->batch));
-  h.spectral_step(batch, 1e-2f);
-  for (auto _ : state) benchmark::DoNotOptimize(h.spectral_step(batch, 1e-2f));
+  psi.spectral_step(batch, 1e-2f);
+  for (auto _ : state) benchmark::DoNotOptimize(psi.spectral_step(batch, 1e-2f));
 }
 
 void BM_ConsistencyStep(benchmark::State& state) {
@@ -67,7 +67,7 @@ void BM_ConsistencyStep(benchmark::State& state) {
   const Scene scene = make_scene(bench_dataset());
   LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), c.schedule.rays_per_batch);
   model.init_params(1);
-  dynamic_cast<spectral::HybridEncoder&>(model.encoder()).set_lambda(1.0f);
+  model.set_fusion_weight(1.0f);
   ConsistencyTerm term(bench::runtime(), scene, *c.consistency, c.schedule.rays_per_batch);
   ConsistencyPair p;
   p.i = 3, p.j = 4;

@@ -26,6 +26,7 @@ class HashGridEncoder : public Encoder {
   int levels() const override { return grid_.config().levels; }
   void set_level_weights(const std::vector<float>& w) override { grid_.set_level_weights(w); }
   HashGrid& grid() { return grid_; }
+  const HashGrid& grid() const { return grid_; }
 
  private:
   HashGrid grid_;

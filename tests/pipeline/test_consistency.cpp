@@ -18,7 +18,6 @@
 #include "pipeline/run/run_dir.hpp"
 #include "pipeline/run/session.hpp"
 #include "pipeline/train/trainer.hpp"
-#include "spectral/hybrid_encoder.hpp"
 #include "support/test_device.hpp"
 #include "tiny_scene.hpp"
 
@@ -49,7 +48,7 @@ TEST_CASE("consistency term: analytic dL_con/dxi through render, reprojection an
       {"consistency", {{"weight", 1.0}, {"discriminator", {{"init_std", 0.3}}}}}});
   const Scene scene = make_scene(ds);
   LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
-  dynamic_cast<spectral::HybridEncoder&>(model.encoder()).set_lambda(1.0f);
+  model.set_fusion_weight(1.0f);
   TrainOptions opt;
   opt.run_dir = test::temp_dir("consistency_fd");
   opt.show_progress = false;

@@ -3,7 +3,8 @@
 // the batch's output gradient take part in the model's step; their gradient joins the batch's
 // one Adam step, their values reach the step's LossReport and the training log; a pass's rays
 // are differentiated only while their activations are theirs, and one term writes the second
-// gradient per step.
+// gradient per step; a term with a parameter group of its own (as SG-NLF's spectral Ψ) takes its
+// own optimiser's step after the batch's backward, without touching the field's gradient.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -11,9 +12,12 @@
 #include <fstream>
 
 #include "core/config.hpp"
+#include "core/rng.hpp"
 #include "pipeline/model/loss_term.hpp"
+#include "pipeline/config/presets.hpp"
 #include "pipeline/model/ray_batch.hpp"
 #include "pipeline/train/trainer.hpp"
+#include "spectral/surface.hpp"
 #include "support/test_device.hpp"
 #include "tiny_scene.hpp"
 
@@ -62,6 +66,31 @@ class ToyOutputTerm final : public LossTerm {
     p.grad_out.write_vec(g);
   }
   void report(LossReport& r, const std::vector<float>&) const override { r.add("toy", 0.5); }
+};
+
+// Takes one step of Ψ's own Adam at every even step on a batch of a sphere's surface samples;
+// reports the last spectral loss, out of the total.
+class ToyGroupTerm final : public LossTerm {
+ public:
+  ToyGroupTerm() {
+    const auto shape =
+        spectral::make_shape(spectral::ShapeSpec::preset(spectral::ShapeKind::sphere));
+    Rng rng(3, 1);
+    batch_ = shape->sample(rng, 64);
+  }
+  const char* name() const override { return "toy_group"; }
+  void take_own_step(OwnGroupStep& group) override {
+    steps.push_back(group.step);
+    if (group.step % 2 == 0) last = group.spectral_step(batch_, 1e-2f);
+  }
+  void report(LossReport& r, const std::vector<float>&) const override {
+    r.add("toy_group", last, false);
+  }
+  std::vector<long> steps;
+  double last = 0.0;
+
+ private:
+  std::vector<spectral::SurfacePoint> batch_;
 };
 
 std::unique_ptr<LidarNerfModel> fresh(const Scene& scene, const TrainConfig& c) {
@@ -164,4 +193,46 @@ TEST_CASE("a loss term on the batch: its output gradient and value take part in 
     ++lines;
   }
   CHECK(lines >= 2);
+}
+
+TEST_CASE("a loss term with its own parameter group: its step follows the batch's backward",
+          "[pipeline][loss_terms][device]") {
+  const Scene scene = make_scene(test::tiny_dataset());
+  const TrainConfig c = resolve_config("sg-nlf-no-consistency", "smoke",
+                                       test::tiny_sgnlf_overrides(false));
+  const RayBatch b = draw_ray_batch(scene, c, 7, 2);
+  auto plain = fresh(scene, c), m = fresh(scene, c);
+  plain->set_fusion_weight(1.0f);
+  m->set_fusion_weight(1.0f);  // Ψ in the field: the batch's forward and backward read it
+  auto& toy = static_cast<ToyGroupTerm&>(m->add_loss(std::make_unique<ToyGroupTerm>()));
+  const auto psi0 = m->psi_state();
+  m->forward_backward(b, 7, 2, true);
+  plain->forward_backward(b, 7, 2, true);
+  CHECK(toy.steps == std::vector<long>{2});
+  // The field's gradient and the rays' gradients are the batch's with Ψ before its step …
+  CHECK(m->read_gradient() == plain->read_gradient());
+  CHECK(m->read_ray_grads().origin == plain->read_ray_grads().origin);
+  // … and Ψ moved by its own Adam, one step, outside the field's.
+  const auto psi1 = m->psi_state();
+  CHECK(psi1.params != psi0.params);
+  CHECK(psi1.adam_step == psi0.adam_step + 1);
+  m->update(1e-2f);
+  CHECK(m->state().adam_step == 1);
+  CHECK(std::isfinite(toy.last));
+  CHECK(toy.last > 0.0);
+  CHECK(m->read_losses().value("toy_group") == toy.last);
+  CHECK(m->read_losses().total() == plain->read_losses().total());
+  // An odd step: the hook runs, the term chooses not to step.
+  m->forward_backward(draw_ray_batch(scene, c, 7, 3), 7, 3);
+  CHECK(toy.steps == std::vector<long>{2, 3});
+  CHECK(m->psi_state().params == psi1.params);
+
+  SECTION("a model without the hybrid field has no such group") {
+    auto hg = fresh(scene, test::tiny_config());
+    hg->add_loss(std::make_unique<ToyGroupTerm>());
+    CHECK_THROWS_WITH(hg->forward_backward(b, 7, 2),
+                      Catch::Contains("OwnGroupStep::spectral_step") &&
+                          Catch::Contains("no hybrid spectral-geometric encoder"));
+    CHECK_THROWS_WITH(hg->set_fusion_weight(0.5f), Catch::Contains("set_fusion_weight"));
+  }
 }

@@ -365,7 +365,7 @@ TEST_CASE("the embedded module configs reach the modules: field.grid, optim.adam
     const TrainConfig c = test::tiny_config();
     LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
     const field::HashGridConfig& g =
-        dynamic_cast<field::HashGridEncoder&>(model.encoder()).grid().config();
+        dynamic_cast<const field::HashGridEncoder&>(model.encoder()).grid().config();
     CHECK(g.deterministic);
     CHECK_FALSE(g.half_table);
     CHECK(g.schedule == "auto");
@@ -380,7 +380,7 @@ TEST_CASE("the embedded module configs reach the modules: field.grid, optim.adam
   CHECK(c.hash() != test::tiny_config().hash());
   LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
   const field::HashGridConfig& g =
-      dynamic_cast<field::HashGridEncoder&>(model.encoder()).grid().config();
+      dynamic_cast<const field::HashGridEncoder&>(model.encoder()).grid().config();
   CHECK_FALSE(g.deterministic);
   CHECK(g.half_table);
   CHECK(g.schedule == "per_point");

@@ -8,9 +8,15 @@
 //   2. the batch's sample and forward; the range loss writes the per-ray output gradient
 //      (RangeTerm::write_output_gradient), then every add_output_gradient(LossPass&) adds;
 //   3. inside the renderer's backward, add_sample_gradient(LossPass&) (per sample);
-//   4. the backward, the two gradients summed, one Adam step.
+//   4. the backward, the two gradients summed;
+//   5. take_own_step(OwnGroupStep&): a term that trains a parameter group outside the field's
+//      flat buffer on an objective of its own, with that group's own optimiser (SG-NLF's
+//      spectral embedding Ψ, method.md §4.1), takes its step, after the batch's backward has
+//      used the group's activations;
+//   then (LidarNerfModel::update) one Adam step of the field.
 // Each hook receives what it may use, so a term cannot run before what it needs exists: the
-// batch's terms get the forward's outputs (LossPass), a term with its own pass gets a FieldPass.
+// batch's terms get the forward's outputs (LossPass), a term with its own pass gets a FieldPass,
+// a term with its own parameter group an OwnGroupStep.
 // report() writes the term's value(s) of the last step into the LossReport the trainer logs and
 // checks for divergence.
 #pragma once
@@ -22,6 +28,10 @@
 #include "pipeline/model/forward_context.hpp"
 #include "pipeline/model/loss_report.hpp"
 #include "pipeline/model/ray_batch.hpp"
+
+namespace sgnlf::spectral {
+struct SurfacePoint;
+}
 
 namespace sgnlf::pipeline {
 
@@ -95,6 +105,23 @@ class FieldPass {
   bool wrote_ = false;
 };
 
+// A term's step on a parameter group of the field that is not in the flat buffer and has its
+// own optimiser (step 5 above): SG-NLF's Ψ, which trains only on the spectral loss (the range
+// loss reaches the positions through Ψ, never its weights). Needs the hybrid encoder.
+class OwnGroupStep {
+ public:
+  OwnGroupStep(LidarNerfModel& model, uint64_t seed, long step)
+      : seed(seed), step(step), model_(model) {}
+  const uint64_t seed;
+  const long step;
+  // One step of Ψ's Adam at `lr` on the spectral loss of a batch of surface samples
+  // (normalised box, weights summing to 1). Returns the loss (blocking).
+  double spectral_step(const std::vector<spectral::SurfacePoint>& batch, float lr);
+
+ private:
+  LidarNerfModel& model_;
+};
+
 class LossTerm {
  public:
   virtual ~LossTerm() = default;
@@ -105,6 +132,8 @@ class LossTerm {
   virtual void add_output_gradient(LossPass&) {}
   // Step 3: per sample, after the renderer's backward: added to pass.g_h0.
   virtual void add_sample_gradient(LossPass&) {}
+  // Step 5: a step of a parameter group of its own, on its own objective.
+  virtual void take_own_step(OwnGroupStep&) {}
   // Its value(s) of the last step into `r`. `loss` is the model's loss buffer (the range and
   // patch terms' values, carving's device sum), read once for every term; a term whose value
   // lives elsewhere reads it here (blocking).

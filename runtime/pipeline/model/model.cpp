@@ -261,6 +261,9 @@ void LidarNerfModel::forward_backward(const RayBatch& b, uint64_t seed, long ste
     add_k_.set_args(n, grad_own_, grad_);
     add_k_.launch({cl::round_up(size_t(n), 64)}, {64});
   }
+  // The terms' own parameter groups (Ψ): their activations of this step are no longer needed.
+  OwnGroupStep group(*this, seed, step);
+  losses_.each([&](LossTerm& t) { t.take_own_step(group); });
 }
 
 void LidarNerfModel::backward(const ForwardContext& ctx, cl::Buffer& grad, bool ray_grads,

@@ -72,6 +72,8 @@ struct ModelState {
   std::vector<float> params, adam_m, adam_v;
   int64_t adam_step = 0;
 };
+// The same of SG-NLF's Ψ (its own parameters and Adam, outside the flat buffer).
+using PsiState = ModelState;
 
 class LidarNerfModel {
  public:
@@ -135,11 +137,20 @@ class LidarNerfModel {
   // Coarse-to-fine mask of the hash-grid levels (field::barf_level_weights); all ones by default.
   void set_level_weights(const std::vector<float>& w) { encoder_->set_level_weights(w); }
   int levels() const { return encoder_->levels(); }
-  // The position encoder (the hash grid, or spectral::HybridEncoder when the config's
-  // hybrid_encoder() is on: the spectral schedule reaches Ψ through it).
-  field::Encoder& encoder() { return *encoder_; }
-  // The same encoder as SG-NLF's hybrid one when the config's hybrid_encoder() is on, else null.
-  spectral::HybridEncoder* hybrid_encoder() { return hybrid_; }
+  // The position encoder (the hash grid, spectral::HybridEncoder when the config's
+  // hybrid_encoder() is on, field::Lidar4DEncoder when four_d_encoder() is): read only; the
+  // field changes through forward/backward, its parameter groups' steps and the schedules below.
+  const field::Encoder& encoder() const { return *encoder_; }
+  // SG-NLF's hybrid field (the config's hybrid_encoder()): the fusion weight λ(t) of
+  // f_hyb = [f_geo, λ·Ψ] for the following passes (the spectral schedule sets it every step, as
+  // the pose-free step sets the level mask), and Ψ's parameters and Adam state for checkpoints.
+  // Each throws sgnlf::Error without the hybrid encoder.
+  bool hybrid() const { return hybrid_ != nullptr; }
+  void set_fusion_weight(float lambda);
+  float fusion_weight() const;
+  PsiState psi_state() const;
+  void set_psi_state(const PsiState& s);
+  size_t psi_params() const;
   // LiDAR4D's 4D encoder when the config's four_d_encoder() is on, else null.
   field::Lidar4DEncoder* four_d_encoder() { return four_d_; }
   // The field's optimiser (its settings: the config's optim.adam).
@@ -247,8 +258,11 @@ class LidarNerfModel {
   // `pass`: the loss terms' per-sample gradients join the renderer's (null: none, a term's own
   // pass).
   void backward(const ForwardContext& ctx, cl::Buffer& grad, bool ray_grads, LossPass* pass);
-  // A term's own pass (loss_term.hpp's FieldPass, model_field_pass.cpp) reaches the field here.
+  // A term's own pass (loss_term.hpp's FieldPass, model_field_pass.cpp) reaches the field here,
+  // a term's own parameter group (OwnGroupStep) too.
   friend class FieldPass;
+  friend class OwnGroupStep;
+  spectral::HybridEncoder& hybrid_or_throw(const char* who) const;
 
   cl::Runtime& rt_;
   TrainConfig cfg_;

@@ -35,8 +35,8 @@ std::vector<Pose> poses_from_doubles(const std::vector<double>& v) {
   return T;
 }
 
-spectral::HybridEncoder::PsiState psi_state_from(const Checkpoint& ck, size_t n) {
-  spectral::HybridEncoder::PsiState s;
+PsiState psi_state_from(const Checkpoint& ck, size_t n) {
+  PsiState s;
   s.params = ck.array("spectral.psi.params", n);
   s.adam_m = ck.array("spectral.psi.adam_m", n);
   s.adam_v = ck.array("spectral.psi.adam_v", n);
@@ -46,22 +46,16 @@ spectral::HybridEncoder::PsiState psi_state_from(const Checkpoint& ck, size_t n)
 
 }  // namespace
 
-SpectralSchedule::SpectralSchedule(StepPolicy& inner, spectral::HybridEncoder& encoder,
-                                   const TrainConfig& cfg, SurfacePoolSource source,
-                                   PoseOf pose_of, uint64_t seed)
-    : inner_(inner),
-      encoder_(encoder),
-      cfg_(cfg),
-      source_(std::move(source)),
-      pose_of_(std::move(pose_of)),
-      seed_(seed) {
+SpectralLoss::SpectralLoss(const TrainConfig& cfg, SurfacePoolSource source, uint64_t seed)
+    : cfg_(cfg), source_(std::move(source)), seed_(seed) {
   require(!source_.frames.empty() && source_.frames.size() == source_.points_lidar.size(),
-          "SpectralSchedule: the surface pool source needs one point set per frame (" +
+          "SpectralLoss: the surface pool source needs one point set per frame (" +
               std::to_string(source_.frames.size()) + " frames, " +
               std::to_string(source_.points_lidar.size()) + " point sets)");
 }
 
-void SpectralSchedule::build_pool(long epoch, const std::vector<Pose>& T_norm) {
+void SpectralLoss::build_pool(long epoch, const std::vector<Pose>& T_norm) {
+  const auto t0 = std::chrono::steady_clock::now();
   const double s = source_.norm.scale;
   std::vector<Eigen::Vector3d> pts;
   for (size_t k = 0; k < source_.frames.size(); ++k) {
@@ -78,67 +72,41 @@ void SpectralSchedule::build_pool(long epoch, const std::vector<Pose>& T_norm) {
                        std::to_string(cfg_.spectral->radius_m) + " too small for the scans?)");
   pool_poses_ = T_norm;
   pool_epoch_ = epoch;
-}
-
-void SpectralSchedule::on_epoch(long epoch, long step) {
-  inner_.on_epoch(epoch, step);
-  const auto t0 = std::chrono::steady_clock::now();
-  std::vector<Pose> T(source_.frames.size());
-  for (size_t k = 0; k < T.size(); ++k) T[k] = pose_of_(source_.frames[k]);
-  build_pool(epoch, T);
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void SpectralSchedule::step(LidarNerfModel& model, uint64_t seed, long step, float lr) {
-  encoder_.set_lambda(float(cfg_.spectral->fusion.lambda(int(step))));
-  inner_.step(model, seed, step, lr);
+void SpectralLoss::take_own_step(OwnGroupStep& group) {
+  const long step = group.step;
   if (step % cfg_.spectral->every != 0) return;
-  if (pool_.empty()) throw Error("SpectralSchedule::step: no surface pool (on_epoch not called)");
+  if (pool_.empty()) throw Error("SpectralLoss: no surface pool (SpectralSchedule::on_epoch not called)");
   const auto t0 = std::chrono::steady_clock::now();
-  Rng rng(seed_ ^ (seed * 0x9E3779B97F4A7C15ull) ^ (uint64_t(step) * 0xD1B54A32D192ED03ull),
+  Rng rng(seed_ ^ (group.seed * 0x9E3779B97F4A7C15ull) ^ (uint64_t(step) * 0xD1B54A32D192ED03ull),
           kBatchStream);
   std::vector<spectral::SurfacePoint> batch(size_t(cfg_.spectral->batch));
   for (auto& p : batch) {
     p = pool_[size_t(rng.next_u64() % pool_.size())];
     p.w = 1.0 / double(batch.size());
   }
-  last_loss_ = encoder_.spectral_step(
-      batch, float(cfg_.spectral->lr_at(step, cfg_.schedule.iterations)));
+  last_loss_ =
+      group.spectral_step(batch, float(cfg_.spectral->lr_at(step, cfg_.schedule.iterations)));
   if (!std::isfinite(last_loss_))
     throw NumericError("spectral embedding: loss not finite at step " + std::to_string(step));
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-Json SpectralSchedule::log_fields() {
-  Json j = inner_.log_fields();
-  j["spectral_loss"] = last_loss_;
-  j["lambda"] = encoder_.lambda();
-  j["surface_points"] = pool_.size();
-  return j;
+void SpectralLoss::report(LossReport& r, const std::vector<float>&) const {
+  r.add("spectral", last_loss_, /*in_total=*/false);
 }
 
-std::string SpectralSchedule::progress_text() {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, " Lspe %.3g", last_loss_);
-  return inner_.progress_text() + buf;
-}
-
-NamedArrays SpectralSchedule::state() const {
-  NamedArrays a = inner_.state();
-  auto s = encoder_.psi_state();
-  a.emplace_back("spectral.psi.params", std::move(s.params));
-  a.emplace_back("spectral.psi.adam_m", std::move(s.adam_m));
-  a.emplace_back("spectral.psi.adam_v", std::move(s.adam_v));
-  a.emplace_back("spectral.psi.adam_t", pack_doubles({double(s.adam_step)}));
+NamedArrays SpectralLoss::state() const {
+  NamedArrays a;
   a.emplace_back("spectral.pool_epoch", pack_doubles({double(pool_epoch_)}));
   a.emplace_back("spectral.pool_poses", pack_doubles(pose_doubles(pool_poses_)));
   a.emplace_back("spectral.last_loss", pack_doubles({last_loss_}));
   return a;
 }
 
-void SpectralSchedule::load_state(const Checkpoint& ck, LidarNerfModel& model) {
-  inner_.load_state(ck, model);
-  restore_hybrid_encoder(model, cfg_, ck);  // Ψ, and λ as the last step left it (step_policy.hpp)
+void SpectralLoss::load_state(const Checkpoint& ck) {
   last_loss_ = unpack_doubles(ck.array("spectral.last_loss", 2)).at(0);
   const long epoch = long(unpack_doubles(ck.array("spectral.pool_epoch", 2)).at(0));
   pool_.clear();
@@ -149,11 +117,59 @@ void SpectralSchedule::load_state(const Checkpoint& ck, LidarNerfModel& model) {
   }
 }
 
+SpectralSchedule::SpectralSchedule(StepPolicy& inner, SpectralLoss& loss,
+                                   const LidarNerfModel& model, const TrainConfig& cfg,
+                                   PoseOf pose_of)
+    : inner_(inner), loss_(loss), model_(model), cfg_(cfg), pose_of_(std::move(pose_of)) {
+  require(model.hybrid(), "SpectralSchedule: the model has no hybrid spectral-geometric encoder");
+}
+
+void SpectralSchedule::on_epoch(long epoch, long step) {
+  inner_.on_epoch(epoch, step);
+  std::vector<Pose> T(loss_.frames().size());
+  for (size_t k = 0; k < T.size(); ++k) T[k] = pose_of_(loss_.frames()[k]);
+  loss_.build_pool(epoch, T);
+}
+
+void SpectralSchedule::step(LidarNerfModel& model, uint64_t seed, long step, float lr) {
+  model.set_fusion_weight(float(cfg_.spectral->fusion.lambda(int(step))));
+  inner_.step(model, seed, step, lr);
+}
+
+Json SpectralSchedule::log_fields() {
+  Json j = inner_.log_fields();
+  j["lambda"] = model_.fusion_weight();
+  j["surface_points"] = loss_.pool_size();
+  return j;
+}
+
+std::string SpectralSchedule::progress_text() {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, " Lspe %.3g", loss_.last_loss());
+  return inner_.progress_text() + buf;
+}
+
+NamedArrays SpectralSchedule::state() const {
+  NamedArrays a = inner_.state();
+  auto s = model_.psi_state();
+  a.emplace_back("spectral.psi.params", std::move(s.params));
+  a.emplace_back("spectral.psi.adam_m", std::move(s.adam_m));
+  a.emplace_back("spectral.psi.adam_v", std::move(s.adam_v));
+  a.emplace_back("spectral.psi.adam_t", pack_doubles({double(s.adam_step)}));
+  for (auto& x : loss_.state()) a.push_back(std::move(x));
+  return a;
+}
+
+void SpectralSchedule::load_state(const Checkpoint& ck, LidarNerfModel& model) {
+  inner_.load_state(ck, model);
+  restore_hybrid_encoder(model, cfg_, ck);  // Ψ, and λ as the last step left it (step_policy.hpp)
+  loss_.load_state(ck);
+}
+
 void restore_hybrid_encoder(LidarNerfModel& model, const TrainConfig& cfg, const Checkpoint& ck) {
   if (!cfg.hybrid_encoder()) return;
-  spectral::HybridEncoder& enc = *model.hybrid_encoder();
-  enc.set_psi_state(psi_state_from(ck, enc.psi_params()));
-  enc.set_lambda(float(cfg.spectral->fusion.lambda(int(std::max(0L, ck.step - 1)))));
+  model.set_psi_state(psi_state_from(ck, model.psi_params()));
+  model.set_fusion_weight(float(cfg.spectral->fusion.lambda(int(std::max(0L, ck.step - 1)))));
 }
 
 SurfacePoolSource make_surface_pool_source(const Dataset& d, const Scene& scene,

@@ -1,10 +1,15 @@
-// SG-NLF's spectral embedding trained on the scene being reconstructed (method.md §4.1), as a
-// StepPolicy that wraps another (the pose-free step): before each epoch, after the wrapped
-// policy's epoch hook (the geometric stage may have moved the poses), the surface pool is
-// rebuilt from the observed points of the training frames under the current poses, thinned to
-// uniform area density with PCA normals and tangents (spectral::surface_from_points); at every
-// `every`-th step Ψ takes one spectral step on a batch drawn from the pool (its own Adam, lr
-// cosine-decayed), and λ(t) of the fusion f_hyb = [f_geo, λ·Ψ] follows the configured ramp.
+// SG-NLF's spectral embedding Ψ trained on the scene being reconstructed (method.md §4.1), in
+// pose-free training:
+//  - SpectralLoss, a loss term of the model's step (loss_term.hpp) with a parameter group of its
+//    own: at every `every`-th step, after the batch's backward, Ψ takes one step of its own Adam
+//    (lr cosine-decayed) on the spectral loss of a batch drawn from the surface pool; it reports
+//    "spectral", out of the divergence check's total (Ψ's objective is not the field's);
+//  - SpectralSchedule, the StepPolicy around the pose-free step: before each epoch, after the
+//    wrapped policy's epoch hook (the geometric stage may have moved the poses), the surface pool
+//    is rebuilt from the observed points of the training frames under the current poses,
+//    thinned to uniform area density with PCA normals and tangents
+//    (spectral::surface_from_points); before every step, λ(t) of the fusion
+//    f_hyb = [f_geo, λ·Ψ] follows the configured ramp (LidarNerfModel::set_fusion_weight).
 // Checkpoints carry Ψ's parameters and Adam state and the poses the pool was built from, so a
 // resumed run rebuilds the same pool and stays bit-identical.
 #pragma once
@@ -13,7 +18,8 @@
 
 #include "geometry/se3.hpp"
 #include "pipeline/train/step_policy.hpp"
-#include "spectral/hybrid_encoder.hpp"
+#include "pipeline/model/loss_term.hpp"
+#include "spectral/surface.hpp"
 
 namespace sgnlf::pipeline {
 
@@ -28,11 +34,40 @@ struct SurfacePoolSource {
 // Current pose (normalised frame) of a dataset frame.
 using PoseOf = std::function<Pose(int frame)>;
 
-class SpectralSchedule : public StepPolicy {
+class SpectralLoss final : public LossTerm {
  public:
   // Throws sgnlf::Error when the source is empty or its sizes disagree.
-  SpectralSchedule(StepPolicy& inner, spectral::HybridEncoder& encoder, const TrainConfig& cfg,
-                   SurfacePoolSource source, PoseOf pose_of, uint64_t seed);
+  SpectralLoss(const TrainConfig& cfg, SurfacePoolSource source, uint64_t seed);
+
+  const char* name() const override { return "spectral"; }
+  void take_own_step(OwnGroupStep& group) override;
+  void report(LossReport& r, const std::vector<float>&) const override;
+
+  // The pool of `epoch` from the source's frames at their poses T_norm (normalised frame, one
+  // per source entry). Throws NumericError when too few points survive the thinning.
+  void build_pool(long epoch, const std::vector<Pose>& T_norm);
+  const std::vector<int>& frames() const { return source_.frames; }
+  size_t pool_size() const { return pool_.size(); }
+  double last_loss() const { return last_loss_; }
+  double seconds() const { return seconds_; }  // pool builds + spectral steps, this process
+  NamedArrays state() const;  // the pool's epoch and poses, the last loss
+  void load_state(const Checkpoint& ck);
+
+ private:
+  const TrainConfig& cfg_;
+  SurfacePoolSource source_;
+  uint64_t seed_;
+  std::vector<spectral::SurfacePoint> pool_;
+  std::vector<Pose> pool_poses_;  // per source entry, normalised
+  long pool_epoch_ = -1;
+  double last_loss_ = 0.0, seconds_ = 0.0;
+};
+
+class SpectralSchedule : public StepPolicy {
+ public:
+  // `model` must have the hybrid encoder; its Ψ state goes into the checkpoints.
+  SpectralSchedule(StepPolicy& inner, SpectralLoss& loss, const LidarNerfModel& model,
+                   const TrainConfig& cfg, PoseOf pose_of);
 
   void on_epoch(long epoch, long step) override;
   void step(LidarNerfModel& model, uint64_t seed, long step, float lr) override;
@@ -41,23 +76,16 @@ class SpectralSchedule : public StepPolicy {
   NamedArrays state() const override;
   void load_state(const Checkpoint& ck, LidarNerfModel& model) override;
 
-  size_t pool_size() const { return pool_.size(); }
-  double seconds() const { return seconds_; }  // pool builds + spectral steps, this process
-  double last_loss() const { return last_loss_; }
+  size_t pool_size() const { return loss_.pool_size(); }
+  double seconds() const { return loss_.seconds(); }
+  double last_loss() const { return loss_.last_loss(); }
 
  private:
-  void build_pool(long epoch, const std::vector<Pose>& T_norm);
-
   StepPolicy& inner_;
-  spectral::HybridEncoder& encoder_;
+  SpectralLoss& loss_;
+  const LidarNerfModel& model_;
   const TrainConfig& cfg_;
-  SurfacePoolSource source_;
   PoseOf pose_of_;
-  uint64_t seed_;
-  std::vector<spectral::SurfacePoint> pool_;
-  std::vector<Pose> pool_poses_;  // per source entry, normalised
-  long pool_epoch_ = -1;
-  double last_loss_ = 0.0, seconds_ = 0.0;
 };
 
 // A trained model's hybrid encoder from its checkpoint (evaluation, rendering): Ψ's parameters

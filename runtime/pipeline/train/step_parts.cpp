@@ -44,15 +44,16 @@ StepPolicy& RunStepParts::consistency(StepPolicy& inner) {
   return *consistency_step_;
 }
 
-// Ψ trains on the current surface around `inner` (it sets λ(t) before `inner` renders).
+// Ψ trains in the model's step (a loss term with its own parameter group); the schedule sets
+// λ(t) before `inner` renders, rebuilds the surface pool each epoch and checkpoints Ψ.
 StepPolicy& RunStepParts::spectral(StepPolicy& inner) {
   if (!c_.hybrid_encoder()) return inner;
   require(poses_ != nullptr, "the hybrid spectral field needs a pose-free method");
   const PoseSet& ps = *poses_;
+  auto& loss = static_cast<SpectralLoss&>(model_.add_loss(std::make_unique<SpectralLoss>(
+      c_, make_surface_pool_source(d_, scene_, c_.spectral->points_per_frame, seed_), seed_)));
   spectral_step_ = std::make_unique<SpectralSchedule>(
-      inner, *model_.hybrid_encoder(), c_,
-      make_surface_pool_source(d_, scene_, c_.spectral->points_per_frame, seed_),
-      [&ps](int frame) { return ps.pose(size_t(frame)); }, seed_);
+      inner, loss, model_, c_, [&ps](int frame) { return ps.pose(size_t(frame)); });
   return *spectral_step_;
 }
 
