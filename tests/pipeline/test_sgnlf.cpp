@@ -1,7 +1,8 @@
 // SG-NLF's hybrid field in the pipeline (issue "SG-NLF, part 1", item 1): the gradient of one
 // whole training step with respect to ξ through [f_geo, λ·Ψ] against finite differences; a run
 // folder of the hybrid method (Ψ trained on the current surface, λ ramp, exact resume including
-// Ψ and the surface pool, evaluation restoring Ψ); the "spectral" config section's validation.
+// Ψ and the surface pool, evaluation restoring Ψ); the "spectral" config section's validation;
+// the step parts' schedules independent of their composition order.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -14,6 +15,7 @@
 #include "pipeline/model/ray_batch.hpp"
 #include "pipeline/run/run_dir.hpp"
 #include "pipeline/run/session.hpp"
+#include "pipeline/train/step_parts.hpp"
 #include "pipeline/train/trainer.hpp"
 #include "render/pose_gradient.hpp"
 #include "support/test_device.hpp"
@@ -159,4 +161,35 @@ TEST_CASE("hybrid field config: validated section, unknown keys rejected",
   // ablation without it keeps the config it had.
   CHECK(resolve_config("sg-nlf", "smoke", Json::object()).consistency_term());
   CHECK_FALSE(tiny_hybrid().consistency.has_value());
+}
+
+TEST_CASE("the step's schedules do not depend on the order the step parts are composed in",
+          "[pipeline][sgnlf][device]") {
+  // SG-NLF composes spectral(consistency(pose_free)): the trainer sets every part's schedule
+  // (λ(t), the coarse-to-fine mask) before the step runs, so the consistency term renders with
+  // the step's λ whichever part wraps the other. The two orders give the same field bits.
+  const Dataset& d = test::tiny_dataset();
+  const TrainConfig c = resolve_config("sg-nlf", "smoke", test::tiny_sgnlf_overrides(true));
+  REQUIRE(c.consistency_term());
+  const RunScene rs = make_run_scene(d, c);
+  auto run = [&](bool spectral_outside) {
+    LidarNerfModel model(test::runtime(), c, float(rs.scene.norm.scale), model_capacity(c));
+    model.init_params(1);
+    RunStepParts parts(test::runtime(), d, rs.scene, c, model,
+                       test::temp_dir(spectral_outside ? "sched_a" : "sched_b"), 1);
+    StepPolicy& policy = spectral_outside ? parts.spectral(parts.consistency(parts.pose_free()))
+                                          : parts.consistency(parts.spectral(parts.pose_free()));
+    policy.on_epoch(0, 0);
+    std::vector<float> lambdas;
+    for (long s = 0; s < 12; ++s) {  // λ ramps over steps 4..14; consistency from step 4
+      policy.set_schedules(model, s);
+      lambdas.push_back(model.fusion_weight());
+      policy.step(model, 1, s, 1e-2f);
+    }
+    CHECK(lambdas.front() == 0.0f);
+    CHECK(lambdas.back() == float(c.spectral->fusion.lambda(11)));
+    CHECK(lambdas.back() > 0.0f);
+    return model.state().params;
+  };
+  CHECK(run(true) == run(false));
 }

@@ -16,7 +16,6 @@ Method sg_nlf() {
   m.sections.pose_graph = true;
   m.sections.consistency = true;
   m.implemented = true;
-  // Ψ trains on the current surface around the others (it sets λ(t) before they render).
   m.compose = [](StepParts& p) -> StepPolicy& {
     return p.spectral(p.consistency(p.pose_free()));
   };

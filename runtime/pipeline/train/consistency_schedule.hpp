@@ -13,8 +13,7 @@
 //    (its rotation gets none) waits, summed, for frame j's next own step (at most an epoch
 //    later): every frame keeps one Adam step per visit, so λ_con stays a relative weight for the
 //    poses as for the field. It is computed at frame j's pose of that moment.
-// It renders with the step's coarse-to-fine mask and λ(t), which the pose-free and spectral
-// steps set before they call the model. Its value λ_con·L_con is reported as "consistency", out
+// It renders with the step's coarse-to-fine mask and λ(t) (StepPolicy::set_schedules). Its value λ_con·L_con is reported as "consistency", out
 // of the divergence check's total (an adversarial generator loss has no lower bound).
 // Logs (train_log.jsonl "consistency"): L_D, L_con, mean D(real) / D(fake), mask coverage,
 // the pair, of the last consistency step. Checkpoints carry the discriminator's parameters and
@@ -68,6 +67,9 @@ class ConsistencySchedule : public StepPolicy {
   ConsistencySchedule(StepPolicy& inner, ConsistencyLoss& loss) : inner_(inner), loss_(loss) {}
 
   void on_epoch(long epoch, long step) override { inner_.on_epoch(epoch, step); }
+  void set_schedules(LidarNerfModel& model, long step) override {
+    inner_.set_schedules(model, step);
+  }
   void step(LidarNerfModel& model, uint64_t seed, long step, float lr) override {
     inner_.step(model, seed, step, lr);
   }

@@ -80,14 +80,16 @@ double PoseFreeStep::reweight(int frame) const {
   return ema_[size_t(frame)] >= losses[k - 1] ? rc.factor : 1.0;
 }
 
+void PoseFreeStep::set_schedules(LidarNerfModel& model, long step) {
+  if (!cfg_.pose_free->coarse_to_fine) return;
+  auto w = field::barf_level_weights(double(step) / double(cfg_.schedule.iterations), model.levels());
+  if (w != level_w_) model.set_level_weights(level_w_ = std::move(w));
+}
+
 void PoseFreeStep::step(LidarNerfModel& model, uint64_t seed, long step, float lr) {
   const PoseFreeConfig& pc = *cfg_.pose_free;
   if (!grad_reader_) grad_reader_ = make_pose_grad_reader(model.runtime().device_profile().pose_grad);
   const double progress = double(step) / double(cfg_.schedule.iterations);
-  if (pc.coarse_to_fine) {
-    auto w = field::barf_level_weights(progress, model.levels());
-    if (w != level_w_) model.set_level_weights(level_w_ = std::move(w));
-  }
   const RayBatch b = draw_ray_batch(scene_, cfg_, seed, step, [&](int f) { return poses_.pose(size_t(f)); });
   const bool optimize = pc.pose_optim.optimize && step >= pc.pose_optim.start_step;
   const bool pose_only =
@@ -130,12 +132,7 @@ NamedArrays PoseFreeStep::state() const {
   return a;
 }
 
-void PoseFreeStep::load_state(const Checkpoint& ck, LidarNerfModel& model) {
-  if (cfg_.pose_free->coarse_to_fine && ck.step > 0) {  // the mask of the last step (step_policy.hpp)
-    level_w_ = field::barf_level_weights(
-        double(ck.step - 1) / double(cfg_.schedule.iterations), model.levels());
-    model.set_level_weights(level_w_);
-  }
+void PoseFreeStep::load_state(const Checkpoint& ck, LidarNerfModel&) {
   poses_.load_state([&](const std::string& name, size_t n) { return ck.array(name, n); });
   ema_ = unpack_doubles(ck.array("reweight.ema", 2 * ema_.size()));
   seen_ = unpack_doubles(ck.array("reweight.seen", 2 * seen_.size()));

@@ -131,8 +131,12 @@ void SpectralSchedule::on_epoch(long epoch, long step) {
   loss_.build_pool(epoch, T);
 }
 
-void SpectralSchedule::step(LidarNerfModel& model, uint64_t seed, long step, float lr) {
+void SpectralSchedule::set_schedules(LidarNerfModel& model, long step) {
+  inner_.set_schedules(model, step);
   model.set_fusion_weight(float(cfg_.spectral->fusion.lambda(int(step))));
+}
+
+void SpectralSchedule::step(LidarNerfModel& model, uint64_t seed, long step, float lr) {
   inner_.step(model, seed, step, lr);
 }
 
@@ -162,7 +166,7 @@ NamedArrays SpectralSchedule::state() const {
 
 void SpectralSchedule::load_state(const Checkpoint& ck, LidarNerfModel& model) {
   inner_.load_state(ck, model);
-  restore_hybrid_encoder(model, cfg_, ck);  // Ψ, and λ as the last step left it (step_policy.hpp)
+  restore_hybrid_encoder(model, cfg_, ck);  // Ψ (and λ, which the trainer sets again)
   loss_.load_state(ck);
 }
 

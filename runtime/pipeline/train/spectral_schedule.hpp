@@ -8,8 +8,8 @@
 //    wrapped policy's epoch hook (the geometric stage may have moved the poses), the surface pool
 //    is rebuilt from the observed points of the training frames under the current poses,
 //    thinned to uniform area density with PCA normals and tangents
-//    (spectral::surface_from_points); before every step, λ(t) of the fusion
-//    f_hyb = [f_geo, λ·Ψ] follows the configured ramp (LidarNerfModel::set_fusion_weight).
+//    (spectral::surface_from_points); its schedule (StepPolicy::set_schedules) is λ(t) of the
+//    fusion f_hyb = [f_geo, λ·Ψ], on the configured ramp (LidarNerfModel::set_fusion_weight).
 // Checkpoints carry Ψ's parameters and Adam state and the poses the pool was built from, so a
 // resumed run rebuilds the same pool and stays bit-identical.
 #pragma once
@@ -70,6 +70,8 @@ class SpectralSchedule : public StepPolicy {
                    const TrainConfig& cfg, PoseOf pose_of);
 
   void on_epoch(long epoch, long step) override;
+  // λ(t) of `step` (the fusion ramp), after the wrapped policy's schedules.
+  void set_schedules(LidarNerfModel& model, long step) override;
   void step(LidarNerfModel& model, uint64_t seed, long step, float lr) override;
   Json log_fields() override;
   std::string progress_text() override;

@@ -45,7 +45,7 @@ StepPolicy& RunStepParts::consistency(StepPolicy& inner) {
 }
 
 // Ψ trains in the model's step (a loss term with its own parameter group); the schedule sets
-// λ(t) before `inner` renders, rebuilds the surface pool each epoch and checkpoints Ψ.
+// λ(t), rebuilds the surface pool each epoch and checkpoints Ψ.
 StepPolicy& RunStepParts::spectral(StepPolicy& inner) {
   if (!c_.hybrid_encoder()) return inner;
   require(poses_ != nullptr, "the hybrid spectral field needs a pose-free method");

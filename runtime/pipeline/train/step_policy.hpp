@@ -23,15 +23,19 @@ class StepPolicy {
   virtual ~StepPolicy() = default;
   // Before the first step of every epoch (one pass over scene.train); `step` is its first step.
   virtual void on_epoch(long epoch, long step) { (void)epoch, (void)step; }
-  // One training step with the network learning rate `lr` (may only enqueue).
+  // The field's schedules of step `step` (the pose-free methods' coarse-to-fine level mask,
+  // SG-NLF's fusion weight λ(t)). The trainer sets every policy's before the step runs, and after
+  // a resume those of the checkpoint's last step (an epoch that starts right at the checkpoint
+  // uses the model, for the pose graph's features, before the next step): what a policy renders
+  // with does not depend on the order its wrappers are composed in. A wrapper passes it on.
+  virtual void set_schedules(LidarNerfModel& model, long step) { (void)model, (void)step; }
+  // One training step with the network learning rate `lr` (may only enqueue), after
+  // set_schedules(model, step).
   virtual void step(LidarNerfModel& model, uint64_t seed, long step, float lr) = 0;
   // Extra fields for train_log.jsonl at logged steps, and a short progress text.
   virtual Json log_fields();  // none by default
   virtual std::string progress_text() { return ""; }
-  // Named arrays saved beside the model's in checkpoints, and their restoration. load_state
-  // also puts back what the policy sets on the model at every step (the coarse-to-fine level
-  // weights, the fusion λ) as the checkpoint's last step left it: an epoch that starts right
-  // at the checkpoint uses the model (pose-graph features) before the next step sets them.
+  // Named arrays saved beside the model's in checkpoints, and their restoration.
   virtual NamedArrays state() const { return {}; }
   virtual void load_state(const Checkpoint& ck, LidarNerfModel& model) { (void)ck, (void)model; }
 };

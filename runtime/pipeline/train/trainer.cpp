@@ -99,7 +99,10 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
     st.adam_v = ck.array("adam_v", model.n_params());
     st.adam_step = ck.step;
     model.set_state(st);
-    if (opt.policy) opt.policy->load_state(ck, model);
+    if (opt.policy) {
+      opt.policy->load_state(ck, model);
+      if (ck.step > 0) opt.policy->set_schedules(model, ck.step - 1);  // as the last step left them
+    }
     tracker.best = ck.best_loss;
     tracker.smoothed = ck.smoothed_loss;
     sum.start_step = last_good = ck.step;
@@ -155,6 +158,7 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
       if (step == sum.start_step) progress.restart_clock(step);
     }
     const float lr = float(cfg.optim.lr_at(step, total));
+    policy.set_schedules(model, step);
     policy.step(model, opt.seed, step, lr);
     const double live = double(model.live_samples()) / double(samples_per_step);
     live_sum += live;
