@@ -32,14 +32,22 @@ esac
 if [ "$SCOPE" = "all" ]; then
   cmake --build "$B" -j "$JOBS"
 else
-  # The targets to build are the executables the selected tests run (a test's name need not be
-  # its target's: an app test runs bin/sgnlf).
-  mapfile -t exes < <(ctest --test-dir "$B" "${select[@]}" -N -V |
-                      sed -n -E 's/^[0-9]+: Test command: ([^ ]+).*/\1/p' | sort -u)
-  [ ${#exes[@]} -gt 0 ] || { echo "sanitize: no tests selected (SCOPE=$SCOPE)"; exit 1; }
+  # Each selected test runs its test_<name> executable (the device and host test binaries, the
+  # fuzz replays); the tests' commands cannot be read before the build, so the names are checked
+  # against the build's targets: a selected test without one (an app test that needs bin/sgnlf)
+  # is refused here by name instead of failing make with "No rule to make target".
+  mapfile -t tests < <(ctest --test-dir "$B" "${select[@]}" -N | sed -n 's/^ *Test *#[0-9]*: *//p')
+  [ ${#tests[@]} -gt 0 ] || { echo "sanitize: no tests selected (SCOPE=$SCOPE)"; exit 1; }
+  known=$(cmake --build "$B" --target help | sed -n -E 's/^\.\.\. ([^ ]+).*/\1/p; s/^([A-Za-z0-9_]+): phony$/\1/p')
   targets=()
-  for e in "${exes[@]}"; do targets+=(--target "$(basename "$e")"); done
-  echo "sanitize: building ${#exes[@]} targets (SCOPE=$SCOPE: ${targets[*]})"
+  for t in "${tests[@]}"; do
+    grep -qx "test_$t" <<< "$known" || {
+      echo "sanitize: test '$t' (SCOPE=$SCOPE) has no target test_$t; give it another label than host/asan_ci"
+      exit 1
+    }
+    targets+=(--target "test_$t")
+  done
+  echo "sanitize: building ${#tests[@]} test targets (SCOPE=$SCOPE: ${tests[*]})"
   cmake --build "$B" -j "$JOBS" "${targets[@]}"
 fi
 ctest --test-dir "$B" "${select[@]}" --output-on-failure -j "$JOBS" "$@"
