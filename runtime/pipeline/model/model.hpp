@@ -142,8 +142,8 @@ class LidarNerfModel {
   // field changes through forward/backward, its parameter groups' steps and the schedules below.
   const field::Encoder& encoder() const { return *encoder_; }
   // SG-NLF's hybrid field (the config's hybrid_encoder()): the fusion weight λ(t) of
-  // f_hyb = [f_geo, λ·Ψ] for the following passes (the spectral schedule sets it every step, as
-  // the pose-free step sets the level mask), and Ψ's parameters and Adam state for checkpoints.
+  // f_hyb = [f_geo, λ·Ψ] for the following passes (the spectral schedule's set_schedules sets it
+  // before every step), and Ψ's parameters and Adam state for checkpoints.
   // Each throws sgnlf::Error without the hybrid encoder.
   bool hybrid() const { return hybrid_ != nullptr; }
   void set_fusion_weight(float lambda);
