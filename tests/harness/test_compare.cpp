@@ -190,13 +190,14 @@ TEST_CASE("every metric of the committed tables has a direction", "[harness][com
   CHECK(harness::metric_info("median_no_such_metric") == nullptr);
 }
 
-TEST_CASE("a committed cell rerun on another CPU: improved passes, regressed fails",
+TEST_CASE("a committed cell rerun on another CPU: another outcome passes, regressed fails",
           "[harness][compare]") {
   // The main command's situation (scripts/run.sh): SG-NLF on kitti360-low-a rerun on another
   // machine and compared, as a subset, with the committed table, whose cell holds seeds 1 and 2
-  // (mean ± sd). The other run here is a real one: the committed seed-2 run of the same config,
-  // a different training outcome (CD 0.146 against 0.167) with every metric the evaluation
-  // writes today, presented as a seed-1 run of another CPU.
+  // (mean ± sd). The other run here is a real one: the committed seed-2 run, a different
+  // training outcome with every metric the evaluation writes today, presented as a seed-1 run
+  // of another CPU. It takes seed 1's config hash: while a row is being rerun with a new preset
+  // its two seeds may carry different hashes, and what is tested here is the metrics' spread.
   const std::string root = test::source_dir() + "/results/";
   const Json table = load_json_file(root + "tables/kitti360-low/quick/results.json");
   const auto cell_of = [](const Json& r) {
@@ -219,7 +220,7 @@ TEST_CASE("a committed cell rerun on another CPU: improved passes, regressed fai
   REQUIRE(other["seed"] == 2);
   other.erase("source");
   other["seed"] = 1;
-  REQUIRE(other["config_hash"] == committed["runs"][0]["config_hash"]);
+  other["config_hash"] = committed["runs"][0]["config_hash"];
   Json rows = Json::array();
   for (auto row : table["rows"]) {
     if (row["method"] != "sg-nlf") continue;
@@ -239,12 +240,14 @@ TEST_CASE("a committed cell rerun on another CPU: improved passes, regressed fai
   CHECK_FALSE(improved.regression());
   CHECK(improved.metrics_compared >= 40);  // the median_/mix_ variants and parts were compared
   CHECK(improved.seed_spread_used >= 40);  // the one run against the cell's two seeds' spread
-  // Regressed: CD and its parts 3 x (beyond the loose 1.4 x), F-score 0.15 lower.
+  // Regressed: CD and its parts 3 x (beyond the loose 1.4 x), F-score 0.15 lower, each also
+  // 4 seed sd beyond the cell's mean, so that two seeds far apart do not absorb it.
   Json worse = fresh;
   Json& m = worse["rows"][0]["sequences"][0]["metrics"];
+  const auto sd = [&](const char* k) { return committed["metrics_sd"][k].get<double>(); };
   for (const char* k : {"cd", "cd_pred_to_gt", "cd_gt_to_pred", "median_cd", "mix_cd"})
-    m[k] = committed["metrics"][k].get<double>() * 3.0;
-  m["fscore"] = committed["metrics"]["fscore"].get<double>() - 0.15;
+    m[k] = committed["metrics"][k].get<double>() * 3.0 + 4.0 * sd(k);
+  m["fscore"] = committed["metrics"]["fscore"].get<double>() - 0.15 - 4.0 * sd("fscore");
   const auto regressed = compare_results(worse, table, opt);
   INFO(harness::format_report(regressed));
   CHECK(regressed.regression());
