@@ -17,6 +17,7 @@
 #include "pipeline/config/presets.hpp"
 #include "pipeline/model/ray_batch.hpp"
 #include "spectral/hybrid_encoder.hpp"
+#include "pipeline/train/field_optimizer.hpp"
 #include "spectral/surface.hpp"
 
 using namespace sgnlf;
@@ -33,11 +34,12 @@ void BM_PoseFreeStep(benchmark::State& state, const char* method) {
   LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), c.schedule.rays_per_batch);
   model.init_params(1);
   if (model.hybrid()) model.set_fusion_weight(1.0f);
+  FieldOptimizer optim(model, c);
   long step = 0;
   auto one = [&] {
     const RayBatch b = draw_ray_batch(scene, c, 1, step);
     model.forward_backward(b, 1, step++, true);
-    model.update(1e-2f);
+    optim.step(1e-2f);
     benchmark::DoNotOptimize(model.read_ray_grads());
   };
   one();

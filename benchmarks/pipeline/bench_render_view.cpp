@@ -29,7 +29,7 @@ void BM_RenderView(benchmark::State& state, bool fast) {
   if (c.render.eval_samples > 0) c.render.n_samples = c.render.eval_samples;
   if (c.render.eval_importance >= 0) c.render.n_importance = c.render.eval_importance;
   LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), kChunk);
-  model.set_state(bench::trained_state());
+  model.set_params(bench::trained_state().params);
   const render::FastRenderConfig fc;
   FastRenderer renderer(bench::runtime(), model, scene, fc, kChunk);
   const int frame = d.split.test.front();

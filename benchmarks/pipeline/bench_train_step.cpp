@@ -37,13 +37,16 @@ void BM_TrainStep(benchmark::State& state, const char* preset, bool reuse_coarse
   LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), c.schedule.rays_per_batch);
   model.set_reuse_coarse_encodings(reuse_coarse);
   model.init_params(1);
+  FieldOptimizer optim(model, c);
   long step = 0;
   const RayBatch warm = draw_ray_batch(scene, c, 1, step);
-  model.train_step(warm, 1, step++, 1e-2f);
+  model.forward_backward(warm, 1, step++);
+  optim.step(1e-2f);
   model.read_losses();
   for (auto _ : state) {
     const RayBatch b = draw_ray_batch(scene, c, 1, step);
-    model.train_step(b, 1, step++, 1e-2f);
+    model.forward_backward(b, 1, step++);
+    optim.step(1e-2f);
     benchmark::DoNotOptimize(model.read_losses());
   }
   const double samples = double(c.schedule.rays_per_batch) * (c.render.n_samples + c.render.n_importance);
@@ -79,13 +82,16 @@ void BM_TrainStepTrained(benchmark::State& state, float stop_transmittance, int 
   c.render.coarse_waves = coarse_waves;
   c.render.head_weight_threshold = head_threshold;
   LidarNerfModel model(bench::runtime(), c, float(scene.norm.scale), c.schedule.rays_per_batch);
-  model.set_state(trained_state());
+  model.set_params(trained_state().params);
+  FieldOptimizer optim(model, c);
+  optim.set_state(trained_state().adam);
   long step = kWarmSteps;
   double live = 0.0, coarse = 0.0, head = 0.0, evals = 0.0, free = 0.0, dropped = 0.0;
   const double samples = double(c.schedule.rays_per_batch) * (c.render.n_samples + c.render.n_importance);
   for (auto _ : state) {
     const RayBatch b = draw_ray_batch(scene, c, 1, step);
-    model.train_step(b, 1, step++, 1e-3f);
+    model.forward_backward(b, 1, step++);
+    optim.step(1e-3f);
     benchmark::DoNotOptimize(model.read_losses());
     live += double(model.live_samples()) / samples;
     evals += double(model.live_samples() + model.coarse_evaluated());

@@ -26,22 +26,22 @@ inline double worst_channel_diff(const std::vector<float>& a, const std::vector<
   return worst;
 }
 
-inline pipeline::ModelState opaque_state(pipeline::LidarNerfModel& model, const pipeline::Scene& scene,
-                                         const pipeline::TrainConfig& c, const std::string& dir) {
+inline std::vector<float> opaque_state(pipeline::LidarNerfModel& model, const pipeline::Scene& scene,
+                                       const pipeline::TrainConfig& c, const std::string& dir) {
   pipeline::TrainOptions opt;
   opt.run_dir = temp_dir(dir);
   opt.seed = 3;
   opt.show_progress = false;
   pipeline::train(model, scene, c, opt);
-  pipeline::ModelState st = model.state();
+  std::vector<float> st = model.params();
   const auto& f = c.field;
   const field::Mlp dens(runtime(),
                         field::make_mlp_spec(f.grid.levels * f.grid.features, f.density_hidden, 1,
                                              1 + f.geo_features, field::Activation::Relu));
   const size_t sigma_bias = model.layout().slice("density_mlp").offset + dens.layer_offset(1) +
                             size_t(f.density_hidden) * size_t(field::Mlp::pad16(1 + f.geo_features));
-  st.params[sigma_bias] += 4.0f;
-  model.set_state(st);
+  st[sigma_bias] += 4.0f;
+  model.set_params(st);
   return st;
 }
 

@@ -62,7 +62,7 @@ std::vector<float> train_params(const Scene& scene, const TrainConfig& c, const 
   opt.stop_at = stop_at;
   opt.show_progress = false;
   train(model, scene, c, opt);
-  return model.state().params;
+  return model.params();
 }
 
 // Limits the size of files this process may write (what a full disk looks like to write()),

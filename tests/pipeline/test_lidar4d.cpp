@@ -12,6 +12,7 @@
 #include "pipeline/config/presets.hpp"
 #include "pipeline/model/ray_batch.hpp"
 #include "pipeline/model/render_view.hpp"
+#include "pipeline/train/field_optimizer.hpp"
 #include "pipeline/train/flow_points.hpp"
 #include "pipeline/train/flow_supervision.hpp"
 #include "pipeline/train/trainer.hpp"
@@ -53,7 +54,7 @@ Trained train_lidar4d(const Scene& scene, const TrainConfig& c, uint64_t seed,
   opt.show_progress = false;
   opt.policy = &gt;
   const TrainSummary s = train(model, scene, c, opt);
-  return {model.state().params, s.first_loss, s.last_loss, flow.last_value()};
+  return {model.params(), s.first_loss, s.last_loss, flow.last_value()};
 }
 
 }  // namespace
@@ -224,9 +225,10 @@ TEST_CASE("lidar4d model: bit-identical training, decreasing loss, flow gradient
   CHECK(out == 0);
   // Repeated steps pull the flow toward the target: the loss falls.
   double last = value;
+  FieldOptimizer optim(model, c);
   for (int it = 0; it < 20; ++it) {
     model.forward_backward(batch, 4, 2 + it);
-    model.update(1e-2f);
+    optim.step(1e-2f);
     last = pull.value;
   }
   CHECK(last < 0.5 * value);
@@ -254,9 +256,7 @@ TEST_CASE("lidar4d model: the Chamfer term and renders at the frame's time",
   // same time; a model without a time ignores the frame.
   const Pose& T = test::tiny_dataset().frames[3].T_world_lidar;
   const Trained t = train_lidar4d(scene, c, 2, "l4d_render");
-  ModelState st = model.state();
-  st.params = t.params;
-  model.set_state(st);
+  model.set_params(t.params);
   const RangeImage r3 = render_view(model, scene, T, 512, 3);
   const RangeImage r3b = render_view(model, scene, T, 512, 3);
   const RangeImage r10 = render_view(model, scene, T, 512, 10);
@@ -300,17 +300,17 @@ TEST_CASE("lidar4d model: separate intensity and ray-drop heads stay separate in
     return std::make_pair(zeros, count);
   };
   model.init_params(5);
-  const auto init = off_tower(model.state().params);
+  const auto init = off_tower(model.params());
   CHECK(init.second > 0);
   CHECK(init.first == init.second);
   const Trained t = train_lidar4d(scene, c, 5, "l4d_heads");
   const auto trained = off_tower(t.params);
   CHECK(trained.first == trained.second);
   // The towers themselves trained: the head's first layer moved.
-  ModelState st = model.state();
+  const std::vector<float> st = model.params();
   size_t moved = 0;
   for (size_t i = head.offset; i < head.offset + head.count; ++i)
-    moved += t.params[i] != st.params[i] ? 1 : 0;
+    moved += t.params[i] != st[i] ? 1 : 0;
   CHECK(moved > head.count / 4);
   // Label smoothing moves the return term only: same batch, same parameters, the depth and
   // intensity terms are equal and the return term differs.
@@ -326,4 +326,57 @@ TEST_CASE("lidar4d model: separate intensity and ray-drop heads stay separate in
   CHECK(ls.value("depth") == lp.value("depth"));
   CHECK(ls.value("intensity") == lp.value("intensity"));
   CHECK(ls.value("return") != lp.value("return"));
+}
+
+TEST_CASE("the field's optimiser: LiDAR4D's two groups at their rates, its state checked",
+          "[pipeline][lidar4d][optim]") {
+  const Scene scene = make_scene(test::tiny_dataset());
+  const TrainConfig c = tiny_lidar4d();
+  LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), model_capacity(c));
+  model.init_params(7);
+  const auto groups = model.trainable().groups;
+  REQUIRE(groups.size() == 2);
+  CHECK(groups[0].offset == 0);
+  CHECK(groups[0].count == model.layout().slice("hash_grid").offset +
+                               model.four_d_encoder()->offsets().flow);
+  CHECK(groups[1].offset == groups[0].count);
+  CHECK(groups[1].offset + groups[1].count == model.n_params());
+  CHECK(groups[1].lr_scale == c.lidar4d->network_lr_scale);
+  // Adam's first step moves every parameter with a gradient by its group's rate against the
+  // gradient's sign (ε 1e-15): the encodings by lr, the flow field and the MLPs by lr · scale.
+  const RayBatch b = draw_ray_batch(scene, c, 7, 1);
+  model.set_frame(b.frame, int(scene.T_world_lidar.size()));
+  const auto p0 = model.params();
+  model.forward_backward(b, 7, 1);
+  const auto g = model.read_gradient();
+  FieldOptimizer optim(model, c);
+  const float lr = 1e-2f;
+  optim.step(lr);
+  const auto p1 = model.params();
+  size_t checked[2] = {0, 0}, bad = 0;
+  for (int k = 0; k < 2; ++k) {
+    const double rate = double(lr) * groups[size_t(k)].lr_scale;
+    for (size_t i = groups[size_t(k)].offset; i < groups[size_t(k)].offset + groups[size_t(k)].count; ++i) {
+      if (std::abs(g[i]) < 1e-8f) continue;
+      ++checked[k];
+      bad += std::abs(double(p1[i]) - double(p0[i]) + rate * (g[i] > 0 ? 1.0 : -1.0)) > 1e-3 * rate;
+    }
+  }
+  CHECK(checked[0] > 100);
+  CHECK(checked[1] > 100);
+  CHECK(bad == 0);
+  CHECK(optim.steps() == 1);
+  // Its state round-trips; a state of another model's size is refused, naming both counts.
+  const OptimizerState st = optim.state();
+  CHECK(st.m.size() == model.n_params());
+  FieldOptimizer again(model, c);
+  again.set_state(st);
+  CHECK(again.steps() == 1);
+  CHECK(again.state().v == st.v);
+  OptimizerState wrong = st;
+  wrong.m.pop_back();
+  CHECK_THROWS_WITH(again.set_state(wrong),
+                    Catch::Contains(std::to_string(model.n_params()) + " parameters") &&
+                        Catch::Contains(std::to_string(model.n_params() - 1)));
+  CHECK_THROWS_WITH(model.set_params(wrong.m), Catch::Contains("model parameters"));
 }

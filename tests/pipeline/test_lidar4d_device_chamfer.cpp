@@ -146,9 +146,10 @@ TEST_CASE("lidar4d: a gpu-profile step with the device Chamfer equals the host p
       GroundTruthPoseStep gt(scene, c);
       auto& flow = static_cast<FlowSupervision&>(
           m->add_loss(make_flow_supervision(p.chamfer, test::tiny_dataset(), scene, c, 3)));
-      for (long step = 0; step < steps; ++step) gt.step(*m, 4, step, 1e-3f);
+      FieldOptimizer optim(*m, c);
+      for (long step = 0; step < steps; ++step) gt.step(*m, optim, 4, step, 1e-3f);
       s.grad = m->read_gradient();
-      s.params = m->state().params;
+      s.params = m->params();
       const LossReport l = m->read_losses();
       s.loss = l.total();
       s.flow = flow.last_value();

@@ -21,7 +21,7 @@ namespace {
 class RecordingParts : public StepParts {
  public:
   struct Policy : StepPolicy {
-    void step(LidarNerfModel&, uint64_t, long, float) override {}
+    void step(LidarNerfModel&, FieldOptimizer&, uint64_t, long, float) override {}
   };
   std::vector<std::string> calls;
   StepPolicy& ground_truth_poses() override { return record("ground_truth_poses"); }

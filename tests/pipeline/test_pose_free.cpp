@@ -134,7 +134,7 @@ TEST_CASE("pose-free run folder: trajectories, pose metrics, frozen control, exa
   LoadedRun resumed = load_run(test::runtime(), part);
   for (size_t i = 0; i < lr.T_world_lidar.size(); ++i)
     CHECK(resumed.T_world_lidar[i].matrix() == lr.T_world_lidar[i].matrix());
-  CHECK(resumed.model->state().params == lr.model->state().params);
+  CHECK(resumed.model->params() == lr.model->params());
 
   // The control keeps its initial poses.
   const std::string frozen = test::temp_dir("posefree_frozen");

@@ -156,11 +156,11 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
   LoadedRun mixr = load_run(test::runtime(), run_dir, "", RenderSampling{0, -1, "mix", ""});
   mixr.manifest.config.render.eval_mix_factor = 1.0f;
   {
-    const ModelState trained = mixr.model->state();
+    const std::vector<float> trained = mixr.model->params();
     mixr.model = std::make_unique<LidarNerfModel>(test::runtime(), mixr.manifest.config,
                                                   float(mixr.scene->norm.scale),
                                                   model_capacity(mixr.manifest.config));
-    mixr.model->set_state(trained);
+    mixr.model->set_params(trained);
   }
   DepthStats st;
   const RangeImage exp_img = render_view(*run.model, *run.scene, T_test,
@@ -212,7 +212,7 @@ TEST_CASE("train, eval and render a run folder", "[pipeline][session][device]") 
   LoadedRun by_config = load_run(test::runtime(), ev.run_dir);
   CHECK(by_config.manifest.config.render.n_samples == 3 * trained_samples);
   CHECK(by_config.manifest.config.render.n_importance == 5);
-  CHECK(by_config.model->state().params == run.model->state().params);  // same training
+  CHECK(by_config.model->params() == run.model->params());  // same training
   LoadedRun overridden = load_run(test::runtime(), ev.run_dir, "", RenderSampling{0, 2, "", ""});
   CHECK(overridden.manifest.config.render.n_samples == 3 * trained_samples);
   CHECK(overridden.manifest.config.render.n_importance == 2);

@@ -137,14 +137,15 @@ Audit audit_step(const std::string& method) {
     RunStepParts parts(rt, d, rs.scene, c, model, dir, 1);
     StepPolicy& policy = find_method(c.method).compose(parts);
     policy.on_epoch(0, 0);
+    FieldOptimizer optim(model, c);
     // Step 0 builds the programs and sizes the buffers; step 1 is the one recorded.
     policy.set_schedules(model, 0);
-    policy.step(model, 1, 0, 1e-2f);
+    policy.step(model, optim, 1, 0, 1e-2f);
     (void)model.live_samples();
     rt.finish();
     rt.set_trace(&a.trace);
     policy.set_schedules(model, 1);
-    policy.step(model, 1, 1, 1e-2f);
+    policy.step(model, optim, 1, 1, 1e-2f);
     (void)model.live_samples();
     rt.set_trace(nullptr);
     rt.finish();

@@ -37,7 +37,7 @@ std::vector<float> train_params(const Scene& scene, const TrainConfig& c, uint64
   opt.resume = resume;
   opt.show_progress = false;
   train(model, scene, c, opt);
-  return model.state().params;
+  return model.params();
 }
 
 }  // namespace
@@ -178,12 +178,12 @@ TEST_CASE("early ray termination: exact while no ray terminates, within its thre
   const TrainConfig c = test::tiny_config(
       Json{{"schedule", {{"iterations", 150}, {"checkpoint_every", 0}}}});
   LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
-  const ModelState st = test::opaque_state(model, scene, c, "ert_trained");
+  const std::vector<float> st = test::opaque_state(model, scene, c, "ert_trained");
   const float eps = 1e-3f;
   TrainConfig ce = c;
   ce.render.stop_transmittance = eps;
   LidarNerfModel cut(test::runtime(), ce, float(scene.norm.scale), 512);
-  cut.set_state(st);
+  cut.set_params(st);
   // 512 rays of the test frame (13), in the normalised frame.
   std::vector<float> o, dir;
   image_rays(scene, normalize_pose(d.frames[13].T_world_lidar, scene.norm), 600, 1112, o, dir);
@@ -211,7 +211,7 @@ TEST_CASE("early ray termination: exact while no ray terminates, within its thre
   TrainConfig cw = ce;
   cw.render.coarse_waves = 4;
   LidarNerfModel waves(test::runtime(), cw, float(scene.norm.scale), 512);
-  waves.set_state(st);
+  waves.set_params(st);
   const auto wave_out = waves.render_rays(o, dir, 512);
   const auto wave_live = waves.live_counts();
   const int S = c.render.n_samples;
@@ -235,7 +235,7 @@ TEST_CASE("early ray termination: exact while no ray terminates, within its thre
   TrainConfig cb = ce;
   cb.render.head_weight_threshold = thr;
   LidarNerfModel band(test::runtime(), cb, float(scene.norm.scale), 512);
-  band.set_state(st);
+  band.set_params(st);
   const auto band_out = band.render_rays(o, dir, 512);
   INFO("head rows " << band.head_rows() << " of " << n_live << " live samples");
   CHECK(band.head_rows() > 0);
@@ -254,7 +254,7 @@ TEST_CASE("early ray termination: exact while no ray terminates, within its thre
   // head outputs' share.
   const RayBatch b = draw_ray_batch(scene, cb, 7, 160);
   auto gradient_of = [&](LidarNerfModel& m) {
-    m.set_state(st);
+    m.set_params(st);
     m.forward_backward(b, 7, 160);
     m.read_losses();
     return m.read_gradient();
@@ -262,9 +262,9 @@ TEST_CASE("early ray termination: exact while no ray terminates, within its thre
   const auto grad_cut = gradient_of(cut);
   const auto grad = gradient_of(band);
   auto loss_at = [&](size_t k, float v) {
-    ModelState sp = st;
-    sp.params[k] += v;
-    band.set_state(sp);
+    std::vector<float> sp = st;
+    sp[k] += v;
+    band.set_params(sp);
     band.forward_backward(b, 7, 160);
     return double(band.read_losses().total());
   };
@@ -331,7 +331,7 @@ TEST_CASE("early termination of uniform-only sampling: exact at initialisation, 
   const TrainConfig c = test::tiny_config(
       Json{{"render", uniform}, {"schedule", {{"iterations", 150}, {"checkpoint_every", 0}}}});
   LidarNerfModel model(test::runtime(), c, float(scene.norm.scale), 512);
-  const ModelState st = test::opaque_state(model, scene, c, "uert_trained");
+  const std::vector<float> st = test::opaque_state(model, scene, c, "uert_trained");
   const float eps = 1e-3f;
   std::vector<float> o, dir;
   image_rays(scene, normalize_pose(d.frames[13].T_world_lidar, scene.norm), 600, 1112, o, dir);
@@ -342,7 +342,7 @@ TEST_CASE("early termination of uniform-only sampling: exact at initialisation, 
     ce.render.stop_transmittance = eps;
     ce.render.coarse_waves = n_waves;
     LidarNerfModel cut(test::runtime(), ce, float(scene.norm.scale), 512);
-    cut.set_state(st);
+    cut.set_params(st);
     const auto part = cut.render_rays(o, dir, 512);
     const long S = c.render.n_samples;
     INFO(n_waves << " wave(s): live samples " << cut.live_samples() << ", density-pass samples "
@@ -370,7 +370,7 @@ TEST_CASE("the embedded module configs reach the modules: field.grid, optim.adam
     CHECK_FALSE(g.half_table);
     CHECK(g.schedule == "auto");
     CHECK(g.levels == 8);  // the smoke preset's
-    CHECK(model.optimizer().config().weight_decay == 0.0f);
+    CHECK(FieldOptimizer(model, c).config().weight_decay == 0.0f);
   }
   // Options no training config could set before (the model fixed them): now keys.
   const TrainConfig c = test::tiny_config(
@@ -386,6 +386,7 @@ TEST_CASE("the embedded module configs reach the modules: field.grid, optim.adam
   CHECK(g.schedule == "per_point");
   CHECK(g.levels == 6);
   CHECK(model.levels() == 6);
-  CHECK(model.optimizer().config().weight_decay == 1e-3f);
-  CHECK(model.optimizer().config().beta2 == 0.95f);
+  const FieldOptimizer optim(model, c);
+  CHECK(optim.config().weight_decay == 1e-3f);
+  CHECK(optim.config().beta2 == 0.95f);
 }

@@ -59,7 +59,7 @@ TEST_CASE("surface sampling with weight carving trains, logs its term and is det
   LidarNerfModel again(test::runtime(), c, float(scene.norm.scale), 512);
   opt.run_dir = test::temp_dir("surface_train_b");
   train(again, scene, c, opt);
-  CHECK(again.state().params == model.state().params);
+  CHECK(again.params() == model.params());
 }
 
 TEST_CASE("surface sampling: the head's parameter gradient matches finite differences",
@@ -78,7 +78,7 @@ TEST_CASE("surface sampling: the head's parameter gradient matches finite differ
     model.forward_backward(b, 9, 1);
     const double l0 = double(model.read_losses().total());
     const auto g = model.read_gradient();
-    ModelState st = model.state();
+    const std::vector<float> st = model.params();
     const field::ParamSlice head = model.layout().slice("head_mlp");
     // Central differences in float: a step that crosses a ReLU kink of the head spoils its
     // element, so most elements must agree closely and none may be far off (a wrong or missing
@@ -86,13 +86,13 @@ TEST_CASE("surface sampling: the head's parameter gradient matches finite differ
     std::vector<double> rel;
     for (size_t k = head.offset; k < head.offset + head.count; k += head.count / 41) {
       const double eps = 3e-3;
-      ModelState p = st;
-      p.params[k] += float(eps);
-      model.set_state(p);
+      std::vector<float> p = st;
+      p[k] += float(eps);
+      model.set_params(p);
       model.forward_backward(b, 9, 1);
       const double lp = double(model.read_losses().total());
-      p.params[k] -= float(2 * eps);
-      model.set_state(p);
+      p[k] -= float(2 * eps);
+      model.set_params(p);
       model.forward_backward(b, 9, 1);
       const double lm = double(model.read_losses().total());
       const double fd = (lp - lm) / (2 * eps);

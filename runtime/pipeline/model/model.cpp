@@ -76,7 +76,6 @@ LidarNerfModel::LidarNerfModel(cl::Runtime& rt, const TrainConfig& c, float scen
   off_grid_ = layout_.add("hash_grid", encoder_->n_params()).offset;
   off_density_ = layout_.add("density_mlp", density_.n_params()).offset;
   off_head_ = layout_.add("head_mlp", head_.n_params()).offset;
-  adam_ = std::make_unique<field::Adam>(rt, layout_.total(), c.optim.adam);
   col_get_ = rt.kernel("field/columns.cl", "field_column_get");
   col_set_ = rt.kernel("field/columns.cl", "field_column_set");
   clamp_ = rt.kernel("render/sample.cl", "render_clamp_points");
@@ -160,7 +159,6 @@ void LidarNerfModel::init_params(uint64_t seed) {
   density_.init_params(p, off_density_, seed ^ 0x2222);
   head_.init_params(p, off_head_, seed ^ 0x3333);
   params_.write_vec(p);
-  adam_->reset();
 }
 
 SampleSet LidarNerfModel::sample(Sampler& s, int n_rays, bool jitter, uint64_t seed,
@@ -321,16 +319,13 @@ void LidarNerfModel::backward(const ForwardContext& ctx, cl::Buffer& grad, bool 
   grad_rays_ = R;
 }
 
-void LidarNerfModel::update(float lr) {
-  adam_->begin_step();
+LidarNerfModel::Trainable LidarNerfModel::trainable() {
   if (four_d_) {  // LiDAR4D's groups: the encodings at lr, the flow field and the MLPs scaled
     const size_t enc_end = off_grid_ + four_d_->offsets().flow;
-    adam_->update(params_, grad_, 0, enc_end, lr);
-    adam_->update(params_, grad_, enc_end, layout_.total() - enc_end,
-                  float(double(lr) * cfg_.lidar4d->network_lr_scale));
-    return;
+    return {params_, grad_,
+            {{0, enc_end, 1.0}, {enc_end, layout_.total() - enc_end, cfg_.lidar4d->network_lr_scale}}};
   }
-  adam_->update(params_, grad_, 0, layout_.total(), lr);
+  return {params_, grad_, {{0, layout_.total(), 1.0}}};
 }
 
 std::vector<float> LidarNerfModel::render_rays(const std::vector<float>& origins,
@@ -383,25 +378,15 @@ std::vector<float> LidarNerfModel::encode_points(const std::vector<float>& x, in
   return out;
 }
 
-ModelState LidarNerfModel::state() const {
-  ModelState s;
-  s.params = params_.read_vec<float>(layout_.total());
-  s.adam_m = adam_->m().read_vec<float>(layout_.total());
-  s.adam_v = adam_->v().read_vec<float>(layout_.total());
-  s.adam_step = adam_->step();
-  return s;
+std::vector<float> LidarNerfModel::params() const {
+  return params_.read_vec<float>(layout_.total());
 }
 
-void LidarNerfModel::set_state(const ModelState& s) {
-  const size_t n = layout_.total();
-  if (s.params.size() != n || s.adam_m.size() != n || s.adam_v.size() != n)
-    throw IoError("model state has " + std::to_string(s.params.size()) +
-                  " parameters, the model " + std::to_string(n));
-  params_.write_vec(s.params);
-  adam_->reset();
-  adam_->m().write_vec(s.adam_m);
-  adam_->v().write_vec(s.adam_v);
-  for (int64_t i = 0; i < s.adam_step; ++i) adam_->begin_step();  // Adam exposes no setter
+void LidarNerfModel::set_params(const std::vector<float>& p) {
+  if (p.size() != layout_.total())
+    throw IoError("model parameters: " + std::to_string(p.size()) + " values, the model has " +
+                  std::to_string(layout_.total()));
+  params_.write_vec(p);
 }
 
 }  // namespace sgnlf::pipeline

@@ -1,7 +1,8 @@
 // The LiDAR-NeRF model on the device (method.md §0–1): position encoder (field::Encoder: the
 // hash grid, or SG-NLF's hybrid [f_geo, λ·Ψ]) → density MLP (σ logit + 15 geometric features)
-// → [geo, direction encoding] → LiDAR head → volume rendering, the training losses, the
-// backward chain and Adam over one flat parameter buffer.
+// → [geo, direction encoding] → LiDAR head → volume rendering, the training losses and the
+// backward chain into the gradient of one flat parameter buffer. The optimiser that steps that
+// buffer is the training step's (train/field_optimizer.hpp), not the model's.
 //
 // Every pass is sample → forward → (losses →) backward:
 // - a Sampler (sampler.hpp) places the pass's samples and returns a SampleSet: the strategy
@@ -34,7 +35,6 @@
 
 #include "cl/runtime.hpp"
 #include "cl/staged_upload.hpp"
-#include "field/adam.hpp"
 #include "field/dir_encoding.hpp"
 #include "field/encoder.hpp"
 #include "field/mlp.hpp"
@@ -67,13 +67,12 @@ class SceneFlow;
 
 namespace sgnlf::pipeline {
 
-// Device-side state that checkpoints hold (host copies).
-struct ModelState {
+// SG-NLF's Ψ: its own parameters and Adam state, outside the flat buffer (host copies, for
+// checkpoints).
+struct PsiState {
   std::vector<float> params, adam_m, adam_v;
   int64_t adam_step = 0;
 };
-// The same of SG-NLF's Ψ (its own parameters and Adam, outside the flat buffer).
-using PsiState = ModelState;
 
 class LidarNerfModel {
  public:
@@ -85,19 +84,32 @@ class LidarNerfModel {
   // Deterministic initialisation from `seed` (hash grid ±1e-4, MLP fan-in uniform).
   void init_params(uint64_t seed);
 
-  // One training step in two parts, composed by the trainer: forward_backward enqueues the
-  // step's gradient through the list of loss terms (loss_term.hpp: the terms' own passes, then
-  // the batch's sampling, forward, loss and backward, the two gradients summed) into the
-  // gradient buffer (and, with `ray_grads`, dL/d(origin) and dL/d(direction) of every batch ray
-  // for the pose-free methods, read with read_ray_grads()); update() enqueues the Adam step of
-  // every parameter group. No wait (but what a term's own pass reads back).
+  // The field's part of a training step: enqueues the step's gradient through the list of loss
+  // terms (loss_term.hpp: the terms' own passes, then the batch's sampling, forward, loss and
+  // backward, the two gradients summed) into the gradient buffer (and, with `ray_grads`,
+  // dL/d(origin) and dL/d(direction) of every batch ray for the pose-free methods, read with
+  // read_ray_grads()). The step's optimiser (train/field_optimizer.hpp) then steps trainable().
+  // No wait (but what a term's own pass reads back).
   void forward_backward(const RayBatch& b, uint64_t seed, long step, bool ray_grads = false);
-  void update(float lr);
-  // Both parts (the ground-truth-pose methods' step).
-  void train_step(const RayBatch& b, uint64_t seed, long step, float lr) {
-    forward_backward(b, seed, step);
-    update(lr);
-  }
+
+  // The field's parameters (layout()): a blocking read, and a write that checks the count
+  // (IoError naming both).
+  std::vector<float> params() const;
+  void set_params(const std::vector<float>& p);
+  // What an optimiser steps: the parameter buffer, the gradient of the last forward_backward,
+  // and the parameter groups with their learning-rate scales (LiDAR4D's: the encodings at the
+  // step's rate, the flow field and the MLPs scaled by lidar4d.network_lr_scale; one group for
+  // the other fields).
+  struct ParamGroup {
+    size_t offset = 0, count = 0;
+    double lr_scale = 1.0;
+  };
+  struct Trainable {
+    cl::Buffer& params;
+    const cl::Buffer& grad;
+    std::vector<ParamGroup> groups;
+  };
+  Trainable trainable();
   // Per ray (n_rays × 3, normalised frame) of the last backward that computed them (the batch's
   // with ray_grads, or a term's own FieldPass::backward): gradients of the loss with respect to
   // the ray origins and directions, through every evaluated sample position (early-terminated
@@ -153,8 +165,6 @@ class LidarNerfModel {
   size_t psi_params() const;
   // LiDAR4D's 4D encoder when the config's four_d_encoder() is on, else null.
   field::Lidar4DEncoder* four_d_encoder() { return four_d_; }
-  // The field's optimiser (its settings: the config's optim.adam).
-  const field::Adam& optimizer() const { return *adam_; }
   // The time of the following passes for a 4D encoder: dataset frame `frame` of `frames`
   // (field::frame_time); a no-op for the other encoders, which have no time.
   void set_frame(int frame, int frames);
@@ -223,23 +233,20 @@ class LidarNerfModel {
   // (the protocol's): render.training_sampler_name() and render.sampler_name().
   const std::string& training_strategy() const { return training_->name(); }
   const std::string& protocol_strategy() const { return protocol_->name(); }
-  // The context of the last sampled pass (train_step, a term's FieldPass::render, render_rays):
+  // The context of the last sampled pass (forward_backward, a term's FieldPass::render, render_rays):
   // its samples and head rows; valid() false before the first.
   const ForwardContext& last_forward() const { return last_; }
 
   // Early ray termination (render.stop_transmittance > 0): merged samples behind the point
   // where the coarse pass's transmittance fell below the threshold are not evaluated (zero
-  // density). Live samples of the last train_step/render call:
+  // density). Live samples of the last forward_backward/render call:
   std::vector<int> live_counts() const;  // per ray (blocking read); the pass must be the last
   long live_samples() const { return last_.samples.rows; }
-  // Coarse samples evaluated by the last train_step/render call (importance sampling or early
+  // Coarse samples evaluated by the last forward_backward/render call (importance sampling or early
   // termination; 0 without): n_rays × n_samples in one pass, fewer with render.coarse_waves > 1.
   long coarse_evaluated() const { return last_.samples.coarse; }
   // Samples the LiDAR head ran on in the last call with render.head_weight_threshold > 0.
   long head_rows() const { return last_.head == HeadRows::Band ? last_.head_rows : 0; }
-
-  ModelState state() const;
-  void set_state(const ModelState& s);
 
  private:
   // Starts a pass that overwrites the activations (any earlier context is stale); returns its
@@ -289,7 +296,6 @@ class LidarNerfModel {
   std::unique_ptr<field::Encoder> encoder_;
   field::Mlp density_, head_;
   field::DirEncoding dirs_;
-  std::unique_ptr<field::Adam> adam_;
   render::RaySampler sampler_;
   render::VolumeRenderer renderer_;
   render::RangeLoss loss_;

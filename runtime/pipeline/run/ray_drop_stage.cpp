@@ -158,7 +158,7 @@ Json refine_finished_run(cl::Runtime& rt, const TrainConfig& c, LidarNerfModel& 
   std::unique_ptr<LidarNerfModel> eval_model;
   if (e.render.n_samples != c.render.n_samples || e.render.n_importance != c.render.n_importance) {
     eval_model = std::make_unique<LidarNerfModel>(rt, e, float(scene.norm.scale), model_capacity(e));
-    eval_model->set_state(model.state());
+    eval_model->set_params(model.params());
   }
   Json j = stage.train(eval_model ? *eval_model : model, scene, d, T_world_lidar,
                        c.schedule.render_chunk_rays);

@@ -121,12 +121,7 @@ LoadedRun load_run(cl::Runtime& rt, const std::string& run_dir,
                                                model_capacity(c));
   const Checkpoint ck =
       load_latest_checkpoint(checkpoint_path(run_dir), trained_hash, run.manifest.seed);
-  ModelState st;
-  st.params = ck.array("params", run.model->n_params());
-  st.adam_m = ck.array("adam_m", run.model->n_params());
-  st.adam_v = ck.array("adam_v", run.model->n_params());
-  st.adam_step = ck.step;
-  run.model->set_state(st);
+  run.model->set_params(ck.array("params", run.model->n_params()));  // the optimiser's: training's
   restore_hybrid_encoder(*run.model, c, ck);
   run.step = ck.step;
   run.pose_free = c.is_pose_free();

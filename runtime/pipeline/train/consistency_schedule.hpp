@@ -70,8 +70,9 @@ class ConsistencySchedule : public StepPolicy {
   void set_schedules(LidarNerfModel& model, long step) override {
     inner_.set_schedules(model, step);
   }
-  void step(LidarNerfModel& model, uint64_t seed, long step, float lr) override {
-    inner_.step(model, seed, step, lr);
+  void step(LidarNerfModel& model, FieldOptimizer& optim, uint64_t seed, long step,
+            float lr) override {
+    inner_.step(model, optim, seed, step, lr);
   }
   Json log_fields() override;
   std::string progress_text() override;

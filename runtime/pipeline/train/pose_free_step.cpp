@@ -86,7 +86,8 @@ void PoseFreeStep::set_schedules(LidarNerfModel& model, long step) {
   if (w != level_w_) model.set_level_weights(level_w_ = std::move(w));
 }
 
-void PoseFreeStep::step(LidarNerfModel& model, uint64_t seed, long step, float lr) {
+void PoseFreeStep::step(LidarNerfModel& model, FieldOptimizer& optim, uint64_t seed, long step,
+                        float lr) {
   const PoseFreeConfig& pc = *cfg_.pose_free;
   if (!grad_reader_) grad_reader_ = make_pose_grad_reader(model.runtime().device_profile().pose_grad);
   const double progress = double(step) / double(cfg_.schedule.iterations);
@@ -98,7 +99,7 @@ void PoseFreeStep::step(LidarNerfModel& model, uint64_t seed, long step, float l
   model.forward_backward(b, seed, step, optimize);
   // No pose step: any pose gradient pending for the frame is void (a loss term's included).
   if (!optimize) poses_.drop_pending(size_t(b.frame));
-  model.update(lr_frame);
+  optim.step(lr_frame);
   if (pc.reweight) {
     const double l = grad_reader_->read_losses(model, optimize).total();
     double& e = ema_[size_t(b.frame)];

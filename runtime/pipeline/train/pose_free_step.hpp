@@ -46,7 +46,8 @@ class PoseFreeStep : public StepPolicy {
   void on_epoch(long epoch, long step) override;
   // The coarse-to-fine level mask of `step` (BARF, pose_free.coarse_to_fine).
   void set_schedules(LidarNerfModel& model, long step) override;
-  void step(LidarNerfModel& model, uint64_t seed, long step, float lr) override;
+  void step(LidarNerfModel& model, FieldOptimizer& optim, uint64_t seed, long step,
+            float lr) override;
   Json log_fields() override;
   std::string progress_text() override;
   NamedArrays state() const override;

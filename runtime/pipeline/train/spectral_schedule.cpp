@@ -136,8 +136,9 @@ void SpectralSchedule::set_schedules(LidarNerfModel& model, long step) {
   model.set_fusion_weight(float(cfg_.spectral->fusion.lambda(int(step))));
 }
 
-void SpectralSchedule::step(LidarNerfModel& model, uint64_t seed, long step, float lr) {
-  inner_.step(model, seed, step, lr);
+void SpectralSchedule::step(LidarNerfModel& model, FieldOptimizer& optim, uint64_t seed,
+                            long step, float lr) {
+  inner_.step(model, optim, seed, step, lr);
 }
 
 Json SpectralSchedule::log_fields() {

@@ -72,7 +72,8 @@ class SpectralSchedule : public StepPolicy {
   void on_epoch(long epoch, long step) override;
   // λ(t) of `step` (the fusion ramp), after the wrapped policy's schedules.
   void set_schedules(LidarNerfModel& model, long step) override;
-  void step(LidarNerfModel& model, uint64_t seed, long step, float lr) override;
+  void step(LidarNerfModel& model, FieldOptimizer& optim, uint64_t seed, long step,
+            float lr) override;
   Json log_fields() override;
   std::string progress_text() override;
   NamedArrays state() const override;

@@ -10,6 +10,7 @@
 
 #include "core/config_fwd.hpp"
 #include "pipeline/train/checkpoint.hpp"
+#include "pipeline/train/field_optimizer.hpp"
 #include "pipeline/model/model.hpp"
 #include "pipeline/model/scene.hpp"
 #include "pipeline/config/train_config.hpp"
@@ -30,8 +31,9 @@ class StepPolicy {
   // with does not depend on the order its wrappers are composed in. A wrapper passes it on.
   virtual void set_schedules(LidarNerfModel& model, long step) { (void)model, (void)step; }
   // One training step with the network learning rate `lr` (may only enqueue), after
-  // set_schedules(model, step).
-  virtual void step(LidarNerfModel& model, uint64_t seed, long step, float lr) = 0;
+  // set_schedules(model, step): the model's forward_backward, then `optim`'s step.
+  virtual void step(LidarNerfModel& model, FieldOptimizer& optim, uint64_t seed, long step,
+                    float lr) = 0;
   // Extra fields for train_log.jsonl at logged steps, and a short progress text.
   virtual Json log_fields();  // none by default
   virtual std::string progress_text() { return ""; }
@@ -40,15 +42,18 @@ class StepPolicy {
   virtual void load_state(const Checkpoint& ck, LidarNerfModel& model) { (void)ck, (void)model; }
 };
 
-// The ground-truth-pose methods (LiDAR-NeRF, LiDAR4D): batches from scene.T_world_lidar, one
-// fused step; a 4D encoder takes the batch frame's time (LidarNerfModel::set_frame).
+// The ground-truth-pose methods (LiDAR-NeRF, LiDAR4D): batches from scene.T_world_lidar, the
+// gradient, the optimiser's step; a 4D encoder takes the batch frame's time
+// (LidarNerfModel::set_frame).
 class GroundTruthPoseStep : public StepPolicy {
  public:
   GroundTruthPoseStep(const Scene& scene, const TrainConfig& cfg) : scene_(scene), cfg_(cfg) {}
-  void step(LidarNerfModel& model, uint64_t seed, long step, float lr) override {
+  void step(LidarNerfModel& model, FieldOptimizer& optim, uint64_t seed, long step,
+            float lr) override {
     const RayBatch b = draw_ray_batch(scene_, cfg_, seed, step);
     model.set_frame(b.frame, int(scene_.T_world_lidar.size()));
-    model.train_step(b, seed, step, lr);
+    model.forward_backward(b, seed, step);
+    optim.step(lr);
   }
 
  private:

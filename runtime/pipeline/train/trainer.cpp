@@ -10,6 +10,7 @@
 #include "core/log.hpp"
 #include "core/progress.hpp"
 #include "pipeline/train/checkpoint.hpp"
+#include "pipeline/train/field_optimizer.hpp"
 #include "pipeline/model/ray_batch.hpp"
 
 namespace sgnlf::pipeline {
@@ -87,18 +88,16 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
 
   GroundTruthPoseStep gt_step(scene, cfg);
   StepPolicy& policy = opt.policy ? *opt.policy : gt_step;
+  FieldOptimizer optim(model, cfg);  // zero moments; a resume loads the checkpoint's
   TrainSummary sum;
   Tracker tracker;
   long last_good = -1;
   if (opt.resume && have_checkpoint(ck_path)) {
     std::string used;
     const Checkpoint ck = load_latest_checkpoint(ck_path, hash, opt.seed, &used);
-    ModelState st;
-    st.params = ck.array("params", model.n_params());
-    st.adam_m = ck.array("adam_m", model.n_params());
-    st.adam_v = ck.array("adam_v", model.n_params());
-    st.adam_step = ck.step;
-    model.set_state(st);
+    model.set_params(ck.array("params", model.n_params()));
+    optim.set_state({ck.array("adam_m", model.n_params()), ck.array("adam_v", model.n_params()),
+                     ck.step});
     if (opt.policy) {
       opt.policy->load_state(ck, model);
       if (ck.step > 0) opt.policy->set_schedules(model, ck.step - 1);  // as the last step left them
@@ -117,8 +116,9 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
   truncate_log((fs::path(opt.run_dir) / "geometric_log.jsonl").string(), sum.start_step, false);
 
   auto save = [&](long step) {
-    const ModelState st = model.state();
-    if (!all_finite(st.params) || !all_finite(st.adam_m) || !all_finite(st.adam_v))
+    std::vector<float> params = model.params();
+    OptimizerState adam = optim.state();
+    if (!all_finite(params) || !all_finite(adam.m) || !all_finite(adam.v))
       throw NumericError("training diverged at step " + std::to_string(step) +
                          ": non-finite parameters; the last good checkpoint (step " +
                          std::to_string(last_good) + ") is kept at " + ck_path);
@@ -128,7 +128,8 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
     ck.config_hash = hash;
     ck.best_loss = tracker.best;
     ck.smoothed_loss = tracker.smoothed;
-    ck.arrays = {{"params", st.params}, {"adam_m", st.adam_m}, {"adam_v", st.adam_v}};
+    ck.arrays = {{"params", std::move(params)}, {"adam_m", std::move(adam.m)},
+                 {"adam_v", std::move(adam.v)}};
     for (auto& a : policy.state()) ck.arrays.push_back(std::move(a));
     save_checkpoint_rotating(ck_path, ck);
     last_good = step;
@@ -159,7 +160,7 @@ TrainSummary train(LidarNerfModel& model, const Scene& scene, const TrainConfig&
     }
     const float lr = float(cfg.optim.lr_at(step, total));
     policy.set_schedules(model, step);
-    policy.step(model, opt.seed, step, lr);
+    policy.step(model, optim, opt.seed, step, lr);
     const double live = double(model.live_samples()) / double(samples_per_step);
     live_sum += live;
     const long done = step + 1;
