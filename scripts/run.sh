@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's main command (about 18 minutes on 2 CPU cores after the build): installs the
+# The README's main command (about 16 minutes on 2 CPU cores after the build, README "The two commands"): installs the
 # dependencies, builds, checks the OpenCL device, trains SG-NLF pose-free from the protocol's
 # noisy start on one low-frequency KITTI-360 twin (kitti360-low-a, 36 frames at 2 Hz) at the
 # quick scale, renders its test views, writes its report page, prints its table beside the

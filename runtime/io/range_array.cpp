@@ -12,22 +12,44 @@
 
 namespace sgnlf::io {
 
-void write_range_npy(const std::string& path, const RangeImage& img) {
-  std::string dict = "{'descr': '<f4', 'fortran_order': False, 'shape': (" +
-                     std::to_string(img.height) + ", " + std::to_string(img.width) + ", 3), }";
+namespace {
+
+// An .npy v1.0 buffer of float32 with `shape` (e.g. "2, 3"), the header written and `n_floats`
+// floats of room after it; returns the offset of the data.
+size_t npy_buffer(std::vector<char>& buf, const std::string& shape, size_t n_floats) {
+  std::string dict = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + shape + "), }";
   // Pad so that magic (6) + version (2) + length (2) + dict + '\n' is a multiple of 64.
   while ((10 + dict.size() + 1) % 64 != 0) dict += ' ';
   dict += '\n';
-  std::vector<char> buf(10 + dict.size() + img.size() * 3 * sizeof(float));
+  buf.assign(10 + dict.size() + n_floats * sizeof(float), 0);
   std::memcpy(buf.data(), "\x93NUMPY\x01\x00", 8);
   buf[8] = char(dict.size() & 0xff);
   buf[9] = char(dict.size() >> 8);
   std::memcpy(buf.data() + 10, dict.data(), dict.size());
-  float* out = reinterpret_cast<float*>(buf.data() + 10 + dict.size());
+  return 10 + dict.size();
+}
+
+}  // namespace
+
+void write_range_npy(const std::string& path, const RangeImage& img) {
+  std::vector<char> buf;
+  const size_t at = npy_buffer(
+      buf, std::to_string(img.height) + ", " + std::to_string(img.width) + ", 3", img.size() * 3);
+  char* out = buf.data() + at;
   for (size_t i = 0; i < img.size(); ++i) {
     const float v[3] = {img.range[i], img.intensity[i], img.ray_drop[i]};
-    std::memcpy(out + 3 * i, v, sizeof(v));
+    std::memcpy(out + 12 * i, v, sizeof(v));
   }
+  write_file_bytes(path, buf.data(), buf.size());
+}
+
+void write_float_npy(const std::string& path, int h, int w, const std::vector<float>& values) {
+  if (h <= 0 || w <= 0 || values.size() != size_t(h) * size_t(w))
+    throw Error(path + ": " + std::to_string(values.size()) + " values for an image of " +
+                std::to_string(h) + " x " + std::to_string(w));
+  std::vector<char> buf;
+  const size_t at = npy_buffer(buf, std::to_string(h) + ", " + std::to_string(w), values.size());
+  std::memcpy(buf.data() + at, values.data(), values.size() * sizeof(float));
   write_file_bytes(path, buf.data(), buf.size());
 }
 

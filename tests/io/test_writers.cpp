@@ -79,6 +79,23 @@ TEST_CASE("npy range image round trip and bad files", "[io]") {
   CHECK_THROWS_WITH(io::read_range_npy(dir + "/bad.npy"), Catch::Contains("bad magic"));
 }
 
+TEST_CASE("npy float image: shape (H, W), the values in row order, a wrong count refused", "[io]") {
+  const std::string dir = test::temp_dir("io_npy_float");
+  std::vector<float> v(2 * 3);
+  for (size_t i = 0; i < v.size(); ++i) v[i] = 0.25f * float(i) - 0.5f;
+  io::write_float_npy(dir + "/o.npy", 2, 3, v);
+  const auto b = io::read_file_bytes(dir + "/o.npy");
+  REQUIRE(b.size() > 6 * 4);
+  CHECK((b.size() - 6 * 4) % 64 == 0);
+  const std::string header(b.begin(), b.end() - 6 * 4);
+  CHECK(header.find("'shape': (2, 3)") != std::string::npos);
+  CHECK(header.find("'<f4'") != std::string::npos);
+  std::vector<float> back(6);
+  std::memcpy(back.data(), b.data() + b.size() - 6 * 4, 6 * 4);
+  CHECK(back == v);
+  CHECK_THROWS_WITH(io::write_float_npy(dir + "/x.npy", 2, 4, v), Catch::Contains("6 values"));
+}
+
 TEST_CASE("PNG range picture: three stacked panels, turbo colormap", "[io]") {
   const auto lo = io::turbo(0.1), hi = io::turbo(0.9), mid = io::turbo(0.5);
   CHECK(int(lo[2]) > int(lo[0]) + 100);  // blue end

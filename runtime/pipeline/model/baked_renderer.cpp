@@ -15,7 +15,8 @@ BakedRenderer::BakedRenderer(cl::Runtime& rt, const bake::BakedScene& scene,
     throw ConfigError("baked renderer: the field head needs a static field");
 }
 
-RangeImage BakedRenderer::render(const Pose& T_world_lidar, const Scene& view) {
+RangeImage BakedRenderer::render(const Pose& T_world_lidar, const Scene& view,
+                                 std::vector<float>* opacity) {
   const auto t0 = std::chrono::steady_clock::now();
   const int H = view.sensor.height, W = view.sensor.width;
   const size_t n = size_t(H) * size_t(W);
@@ -41,6 +42,10 @@ RangeImage BakedRenderer::render(const Pose& T_world_lidar, const Scene& view) {
     img.range[p] = out[4 * p];
     img.ray_drop[p] = out[4 * p + 1];
     img.intensity[p] = out[4 * p + 2];
+  }
+  if (opacity) {
+    opacity->resize(n);
+    for (size_t p = 0; p < n; ++p) (*opacity)[p] = out[4 * p + 3];
   }
   if (model_) {
     // The head at each ray's surface point (normalised frame, clamped to the box as the

@@ -10,6 +10,7 @@
 // of the field renderer's ~57; docs/baking.md).
 #pragma once
 #include <memory>
+#include <vector>
 
 #include "bake/baked_scene.hpp"
 #include "bake/ray_caster.hpp"
@@ -23,8 +24,10 @@ class BakedRenderer {
   // `field_head`: the model whose head runs per ray ("field"), or null ("vertex").
   BakedRenderer(cl::Runtime& rt, const bake::BakedScene& scene, LidarNerfModel* field_head = nullptr);
 
-  // The view of `view`'s sensor at T_world_lidar (metres, the dataset's world frame).
-  RangeImage render(const Pose& T_world_lidar, const Scene& view);
+  // The view of `view`'s sensor at T_world_lidar (metres, the dataset's world frame); with
+  // `opacity`, each pixel's Σw along its ray (row-major, as the image).
+  RangeImage render(const Pose& T_world_lidar, const Scene& view,
+                    std::vector<float>* opacity = nullptr);
 
   struct Counts {
     long frames = 0, rays = 0;

@@ -13,7 +13,7 @@
 //      flat buffer on an objective of its own, with that group's own optimiser (SG-NLF's
 //      spectral embedding Ψ, method.md §4.1), takes its step, after the batch's backward has
 //      used the group's activations;
-//   then (LidarNerfModel::update) one Adam step of the field.
+//   then the step's optimiser (train/field_optimizer.hpp) takes one Adam step of the field.
 // Each hook receives what it may use, so a term cannot run before what it needs exists: the
 // batch's terms get the forward's outputs (LossPass), a term with its own pass gets a FieldPass,
 // a term with its own parameter group an OwnGroupStep.

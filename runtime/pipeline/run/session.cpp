@@ -176,21 +176,27 @@ Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast,
   for (const auto& [index, test_k] : views) {
     const Frame& fr = d.frames[size_t(index)];
     const Pose& T = run.T_world_lidar[size_t(index)];
+    DepthStats stats;
     RangeImage pred =
         fast    ? fast->render(T, index)
-        : baked ? baked->render(T, *run.scene)
+        : baked ? baked->render(T, *run.scene, &stats.opacity)
                 : render_view(*run.model, *run.scene, T,
-                              run.manifest.config.schedule.render_chunk_rays, index);
+                              run.manifest.config.schedule.render_chunk_rays, index, nullptr,
+                              &stats);
     if (run.ray_drop) run.ray_drop->apply(pred);
     const std::string stem = (fs::path(out_dir) / std::to_string(fr.id)).string();
+    Json entry{{"frame", fr.id}, {"test", test_k >= 0}, {"png", stem + ".png"},
+               {"pred", stem + "_pred.npy"}, {"gt", stem + "_gt.npy"}};
+    if (!fast) {
+      io::write_float_npy(stem + "_opacity.npy", pred.height, pred.width, stats.opacity);
+      entry["opacity"] = stem + "_opacity.npy";
+    }
     io::write_range_npy(stem + "_pred.npy", pred);
     io::write_range_npy(stem + "_gt.npy", fr.image);
     io::RangePictureOptions po;
     po.max_range_m = d.sensor.max_range_m;
     io::write_png(stem + ".png", stack(io::range_image_picture(masked_prediction(pred), po),
                                        io::range_image_picture(fr.image, po), 12));
-    Json entry{{"frame", fr.id}, {"test", test_k >= 0}, {"png", stem + ".png"},
-               {"pred", stem + "_pred.npy"}, {"gt", stem + "_gt.npy"}};
     if (test_k >= 0) {
       io::write_range_npy(stem + "_naive.npy", naive.images[size_t(test_k)]);
       entry["naive"] = stem + "_naive.npy";

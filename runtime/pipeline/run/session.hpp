@@ -47,6 +47,9 @@ Json train_run(cl::Runtime& rt, const TrainRequest& req);
 // instead, at the run's poses and times; a test frame among them gets its naive view too, a
 // training frame none (it is its own nearest scan). ConfigError names an id the dataset lacks.
 // With `baked` (and no `fast`), the views are ray-cast from a baked scene (docs/baking.md).
+// The protocol's and the baked renderer also write <frame>_opacity.npy (H×W: Σw along each ray,
+// before the ray-drop refinement), which tells a missed return of a translucent field from one
+// of a low return probability; the fast renderer does not.
 Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast = nullptr,
                 const std::vector<int>& frame_ids = {}, BakedRenderer* baked = nullptr);
 
