@@ -9,8 +9,11 @@
 // Early termination once the transmittance falls below stop_t. A sample in a cell whose 8
 // vertices all have logit < skip_logit (it would stop less than the bake's min_alpha of the
 // light) is skipped after one bit test of the brick's cell mask (cells x fastest, 32 a word),
-// before its 8 gathers. out: n_rays × 4 (depth in metres, return probability, intensity,
-// opacity Σ w_k).
+// before its 8 gathers. out: n_rays × 8 (depth in metres, return probability, intensity,
+// opacity Σ w_k, then the weight's quartile depths: the first sample depths t_k where the
+// accumulated weight 1 − T reaches 1/8, 3/8, 5/8 and 7/8; −1 for a level not reached). The
+// quartiles let a renderer evaluate the field's head along the band the weight spreads over
+// (pipeline::BakedRenderer) instead of at one point.
 // Host reference: tests/bake/raycast_reference.hpp.
 
 // Trilinear interpolation of the 8 vertices around local voxel coordinate u (0 ≤ u < brick)
@@ -50,6 +53,8 @@ __kernel void bake_raycast(const int n_rays, __global const float* origins,
   const float t0 = fmax(fmax(fmax(fmin(ax, bx), fmin(ay, by)), fmin(az, bz)), near);
   const float t1 = fmin(fmin(fmin(fmax(ax, bx), fmax(ay, by)), fmax(az, bz)), far);
   float depth = 0.0f, prob = 0.0f, inten = 0.0f, trans = 1.0f;
+  float q[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
+  int lev = 0;  // levels reached
   if (t0 < t1) {
     // The brick holding the entry point, and the DDA's next boundary per axis.
     int cx = clamp((int)floor((ox + dx * t0) / bm), 0, dims.x - 1);
@@ -88,6 +93,7 @@ __kernel void bake_raycast(const int n_rays, __global const float* origins,
           prob += w * s.y;
           inten += w * s.z;
           trans *= e;
+          while (lev < 4 && 1.0f - trans >= (float)(2 * lev + 1) * 0.125f) q[lev++] = t;
           if (trans < stop_t) {
             live = false;
             break;
@@ -110,8 +116,9 @@ __kernel void bake_raycast(const int n_rays, __global const float* origins,
       tin = tout;
     }
   }
-  out[4 * r] = depth;
-  out[4 * r + 1] = prob;
-  out[4 * r + 2] = inten;
-  out[4 * r + 3] = 1.0f - trans;
+  out[8 * r] = depth;
+  out[8 * r + 1] = prob;
+  out[8 * r + 2] = inten;
+  out[8 * r + 3] = 1.0f - trans;
+  for (int k = 0; k < 4; ++k) out[8 * r + 4 + k] = q[k];
 }

@@ -19,6 +19,7 @@ namespace {
 
 struct EvalArgs {
   std::string run, data, device, device_profile, baked, baked_head = "field";
+  float baked_head_spread = -1.0f;
   pipeline::RenderSampling sampling;
   FastRenderOptions fast;
   SensorRateOptions sensor_rate;
@@ -53,9 +54,14 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
                  "Score the views ray-cast from this baked scene (`sgnlf bake`) instead; writes "
                  "<run>/metrics-baked.json (docs/baking.md)");
   sub.add_option("--baked-head", a->baked_head,
-                 "With --baked: field (the run's head once per ray at the baked surface; default) "
+                 "With --baked: field (the run's head at the baked surface, or at the weight's "
+                 "quartiles where it spreads over more than a voxel; default) "
                  "or vertex (the scene's per-vertex attributes)")
       ->check(CLI::IsMember({"field", "vertex"}));
+  sub.add_option("--baked-head-spread", a->baked_head_spread,
+                 "With the field head: metres between the weight's 1/8 and 7/8 quartiles beyond "
+                 "which a ray takes the head at each quartile instead of once (default: the "
+                 "scene's voxel; larger is faster, docs/baking.md)");
   return std::function<int()>([a] {
     const render::FastRenderConfig fcfg = a->fast.config();
     const std::unique_ptr<bake::BakedScene> baked_scene =
@@ -68,7 +74,8 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
                                   a->sensor_rate.any() ? &data_options : nullptr);
     const auto fast = baked_scene ? nullptr : a->fast.make(rt, run, fcfg);
     const auto baked = baked_scene ? std::make_unique<pipeline::BakedRenderer>(
-                                         rt, *baked_scene, a->baked_head == "field" ? run.model.get() : nullptr)
+                                         rt, *baked_scene, a->baked_head == "field" ? run.model.get() : nullptr,
+                                         a->baked_head_spread)
                                    : nullptr;
     const Json j = pipeline::eval_run(run, a->run, fast.get(), nullptr, baked.get());
     if (a->json) {
@@ -90,9 +97,10 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
     if (j.contains("renderer") && j.at("renderer").at("name") == "baked") {
       const Json& r = j.at("renderer");
       std::printf("\nbaked scene: %.2f s ray casting the test views (%.1f frames/s, %.3g rays/s), "
-                  "%.1f MiB\n",
+                  "%.1f MiB; %s head, %.2f rows per ray\n",
                   r.at("render_seconds").get<double>(), r.at("frames_per_s").get<double>(),
-                  r.at("rays_per_s").get<double>(), r.at("scene_bytes").get<double>() / (1 << 20));
+                  r.at("rays_per_s").get<double>(), r.at("scene_bytes").get<double>() / (1 << 20),
+                  r.at("head").get<std::string>().c_str(), r.at("head_rows_per_ray").get<double>());
     } else if (j.contains("renderer")) {
       const Json& r = j.at("renderer");
       std::printf("\nfast renderer: %.1f s rendering (%.1f s occupancy grid), %.1f density and %.1f "

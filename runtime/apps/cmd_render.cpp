@@ -23,6 +23,7 @@ namespace {
 
 struct RenderArgs {
   std::string run, out, data, device, poses, sensor, device_profile, baked, baked_head = "field";
+  float baked_head_spread = -1.0f;
   std::vector<int> frames;
   FastRenderOptions fast;
   pipeline::RenderSampling sampling;
@@ -52,10 +53,15 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
                  "Ray-cast this baked scene (`sgnlf bake RUN --out SCENE`) instead of rendering "
                  "the field: same poses, sensors and outputs (docs/baking.md)");
   sub.add_option("--baked-head", a->baked_head,
-                 "With --baked: field (the run's LiDAR head once per ray at the baked surface, "
-                 "with the ray's own direction; default) or vertex (the scene's baked per-vertex "
+                 "With --baked: field (the run's LiDAR head with the ray's own direction, at the "
+                 "baked surface or at the weight's quartiles where it spreads over more than a "
+                 "voxel; default) or vertex (the scene's baked per-vertex "
                  "return probability and intensity: no field at all)")
       ->check(CLI::IsMember({"field", "vertex"}));
+  sub.add_option("--baked-head-spread", a->baked_head_spread,
+                 "With the field head: metres between the weight's 1/8 and 7/8 quartiles beyond "
+                 "which a ray takes the head at each quartile instead of once (default: the "
+                 "scene's voxel; larger is faster, docs/baking.md)");
   add_render_sampling_options(sub, a->sampling);
   return std::function<int()>([a] {
     // Poses and settings first: bad input fails before the run is loaded.
@@ -78,7 +84,8 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
         a->out.empty() ? (std::filesystem::path(a->run) / "renders").string() : a->out;
     const auto fast = baked_scene ? nullptr : a->fast.make(rt, run, fcfg);
     const auto baked = baked_scene ? std::make_unique<pipeline::BakedRenderer>(
-                                         rt, *baked_scene, a->baked_head == "field" ? run.model.get() : nullptr)
+                                         rt, *baked_scene, a->baked_head == "field" ? run.model.get() : nullptr,
+                                         a->baked_head_spread)
                                    : nullptr;
     const std::string renderer = baked ? std::string("baked, ") + baked->head() + " head" : a->fast.renderer;
     const auto t0 = std::chrono::steady_clock::now();
@@ -113,6 +120,11 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
                  {"outside_grid", double(c.march.outside) / double(rays)},
                  {"dropped_after_hit", double(c.march.dropped) / double(rays)}};
       summary["fast_config"] = fcfg.to_json();
+    }
+    if (baked && rays > 0) {
+      const auto& c = baked->counts();
+      summary["head_rows_per_ray"] = double(c.head_rows) / double(rays);
+      summary["spread_ray_fraction"] = double(c.spread_rays) / double(rays);
     }
     std::cerr << "render: " << frames << " frame(s) of " << shown.height << " x "
               << shown.width << " in " << render_s << " s ("

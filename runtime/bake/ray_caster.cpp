@@ -22,7 +22,7 @@ RayCaster::RayCaster(cl::Runtime& rt, const BakedScene& s)
 cl::Event RayCaster::cast(const cl::Buffer& origins, const cl::Buffer& dirs, int n,
                           cl::Buffer& out) {
   require(n >= 0 && origins.bytes() >= size_t(n) * 12 && dirs.bytes() >= size_t(n) * 12 &&
-              out.bytes() >= size_t(n) * 16,
+              out.bytes() >= size_t(n) * kOutputs * sizeof(float),
           "RayCaster::cast: buffers too small for " + std::to_string(n) + " rays");
   k_.set_args(n, origins, dirs, lo_, voxel_, dims_, brick_, near_, far_, step_, stop_, index_,
               verts_, mask_, out);
@@ -38,13 +38,13 @@ std::vector<float> RayCaster::cast(const std::vector<float>& origins,
   if (n == 0) return {};
   if (n > cap_) {
     o_ = cl::Buffer(rt_, size_t(n) * 12), d_ = cl::Buffer(rt_, size_t(n) * 12);
-    out_ = cl::Buffer(rt_, size_t(n) * 16);
+    out_ = cl::Buffer(rt_, size_t(n) * kOutputs * sizeof(float));
     cap_ = n;
   }
   o_.write_vec(origins);
   d_.write_vec(dirs);
   cast(o_, d_, n, out_);
-  return out_.read_vec<float>(size_t(n) * 4);
+  return out_.read_vec<float>(size_t(n) * kOutputs);
 }
 
 }  // namespace sgnlf::bake

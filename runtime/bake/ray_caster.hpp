@@ -14,8 +14,11 @@ class RayCaster {
   // Uploads the scene's index and vertices (validated).
   RayCaster(cl::Runtime& rt, const BakedScene& scene);
 
+  // Floats per ray of out: depth in metres, return probability, intensity, opacity Σ w, and
+  // the depths where the accumulated weight first reaches 1/8, 3/8, 5/8, 7/8 (−1: not reached).
+  static constexpr int kOutputs = 8;
   // Enqueues n rays (origins and unit directions n × 3 on the device, world metres) into out
-  // (n × 4: depth in metres, return probability, intensity, opacity Σ w). No wait.
+  // (n × kOutputs). No wait.
   cl::Event cast(const cl::Buffer& origins, const cl::Buffer& dirs, int n, cl::Buffer& out);
   // The same from host arrays; blocking.
   std::vector<float> cast(const std::vector<float>& origins, const std::vector<float>& dirs);

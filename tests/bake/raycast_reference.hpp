@@ -1,6 +1,6 @@
 // Host reference of kernels/bake/raycast.cl (one ray at a time, the kernel's arithmetic in
 // float): the brick DDA, the sample lattice t_k = near + k·step, the trilinear lookup and the
-// volume rendering with early termination. Tests only.
+// volume rendering with early termination, and the weight's quartile depths. Tests only.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -11,7 +11,9 @@
 
 namespace sgnlf::test {
 
-inline std::array<float, 4> raycast_reference(const bake::BakedScene& s, const float* o_w,
+// depth, return probability, intensity, opacity, the depths where 1 − T first reaches 1/8, 3/8,
+// 5/8, 7/8 (−1: not reached): bake::RayCaster's outputs.
+inline std::array<float, 8> raycast_reference(const bake::BakedScene& s, const float* o_w,
                                               const float* d) {
   const auto inv = [](float v) { return std::fabs(v) > 1e-12f ? 1.0f / v : 1e30f; };
   const float o[3] = {o_w[0] - float(s.origin_m[0]), o_w[1] - float(s.origin_m[1]),
@@ -26,7 +28,12 @@ inline std::array<float, 4> raycast_reference(const bake::BakedScene& s, const f
     t1 = std::min(t1, std::max(ta, tb));
   }
   float depth = 0.0f, prob = 0.0f, inten = 0.0f, trans = 1.0f;
-  if (!(t0 < t1)) return {0.0f, 0.0f, 0.0f, 0.0f};
+  float q[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
+  int lev = 0;
+  const auto result = [&] {
+    return std::array<float, 8>{depth, prob, inten, 1.0f - trans, q[0], q[1], q[2], q[3]};
+  };
+  if (!(t0 < t1)) return result();
   int c[3], st[3];
   float tm[3], dd[3];
   for (int a = 0; a < 3; ++a) {
@@ -75,7 +82,8 @@ inline std::array<float, 4> raycast_reference(const bake::BakedScene& s, const f
         const float w = trans * (1.0f - e);
         depth += w * t, prob += w * val[1], inten += w * val[2];
         trans *= e;
-        if (trans < s.stop_transmittance) return {depth, prob, inten, 1.0f - trans};
+        while (lev < 4 && 1.0f - trans >= float(2 * lev + 1) * 0.125f) q[lev++] = t;
+        if (trans < s.stop_transmittance) return result();
         ++k;
         t = s.near_m + float(k) * s.step_m;
       }
@@ -86,7 +94,7 @@ inline std::array<float, 4> raycast_reference(const bake::BakedScene& s, const f
     if (c[a] < 0 || c[a] >= s.dims[size_t(a)]) break;
     tin = tout;
   }
-  return {depth, prob, inten, 1.0f - trans};
+  return result();
 }
 
 }  // namespace sgnlf::test

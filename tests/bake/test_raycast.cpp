@@ -50,22 +50,37 @@ TEST_CASE("baked ray caster matches the host reference", "[bake][raycast]") {
   make_rays(n, o, d);
   bake::RayCaster caster(test::runtime(), s);
   const std::vector<float> got = caster.cast(o, d);
-  REQUIRE(got.size() == size_t(n) * 4);
+  constexpr size_t K = bake::RayCaster::kOutputs;
+  REQUIRE(got.size() == size_t(n) * K);
   std::vector<float> want(got.size());
   for (int i = 0; i < n; ++i) {
     const auto r = test::raycast_reference(s, &o[3 * size_t(i)], &d[3 * size_t(i)]);
-    for (int c = 0; c < 4; ++c) want[4 * size_t(i) + size_t(c)] = r[size_t(c)];
+    for (size_t c = 0; c < K; ++c) want[K * size_t(i) + c] = r[c];
   }
   // Float math in a different order (fma, exp): compared per channel with an absolute floor
   // (depth in metres, probabilities in [0, 1]); a ray whose early termination lands one sample
-  // apart moves by at most that sample's tiny weight.
-  long hits = 0;
+  // apart moves by at most that sample's tiny weight, a quartile level crossed one sample apart
+  // by one step.
+  long hits = 0, quartiles = 0, quartiles_equal = 0;
   for (int i = 0; i < n; ++i) {
     INFO("ray " << i);
-    CHECK(got[4 * size_t(i)] == Approx(want[4 * size_t(i)]).epsilon(1e-4).margin(2e-3));
-    for (size_t c = 1; c < 4; ++c) CHECK(got[4 * size_t(i) + c] == Approx(want[4 * size_t(i) + c]).margin(2e-4));
-    hits += want[4 * size_t(i) + 1] > 0.5f;
+    const float* g = &got[K * size_t(i)];
+    const float* w = &want[K * size_t(i)];
+    CHECK(g[0] == Approx(w[0]).epsilon(1e-4).margin(2e-3));
+    for (size_t c = 1; c < 4; ++c) CHECK(g[c] == Approx(w[c]).margin(2e-4));
+    for (size_t c = 4; c < K; ++c) {
+      CHECK((g[c] < 0.0f) == (w[c] < 0.0f));
+      CHECK(g[c] == Approx(w[c]).margin(s.step_m * 1.01f));
+      quartiles += w[c] >= 0.0f;
+      quartiles_equal += w[c] >= 0.0f && g[c] == w[c];
+    }
+    // The quartiles are sample depths in order, within the ray's weight.
+    for (size_t c = 5; c < K; ++c)
+      if (g[c] >= 0.0f) CHECK(g[c] >= g[c - 1]);
+    hits += w[1] > 0.5f;
   }
+  CHECK(quartiles > n);                       // levels reached on the rays that meet surfaces
+  CHECK(quartiles_equal > quartiles * 9 / 10);  // and nearly all on the same sample
   CHECK(hits > n / 4);      // the rays meet the surfaces
   CHECK(hits < n * 9 / 10);  // and some leave the scene
   // Deterministic: the same bits again.
@@ -80,15 +95,26 @@ TEST_CASE("baked ray caster: the wall's depth, its attributes, early termination
   const std::vector<float> o{0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f},
       d{1.0f, 0.0f, 0.0f, -1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f};
   const std::vector<float> r = caster.cast(o, d);
+  constexpr size_t K = bake::RayCaster::kOutputs;
   CHECK(r[0] == Approx(6.0f).margin(0.15f));
   CHECK(r[1] == Approx(0.85f).margin(0.01f));              // the head's return probability
   CHECK(r[2] == Approx(0.5f + 0.1f).margin(0.02f));        // its intensity at y = 0, seen along +x
-  // Away from the wall and up: nothing stored there.
   CHECK(r[3] == Approx(1.0f).margin(1e-3f));  // opaque
-  CHECK(r[4] == 0.0f);
-  CHECK(r[5] == 0.0f);
-  CHECK(r[7] == 0.0f);
-  CHECK(r[9] == 0.0f);
+  // Its weight's quartiles: in order, around the depth, within the ~0.1 m the σ rises over.
+  for (size_t c = 4; c < 8; ++c) {
+    CHECK(r[c] == Approx(6.0f).margin(0.2f));
+    if (c > 4) CHECK(r[c] >= r[c - 1]);
+  }
+  CHECK(r[7] - r[4] < 0.25f);
+  CHECK(r[4] <= r[0] + s.step_m);
+  CHECK(r[7] >= r[0] - s.step_m);
+  // Away from the wall and up: nothing stored there, no quartile reached.
+  CHECK(r[K] == 0.0f);
+  CHECK(r[K + 1] == 0.0f);
+  CHECK(r[K + 3] == 0.0f);
+  CHECK(r[K + 4] == -1.0f);
+  CHECK(r[K + 7] == -1.0f);
+  CHECK(r[2 * K + 1] == 0.0f);
   // Early termination: the reference with and without a stop gives the same depth to 1e-3.
   bake::BakedScene no_stop = s;
   no_stop.stop_transmittance = 0.0f;

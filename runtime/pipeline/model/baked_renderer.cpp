@@ -3,16 +3,21 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "core/error.hpp"
 
 namespace sgnlf::pipeline {
 
 BakedRenderer::BakedRenderer(cl::Runtime& rt, const bake::BakedScene& scene,
-                             LidarNerfModel* field_head)
-    : rt_(rt), scene_(scene), caster_(rt, scene), model_(field_head) {
+                             LidarNerfModel* field_head, float head_spread_m)
+    : rt_(rt), scene_(scene), caster_(rt, scene), model_(field_head),
+      spread_m_(head_spread_m < 0.0f ? scene.voxel_m : head_spread_m) {
   if (model_ && model_->temporal())
     throw ConfigError("baked renderer: the field head needs a static field");
+  if (!std::isfinite(spread_m_))
+    throw ConfigError("baked renderer: head spread " + std::to_string(head_spread_m) +
+                      " m is not a finite length");
 }
 
 RangeImage BakedRenderer::render(const Pose& T_world_lidar, const Scene& view,
@@ -21,7 +26,8 @@ RangeImage BakedRenderer::render(const Pose& T_world_lidar, const Scene& view,
   const int H = view.sensor.height, W = view.sensor.width;
   const size_t n = size_t(H) * size_t(W);
   if (n > cap_) {
-    o_ = cl::Buffer(rt_, n * 12), d_ = cl::Buffer(rt_, n * 12), out_ = cl::Buffer(rt_, n * 16);
+    o_ = cl::Buffer(rt_, n * 12), d_ = cl::Buffer(rt_, n * 12),
+    out_ = cl::Buffer(rt_, n * bake::RayCaster::kOutputs * sizeof(float));
     cap_ = n;
   }
   // World rays: the sensor's directions rotated, every ray from the sensor's origin (metres).
@@ -36,40 +42,63 @@ RangeImage BakedRenderer::render(const Pose& T_world_lidar, const Scene& view,
   o_.write_vec(origins_);
   d_.write_vec(dirs_);
   caster_.cast(o_, d_, int(n), out_);
-  const std::vector<float> out = out_.read_vec<float>(n * 4);
+  constexpr size_t K = bake::RayCaster::kOutputs;
+  const std::vector<float> out = out_.read_vec<float>(n * K);
   RangeImage img(H, W);
   for (size_t p = 0; p < n; ++p) {
-    img.range[p] = out[4 * p];
-    img.ray_drop[p] = out[4 * p + 1];
-    img.intensity[p] = out[4 * p + 2];
+    img.range[p] = out[K * p];
+    img.ray_drop[p] = out[K * p + 1];
+    img.intensity[p] = out[K * p + 2];
   }
   if (opacity) {
     opacity->resize(n);
-    for (size_t p = 0; p < n; ++p) (*opacity)[p] = out[4 * p + 3];
+    for (size_t p = 0; p < n; ++p) (*opacity)[p] = out[K * p + 3];
   }
   if (model_) {
-    // The head at each ray's surface point (normalised frame, clamped to the box as the
-    // renderer clamps its samples) along the ray; rays that meet nothing keep zeros.
+    // The head where each ray's weight lies (normalised frame, clamped to the box as the
+    // renderer clamps its samples), with the ray's direction: Σ w·head as the field's renderer
+    // sums it, by quadrature over the weight. A ray whose weight lies within head_spread_m (its
+    // 1/8 and 7/8 quartiles, or those it reached, no further apart) takes one row at its
+    // surface point o + d·depth/opacity; a ray whose weight spreads further (a far surface the field
+    // keeps soft) one row at each quartile it reached, equally weighted: there the head is
+    // trained along the band, and one point of it, at the mean depth, can lie where it is not.
+    // Rays that meet nothing keep zeros.
     const auto th = std::chrono::steady_clock::now();
-    std::vector<size_t> rows;
+    struct Row {
+      size_t pixel;
+      float weight;
+    };
+    std::vector<Row> rows;
     std::vector<float> x, dir;
     const double s = view.norm.scale;
-    for (size_t p = 0; p < n; ++p) {
-      const float opacity = out[4 * p + 3];
-      if (!(opacity > 1e-4f)) continue;
-      rows.push_back(p);
-      const float t = out[4 * p] / opacity;
+    const auto add = [&](size_t p, float t, float weight) {
+      rows.push_back({p, weight});
       for (size_t a = 0; a < 3; ++a) {
         const double xm = double(origins_[3 * p + a]) + double(dirs_[3 * p + a]) * t;
         x.push_back(std::clamp(float((xm - view.norm.center[long(a)]) * s), -1.0f, 1.0f));
         dir.push_back(dirs_[3 * p + a]);
       }
+    };
+    for (size_t p = 0; p < n; ++p) {
+      const float* r = &out[K * p];
+      const float opacity = r[3];
+      if (!(opacity > 1e-4f)) continue;
+      int reached = 0;
+      while (reached < 4 && r[4 + reached] >= 0.0f) ++reached;
+      if (reached < 2 || r[4 + reached - 1] - r[4] <= spread_m_) {
+        add(p, r[0] / opacity, opacity);
+        continue;
+      }
+      for (int k = 0; k < reached; ++k) add(p, r[4 + k], opacity / float(reached));
+      ++counts_.spread_rays;
     }
     const std::vector<float> h = model_->head_at(x, dir, int(rows.size()));
+    for (size_t p = 0; p < n; ++p)
+      if (out[K * p + 3] > 1e-4f) img.ray_drop[p] = img.intensity[p] = 0.0f;
     for (size_t q = 0; q < rows.size(); ++q) {
-      const size_t p = rows[q];
-      img.ray_drop[p] = out[4 * p + 3] * h[2 * q];
-      img.intensity[p] = out[4 * p + 3] * h[2 * q + 1];
+      const size_t p = rows[q].pixel;
+      img.ray_drop[p] += rows[q].weight * h[2 * q];
+      img.intensity[p] += rows[q].weight * h[2 * q + 1];
     }
     counts_.head_rows += long(rows.size());
     counts_.head_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - th).count();

@@ -5,9 +5,10 @@
 // rays/s and frames/s.
 // Two heads: "vertex" (the scene's own per-vertex return probability and intensity, baked along
 // the nearest training origin's view: self-contained) or "field" (the trained model's LiDAR head
-// once per ray, at the ray's baked surface point o + d·depth/opacity and its own direction,
-// scaled by the ray's opacity: the head's view dependence kept, one field row per ray instead
-// of the field renderer's ~57; docs/baking.md).
+// with the ray's own direction, scaled by the ray's opacity: once per ray at its baked surface
+// point o + d·depth/opacity where the weight lies within a voxel, at the weight's quartiles
+// where it spreads; the head's view dependence kept, 1–4 field rows per ray instead of the
+// field renderer's ~57; docs/baking.md).
 #pragma once
 #include <memory>
 #include <vector>
@@ -22,7 +23,12 @@ namespace sgnlf::pipeline {
 class BakedRenderer {
  public:
   // `field_head`: the model whose head runs per ray ("field"), or null ("vertex").
-  BakedRenderer(cl::Runtime& rt, const bake::BakedScene& scene, LidarNerfModel* field_head = nullptr);
+  // `head_spread_m`: with the field head, a ray whose weight's 1/8 and 7/8 quartiles lie further
+  // apart takes a head row at each quartile, a ray within it one row (negative: the scene's
+  // voxel; larger: fewer rows, faster, the far soft surfaces' probability and intensity taken at
+  // one point; docs/baking.md measures both).
+  BakedRenderer(cl::Runtime& rt, const bake::BakedScene& scene, LidarNerfModel* field_head = nullptr,
+                float head_spread_m = -1.0f);
 
   // The view of `view`'s sensor at T_world_lidar (metres, the dataset's world frame); with
   // `opacity`, each pixel's Σw along its ray (row-major, as the image).
@@ -34,6 +40,7 @@ class BakedRenderer {
     double render_seconds = 0.0;  // ray setup, cast and read-back, per view (head included)
     double head_seconds = 0.0;    // "field": the head rows
     long head_rows = 0;
+    long spread_rays = 0;  // "field": rays whose weight spreads over more than a voxel
   };
   const Counts& counts() const { return counts_; }
   const bake::BakedScene& scene() const { return scene_; }
@@ -44,6 +51,7 @@ class BakedRenderer {
   const bake::BakedScene& scene_;
   bake::RayCaster caster_;
   LidarNerfModel* model_;
+  float spread_m_;
   cl::Buffer o_, d_, out_;
   size_t cap_ = 0;
   std::vector<float> origins_, dirs_;
