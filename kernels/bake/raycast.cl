@@ -9,11 +9,16 @@
 // Early termination once the transmittance falls below stop_t. A sample in a cell whose 8
 // vertices all have logit < skip_logit (it would stop less than the bake's min_alpha of the
 // light) is skipped after one bit test of the brick's cell mask (cells x fastest, 32 a word),
-// before its 8 gathers. out: n_rays × 8 (depth in metres, return probability, intensity,
+// before its 8 gathers. out: n_rays × 10 (depth in metres, return probability, intensity,
 // opacity Σ w_k, then the weight's quartile depths: the first sample depths t_k where the
-// accumulated weight 1 − T reaches 1/8, 3/8, 5/8 and 7/8; −1 for a level not reached). The
+// accumulated weight 1 − T reaches 1/8, 3/8, 5/8 and 7/8, −1 for a level not reached; then the
+// median depth and the weight-normalised depth variance as the field's evaluation renders them
+// (kernels/render/volume.cl: render_median_depth, render_depth_spread): the depth where T falls
+// to 1/2, interpolated in its sample's interval with σ constant over it (the last sample's depth
+// when never), and Σ w (t − m)² / Σ w, summed about the first weighted sample's depth). The
 // quartiles let a renderer evaluate the field's head along the band the weight spreads over
-// (pipeline::BakedRenderer) instead of at one point.
+// (pipeline::BakedRenderer) instead of at one point; the median and variance give it the
+// evaluation's "median" and "mix" depths.
 // Host reference: tests/bake/raycast_reference.hpp.
 
 // Trilinear interpolation of the 8 vertices around local voxel coordinate u (0 ≤ u < brick)
@@ -55,6 +60,8 @@ __kernel void bake_raycast(const int n_rays, __global const float* origins,
   float depth = 0.0f, prob = 0.0f, inten = 0.0f, trans = 1.0f;
   float q[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
   int lev = 0;  // levels reached
+  // The median's crossing, and the moments about t_ref (the first weighted sample's depth).
+  float median = -1.0f, last_t = 0.0f, t_ref = -1.0f, m1 = 0.0f, m2 = 0.0f;
   if (t0 < t1) {
     // The brick holding the entry point, and the DDA's next boundary per axis.
     int cx = clamp((int)floor((ox + dx * t0) / bm), 0, dims.x - 1);
@@ -92,6 +99,14 @@ __kernel void bake_raycast(const int n_rays, __global const float* origins,
           depth += w * t;
           prob += w * s.y;
           inten += w * s.z;
+          if (t_ref < 0.0f) t_ref = t;
+          m1 += w * (t - t_ref);
+          m2 += w * (t - t_ref) * (t - t_ref);
+          last_t = t;
+          if (median < 0.0f && trans * e <= 0.5f) {
+            const float tau = -log1p(-fmin(1.0f - e, 1.0f - 1e-7f));  // σ·step > 0
+            median = t + fmin(fmax(log(2.0f * trans) / tau, 0.0f), 1.0f) * step;
+          }
           trans *= e;
           while (lev < 4 && 1.0f - trans >= (float)(2 * lev + 1) * 0.125f) q[lev++] = t;
           if (trans < stop_t) {
@@ -116,9 +131,17 @@ __kernel void bake_raycast(const int n_rays, __global const float* origins,
       tin = tout;
     }
   }
-  out[8 * r] = depth;
-  out[8 * r + 1] = prob;
-  out[8 * r + 2] = inten;
-  out[8 * r + 3] = 1.0f - trans;
-  for (int k = 0; k < 4; ++k) out[8 * r + 4 + k] = q[k];
+  out[10 * r] = depth;
+  out[10 * r + 1] = prob;
+  out[10 * r + 2] = inten;
+  out[10 * r + 3] = 1.0f - trans;
+  for (int k = 0; k < 4; ++k) out[10 * r + 4 + k] = q[k];
+  const float a = 1.0f - trans;
+  float var = 0.0f;
+  if (a >= 1e-12f) {
+    const float mean = m1 / a;
+    var = fmax(m2 / a - mean * mean, 0.0f);
+  }
+  out[10 * r + 8] = median >= 0.0f ? median : last_t;
+  out[10 * r + 9] = var;
 }

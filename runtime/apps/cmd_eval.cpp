@@ -74,7 +74,8 @@ const Registrar reg("eval", "Evaluate a trained run (and the naive baseline)", [
                                   a->sensor_rate.any() ? &data_options : nullptr);
     const auto fast = baked_scene ? nullptr : a->fast.make(rt, run, fcfg);
     const auto baked = baked_scene ? std::make_unique<pipeline::BakedRenderer>(
-                                         rt, *baked_scene, a->baked_head == "field" ? run.model.get() : nullptr,
+                                         rt, *baked_scene, run.model->render_config(),
+                                         a->baked_head == "field" ? run.model.get() : nullptr,
                                          a->baked_head_spread)
                                    : nullptr;
     const Json j = pipeline::eval_run(run, a->run, fast.get(), nullptr, baked.get());

@@ -84,7 +84,8 @@ const Registrar reg("render", "Render the test frames of a trained run, or novel
         a->out.empty() ? (std::filesystem::path(a->run) / "renders").string() : a->out;
     const auto fast = baked_scene ? nullptr : a->fast.make(rt, run, fcfg);
     const auto baked = baked_scene ? std::make_unique<pipeline::BakedRenderer>(
-                                         rt, *baked_scene, a->baked_head == "field" ? run.model.get() : nullptr,
+                                         rt, *baked_scene, run.model->render_config(),
+                                         a->baked_head == "field" ? run.model.get() : nullptr,
                                          a->baked_head_spread)
                                    : nullptr;
     const std::string renderer = baked ? std::string("baked, ") + baked->head() + " head" : a->fast.renderer;

@@ -14,9 +14,11 @@ class RayCaster {
   // Uploads the scene's index and vertices (validated).
   RayCaster(cl::Runtime& rt, const BakedScene& scene);
 
-  // Floats per ray of out: depth in metres, return probability, intensity, opacity Σ w, and
-  // the depths where the accumulated weight first reaches 1/8, 3/8, 5/8, 7/8 (−1: not reached).
-  static constexpr int kOutputs = 8;
+  // Floats per ray of out: depth in metres, return probability, intensity, opacity Σ w, the
+  // depths where the accumulated weight first reaches 1/8, 3/8, 5/8, 7/8 (−1: not reached), the
+  // median depth and the weight-normalised depth variance (m²), as the field's evaluation
+  // renders them (kernels/bake/raycast.cl).
+  static constexpr int kOutputs = 10;
   // Enqueues n rays (origins and unit directions n × 3 on the device, world metres) into out
   // (n × kOutputs). No wait.
   cl::Event cast(const cl::Buffer& origins, const cl::Buffer& dirs, int n, cl::Buffer& out);

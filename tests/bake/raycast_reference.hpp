@@ -12,8 +12,8 @@
 namespace sgnlf::test {
 
 // depth, return probability, intensity, opacity, the depths where 1 − T first reaches 1/8, 3/8,
-// 5/8, 7/8 (−1: not reached): bake::RayCaster's outputs.
-inline std::array<float, 8> raycast_reference(const bake::BakedScene& s, const float* o_w,
+// 5/8, 7/8 (−1: not reached), the median depth and the depth variance: bake::RayCaster's outputs.
+inline std::array<float, 10> raycast_reference(const bake::BakedScene& s, const float* o_w,
                                               const float* d) {
   const auto inv = [](float v) { return std::fabs(v) > 1e-12f ? 1.0f / v : 1e30f; };
   const float o[3] = {o_w[0] - float(s.origin_m[0]), o_w[1] - float(s.origin_m[1]),
@@ -30,8 +30,16 @@ inline std::array<float, 8> raycast_reference(const bake::BakedScene& s, const f
   float depth = 0.0f, prob = 0.0f, inten = 0.0f, trans = 1.0f;
   float q[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
   int lev = 0;
+  float median = -1.0f, last_t = 0.0f, t_ref = -1.0f, m1 = 0.0f, m2 = 0.0f;
   const auto result = [&] {
-    return std::array<float, 8>{depth, prob, inten, 1.0f - trans, q[0], q[1], q[2], q[3]};
+    const float a = 1.0f - trans;
+    float var = 0.0f;
+    if (a >= 1e-12f) {
+      const float mean = m1 / a;
+      var = std::max(m2 / a - mean * mean, 0.0f);
+    }
+    return std::array<float, 10>{depth, prob, inten, a, q[0], q[1], q[2], q[3],
+                                 median >= 0.0f ? median : last_t, var};
   };
   if (!(t0 < t1)) return result();
   int c[3], st[3];
@@ -81,6 +89,14 @@ inline std::array<float, 8> raycast_reference(const bake::BakedScene& s, const f
         const float e = std::exp(-std::exp(std::min(val[0], 80.0f)) * s.step_m);
         const float w = trans * (1.0f - e);
         depth += w * t, prob += w * val[1], inten += w * val[2];
+        if (t_ref < 0.0f) t_ref = t;
+        m1 += w * (t - t_ref);
+        m2 += w * (t - t_ref) * (t - t_ref);
+        last_t = t;
+        if (median < 0.0f && trans * e <= 0.5f) {
+          const float tau = -std::log1p(-std::min(1.0f - e, 1.0f - 1e-7f));
+          median = t + std::min(std::max(std::log(2.0f * trans) / tau, 0.0f), 1.0f) * s.step_m;
+        }
         trans *= e;
         while (lev < 4 && 1.0f - trans >= float(2 * lev + 1) * 0.125f) q[lev++] = t;
         if (trans < s.stop_transmittance) return result();

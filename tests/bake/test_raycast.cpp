@@ -68,15 +68,22 @@ TEST_CASE("baked ray caster matches the host reference", "[bake][raycast]") {
     const float* w = &want[K * size_t(i)];
     CHECK(g[0] == Approx(w[0]).epsilon(1e-4).margin(2e-3));
     for (size_t c = 1; c < 4; ++c) CHECK(g[c] == Approx(w[c]).margin(2e-4));
-    for (size_t c = 4; c < K; ++c) {
+    CHECK(g[8] == Approx(w[8]).epsilon(1e-4).margin(s.step_m * 1.01f));  // the median's sample
+    CHECK(g[9] == Approx(w[9]).epsilon(1e-3).margin(2e-3));              // variance, m²
+    for (size_t c = 4; c < 8; ++c) {
       CHECK((g[c] < 0.0f) == (w[c] < 0.0f));
       CHECK(g[c] == Approx(w[c]).margin(s.step_m * 1.01f));
       quartiles += w[c] >= 0.0f;
       quartiles_equal += w[c] >= 0.0f && g[c] == w[c];
     }
     // The quartiles are sample depths in order, within the ray's weight.
-    for (size_t c = 5; c < K; ++c)
+    for (size_t c = 5; c < 8; ++c)
       if (g[c] >= 0.0f) CHECK(g[c] >= g[c - 1]);
+    // The median lies between the 3/8 and 5/8 quartiles' samples.
+    if (g[6] >= 0.0f) {
+      CHECK(g[8] >= g[5] - 1e-4f);
+      CHECK(g[8] <= g[6] + s.step_m);
+    }
     hits += w[1] > 0.5f;
   }
   CHECK(quartiles > n);                       // levels reached on the rays that meet surfaces
@@ -108,12 +115,19 @@ TEST_CASE("baked ray caster: the wall's depth, its attributes, early termination
   CHECK(r[7] - r[4] < 0.25f);
   CHECK(r[4] <= r[0] + s.step_m);
   CHECK(r[7] >= r[0] - s.step_m);
+  // The median where T falls to 1/2, near the depth; the variance of a sharp wall, small.
+  CHECK(r[8] == Approx(r[0]).margin(0.1f));
+  CHECK(r[8] >= r[5] - 1e-4f);
+  CHECK(r[8] <= r[6] + s.step_m);
+  CHECK(r[9] >= 0.0f);
+  CHECK(r[9] < 0.01f);
   // Away from the wall and up: nothing stored there, no quartile reached.
   CHECK(r[K] == 0.0f);
   CHECK(r[K + 1] == 0.0f);
   CHECK(r[K + 3] == 0.0f);
   CHECK(r[K + 4] == -1.0f);
   CHECK(r[K + 7] == -1.0f);
+  CHECK(r[K + 9] == 0.0f);
   CHECK(r[2 * K + 1] == 0.0f);
   // Early termination: the reference with and without a stop gives the same depth to 1e-3.
   bake::BakedScene no_stop = s;

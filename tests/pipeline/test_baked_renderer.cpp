@@ -12,6 +12,7 @@
 #include "bake/bake.hpp"
 #include "bake/ray_caster.hpp"
 #include "pipeline/model/baked_renderer.hpp"
+#include "pipeline/model/view_rules.hpp"
 #include "support/test_device.hpp"
 #include "tiny_scene.hpp"
 
@@ -90,11 +91,14 @@ TEST_CASE("baked renderer, field head: one row at the surface point, or the quar
   const std::vector<float> cast = caster.cast(origins, view.directions);
   constexpr size_t K = bake::RayCaster::kOutputs;
 
-  BakedRenderer quartiles(test::runtime(), slab, &model);            // the scene's voxel
-  BakedRenderer one_point(test::runtime(), slab, &model, 1e9f);      // never spread
-  std::vector<float> opacity;
-  const RangeImage q = quartiles.render(T, view, &opacity);
+  const render::RenderConfig expected = c.render;  // the smoke preset's: expected depth
+  REQUIRE(expected.eval_depth == "expected");
+  BakedRenderer quartiles(test::runtime(), slab, expected, &model);        // the scene's voxel
+  BakedRenderer one_point(test::runtime(), slab, expected, &model, 1e9f);  // never spread
+  DepthStats stats;
+  const RangeImage q = quartiles.render(T, view, &stats);
   const RangeImage o = one_point.render(T, view);
+  const std::vector<float>& opacity = stats.opacity;
   REQUIRE(opacity.size() == n);
   long hits = 0, spread = 0;
   double err_q = 0.0, err_o = 0.0;
@@ -142,4 +146,56 @@ TEST_CASE("baked renderer, field head: one row at the surface point, or the quar
   INFO("mean |error| quartiles " << err_q / double(hits) << ", one point " << err_o / double(hits));
   CHECK(err_q / double(hits) < 0.01);
   CHECK(err_q <= err_o);
+}
+
+TEST_CASE("baked renderer: the run's evaluation rules, median and mix depth, from the caster's statistics",
+          "[pipeline][bake]") {
+  const Scene view = make_scene(test::tiny_dataset());
+  const Eigen::Vector3d centre = view.norm.center;
+  const bake::BakedScene slab = soft_slab(centre);
+  Pose T = Pose::Identity();
+  T.translation() = centre;
+  const size_t n = view.directions.size() / 3;
+  std::vector<float> origins(n * 3);
+  for (size_t p = 0; p < n; ++p)
+    for (size_t a = 0; a < 3; ++a) origins[3 * p + a] = float(centre[long(a)]);
+  bake::RayCaster caster(test::runtime(), slab);
+  const std::vector<float> cast = caster.cast(origins, view.directions);
+  constexpr size_t K = bake::RayCaster::kOutputs;
+  render::RenderConfig rules;
+  BakedRenderer expected(test::runtime(), slab, rules);  // the vertex head
+  DepthStats st;
+  const RangeImage e = expected.render(T, view, &st);
+  rules.eval_depth = "median";
+  const RangeImage m = BakedRenderer(test::runtime(), slab, rules).render(T, view);
+  rules.eval_depth = "mix";
+  rules.eval_mix_factor = 1.0f;  // the rays above the frame's median variance
+  const RangeImage x = BakedRenderer(test::runtime(), slab, rules).render(T, view);
+  const double thr = mix_variance_threshold(st.variance_m2, 1.0);
+  long hits = 0, mixed = 0;
+  for (size_t p = 0; p < n; ++p) {
+    CHECK(e.range[p] == cast[K * p]);
+    CHECK(st.median_m[p] == cast[K * p + 8]);
+    CHECK(st.variance_m2[p] == cast[K * p + 9]);
+    CHECK(m.range[p] == cast[K * p + 8]);
+    const bool wide = double(st.variance_m2[p]) > thr;
+    CHECK(x.range[p] == (wide ? cast[K * p + 8] : cast[K * p]));
+    CHECK(m.ray_drop[p] == e.ray_drop[p]);  // the rules move the range only
+    hits += cast[K * p + 3] > 0.5f;
+    mixed += wide;
+  }
+  REQUIRE(hits > 0);
+  CHECK(mixed > 0);
+  // On the slab the median lies where T = 1/2: ln 2 / 0.35 m behind the entry (within a lattice
+  // step and the slab's 0.2 m voxels), the variance of an exponential cut at the slab's end.
+  long along = 0;
+  for (size_t p = 0; p < n; ++p) {
+    const float* d = &view.directions[3 * p];
+    if (!(cast[K * p + 3] > 0.9f) || d[0] < 0.99f || std::abs(d[1]) > 0.05f || std::abs(d[2]) > 0.05f)
+      continue;
+    ++along;
+    CHECK(cast[K * p + 8] == Approx(4.0f / d[0] + std::log(2.0f) / 0.35f).margin(0.25f));
+    CHECK(cast[K * p + 9] > 2.0f);  // metres of spread (1/σ² = 8.2 m² uncut)
+  }
+  CHECK(along > 0);
 }

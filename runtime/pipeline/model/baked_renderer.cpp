@@ -6,12 +6,14 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "pipeline/model/view_rules.hpp"
 
 namespace sgnlf::pipeline {
 
 BakedRenderer::BakedRenderer(cl::Runtime& rt, const bake::BakedScene& scene,
-                             LidarNerfModel* field_head, float head_spread_m)
-    : rt_(rt), scene_(scene), caster_(rt, scene), model_(field_head),
+                             const render::RenderConfig& rules, LidarNerfModel* field_head,
+                             float head_spread_m)
+    : rt_(rt), scene_(scene), caster_(rt, scene), rules_(rules), model_(field_head),
       spread_m_(head_spread_m < 0.0f ? scene.voxel_m : head_spread_m) {
   if (model_ && model_->temporal())
     throw ConfigError("baked renderer: the field head needs a static field");
@@ -21,7 +23,7 @@ BakedRenderer::BakedRenderer(cl::Runtime& rt, const bake::BakedScene& scene,
 }
 
 RangeImage BakedRenderer::render(const Pose& T_world_lidar, const Scene& view,
-                                 std::vector<float>* opacity) {
+                                 DepthStats* stats) {
   const auto t0 = std::chrono::steady_clock::now();
   const int H = view.sensor.height, W = view.sensor.width;
   const size_t n = size_t(H) * size_t(W);
@@ -50,9 +52,17 @@ RangeImage BakedRenderer::render(const Pose& T_world_lidar, const Scene& view,
     img.ray_drop[p] = out[K * p + 1];
     img.intensity[p] = out[K * p + 2];
   }
-  if (opacity) {
-    opacity->resize(n);
-    for (size_t p = 0; p < n; ++p) (*opacity)[p] = out[K * p + 3];
+  // The evaluation's depth statistics, as render_view's (median, opacity, variance).
+  const bool mix = rules_.eval_depth == "mix", median = rules_.eval_depth == "median";
+  DepthStats own;
+  if (mix && !stats) stats = &own;
+  if (stats) {
+    stats->median_m.resize(n), stats->opacity.resize(n), stats->variance_m2.resize(n);
+    for (size_t p = 0; p < n; ++p) {
+      stats->median_m[p] = out[K * p + 8];
+      stats->opacity[p] = out[K * p + 3];
+      stats->variance_m2[p] = out[K * p + 9];
+    }
   }
   if (model_) {
     // The head where each ray's weight lies (normalised frame, clamped to the box as the
@@ -103,6 +113,12 @@ RangeImage BakedRenderer::render(const Pose& T_world_lidar, const Scene& view,
     counts_.head_rows += long(rows.size());
     counts_.head_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - th).count();
   }
+  // The run's evaluation rules, in render_view's order (the head took the expected depth's
+  // surface point: the rules choose the reported range only).
+  if (median)
+    for (size_t p = 0; p < n; ++p) img.range[p] = out[K * p + 8];
+  if (mix) apply_mix_depth(img, *stats, double(rules_.eval_mix_factor));
+  if (rules_.eval_drop_out_of_range) drop_out_of_range(img, view.sensor);
   counts_.render_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ++counts_.frames;
   counts_.rays += long(n);

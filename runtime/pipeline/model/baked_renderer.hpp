@@ -16,6 +16,7 @@
 #include "bake/baked_scene.hpp"
 #include "bake/ray_caster.hpp"
 #include "pipeline/model/model.hpp"
+#include "pipeline/model/render_view.hpp"
 #include "pipeline/model/scene.hpp"
 
 namespace sgnlf::pipeline {
@@ -27,13 +28,15 @@ class BakedRenderer {
   // apart takes a head row at each quartile, a ray within it one row (negative: the scene's
   // voxel; larger: fewer rows, faster, the far soft surfaces' probability and intensity taken at
   // one point; docs/baking.md measures both).
-  BakedRenderer(cl::Runtime& rt, const bake::BakedScene& scene, LidarNerfModel* field_head = nullptr,
-                float head_spread_m = -1.0f);
+  // `rules`: the run's evaluation rules, applied to every view as render_view applies them
+  // (render.eval_depth "median" or "mix" from the caster's median depth and variance,
+  // render.eval_drop_out_of_range; pipeline/model/view_rules.hpp).
+  BakedRenderer(cl::Runtime& rt, const bake::BakedScene& scene, const render::RenderConfig& rules,
+                LidarNerfModel* field_head = nullptr, float head_spread_m = -1.0f);
 
   // The view of `view`'s sensor at T_world_lidar (metres, the dataset's world frame); with
-  // `opacity`, each pixel's Σw along its ray (row-major, as the image).
-  RangeImage render(const Pose& T_world_lidar, const Scene& view,
-                    std::vector<float>* opacity = nullptr);
+  // `stats`, each pixel's median depth, opacity Σw and depth variance (row-major, as the image).
+  RangeImage render(const Pose& T_world_lidar, const Scene& view, DepthStats* stats = nullptr);
 
   struct Counts {
     long frames = 0, rays = 0;
@@ -50,6 +53,7 @@ class BakedRenderer {
   cl::Runtime& rt_;
   const bake::BakedScene& scene_;
   bake::RayCaster caster_;
+  render::RenderConfig rules_;
   LidarNerfModel* model_;
   float spread_m_;
   cl::Buffer o_, d_, out_;

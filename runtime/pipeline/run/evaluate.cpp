@@ -69,11 +69,11 @@ ViewSet evaluate_model(LidarNerfModel& model, const Dataset& d, const Scene& sce
   for (int f : d.split.test) {
     DepthStats stats;
     RangeImage pred = fast    ? fast->render(T_world_lidar[size_t(f)], f)
-                      : baked ? baked->render(T_world_lidar[size_t(f)], scene)
+                      : baked ? baked->render(T_world_lidar[size_t(f)], scene, &stats)
                               : render_view(model, scene, T_world_lidar[size_t(f)], chunk_rays, f,
                                             nullptr, &stats);
     if (refine) refine->apply(pred);
-    add_view(vs, views, d, f, std::move(pred), fast || baked ? nullptr : &stats);
+    add_view(vs, views, d, f, std::move(pred), fast ? nullptr : &stats);
   }
   vs.mean = metrics::mean_metrics(views);
   return vs;

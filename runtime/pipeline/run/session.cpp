@@ -179,7 +179,7 @@ Json render_run(LoadedRun& run, const std::string& out_dir, FastRenderer* fast,
     DepthStats stats;
     RangeImage pred =
         fast    ? fast->render(T, index)
-        : baked ? baked->render(T, *run.scene, &stats.opacity)
+        : baked ? baked->render(T, *run.scene, &stats)
                 : render_view(*run.model, *run.scene, T,
                               run.manifest.config.schedule.render_chunk_rays, index, nullptr,
                               &stats);
