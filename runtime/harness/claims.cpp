@@ -1,5 +1,7 @@
 #include "harness/claims.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -160,6 +162,30 @@ bool claim_row_stale(const Json& results, const std::string& method) {
   return false;
 }
 
+std::string claim_row_rules(const Json& results, const std::string& method) {
+  std::vector<std::string> rules;
+  const auto add = [&](const Json& run) {
+    const Json& render = at(at(run, "config"), "render");
+    if (!at(run, "config").is_object()) return;
+    const Json& depth = at(render, "eval_depth");
+    std::string r = (depth.is_string() ? depth.get<std::string>() : std::string("expected")) + " depth";
+    if (at(render, "eval_drop_out_of_range") == Json(true)) r += ", out-of-range drops";
+    if (std::find(rules.begin(), rules.end(), r) == rules.end()) rules.push_back(r);
+  };
+  if (at(results, "rows").is_array())
+    for (const auto& row : results["rows"]) {
+      if (at(row, "method") != Json(method) || !at(row, "sequences").is_array()) continue;
+      for (const auto& e : row["sequences"]) {
+        add(e);
+        if (at(e, "runs").is_array())
+          for (const auto& r : e["runs"]) add(r);
+      }
+    }
+  std::string out;
+  for (size_t i = 0; i < rules.size(); ++i) out += (i ? " / " : "") + rules[i];
+  return out;
+}
+
 std::vector<uint64_t> table_seeds(const Json& results) {
   const Json& config = at(results, "config");
   if (at(config, "seeds").is_array()) return config["seeds"].get<std::vector<uint64_t>>();
@@ -204,6 +230,13 @@ std::string claims_markdown(const std::string& root, const std::string& scale) {
         std::string stale;
         for (const auto* m : {&c.row, &c.against})
           if (claim_row_stale(table, *m)) stale += (stale.empty() ? "" : " and ") + *m;
+        const std::string rules_row = claim_row_rules(table, c.row),
+                          rules_against = claim_row_rules(table, c.against);
+        // The rules score the rendered views; pose metrics do not depend on them.
+        const bool view_metric = c.metric.rfind("ate", 0) != 0 && c.metric.rfind("rpe", 0) != 0;
+        if (view_metric && !rules_row.empty() && !rules_against.empty() && rules_row != rules_against)
+          agrees = "not like for like: " + c.row + " scored by " + rules_row + ", " + c.against +
+                   " by " + rules_against;
         if (!stale.empty()) agrees = "not judged: " + stale + " stale (an older preset)";
       } else {
         ours = ch.value("status", std::string("not run"));

@@ -40,6 +40,13 @@ Json claim_change_of_seed(const Claim& c, const Json& results, uint64_t seed);
 // row's or a sequence entry's "stale" flag, as sgnlf merge sets them). A claim over a stale row
 // compares two presets and is marked so, not judged.
 bool claim_row_stale(const Json& results, const std::string& method);
+// The evaluation rules `method`'s runs were scored by, as text: "expected depth", "median
+// depth" or "mix depth" (render.eval_depth, "expected" when the config omits it), and ", out-of-
+// range drops" where render.eval_drop_out_of_range is on; several sets joined by " / " (a row
+// whose runs differ). Empty when the row has no run with a config. A claim on a view metric over
+// two rows scored by different rules compares the rules as much as the methods, and is marked
+// so, not judged (a pose metric does not depend on them).
+std::string claim_row_rules(const Json& results, const std::string& method);
 // A results table's seeds: config.seeds, else [config.seed].
 std::vector<uint64_t> table_seeds(const Json& results);
 

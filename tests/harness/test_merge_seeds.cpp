@@ -306,3 +306,28 @@ TEST_CASE("a claim over a stale row is marked, not judged", "[harness][claims]")
   t["rows"][0]["sequences"][1]["stale"] = false;
   CHECK_FALSE(harness::claim_row_stale(t, "sg-nlf"));
 }
+
+TEST_CASE("a claim over rows scored by different evaluation rules is marked, not judged",
+          "[harness][claims]") {
+  const auto run = [](const Json& render) {
+    return Json{{"config", {{"method", "x"}, {"render", render}}}};
+  };
+  Json t{{"rows", Json::array({
+      Json{{"method", "sg-nlf"},
+           {"sequences", Json::array({Json{{"sequence", "a"},
+                                           {"runs", Json::array({run({{"eval_depth", "mix"},
+                                                                      {"eval_drop_out_of_range", true}}),
+                                                                 run({{"eval_depth", "mix"},
+                                                                      {"eval_drop_out_of_range", true}})})}}})}},
+      Json{{"method", "lidar4d"},
+           {"sequences", Json::array({run(Json::object()), run({{"n_samples", 64}})})}},
+      Json{{"method", "geonlf"},
+           {"sequences", Json::array({run({{"eval_depth", "mix"}, {"eval_drop_out_of_range", true}}),
+                                      run({{"eval_depth", "median"}})})}},
+      Json{{"method", "old"}, {"sequences", Json::array({Json{{"sequence", "a"}}})}}})}};
+  CHECK(harness::claim_row_rules(t, "sg-nlf") == "mix depth, out-of-range drops");
+  CHECK(harness::claim_row_rules(t, "lidar4d") == "expected depth");  // the config's default
+  CHECK(harness::claim_row_rules(t, "geonlf") == "mix depth, out-of-range drops / median depth");
+  CHECK(harness::claim_row_rules(t, "old").empty());    // no config recorded
+  CHECK(harness::claim_row_rules(t, "none").empty());   // no such row
+}
