@@ -64,11 +64,32 @@ std::vector<float> head(LidarNerfModel& m, const Scene& view, const float* d,
   return m.head_at(x, dir, int(t.size()));
 }
 
+// The tiny scene's sensor at its centre, the slab in front of it: the view, its pose, the
+// slab and the caster's outputs for every pixel (what the renderers are checked against).
+struct SlabView {
+  Scene view = make_scene(test::tiny_dataset());
+  Pose T = Pose::Identity();
+  bake::BakedScene slab;
+  std::vector<float> cast;
+  size_t n = 0;
+  SlabView() {
+    const Eigen::Vector3d centre = view.norm.center;
+    T.translation() = centre;
+    slab = soft_slab(centre);
+    n = view.directions.size() / 3;
+    std::vector<float> origins(n * 3);
+    for (size_t p = 0; p < n; ++p)
+      for (size_t a = 0; a < 3; ++a) origins[3 * p + a] = float(centre[long(a)]);
+    cast = bake::RayCaster(test::runtime(), slab).cast(origins, view.directions);
+  }
+};
+
 }  // namespace
 
 TEST_CASE("baked renderer, field head: one row at the surface point, or the quartiles where the weight spreads",
           "[pipeline][bake]") {
-  const Scene view = make_scene(test::tiny_dataset());
+  const SlabView sv;
+  const Scene& view = sv.view;
   const TrainConfig c = test::tiny_config();
   LidarNerfModel model(test::runtime(), c, float(view.norm.scale), model_capacity(c));
   model.init_params(11);
@@ -78,17 +99,10 @@ TEST_CASE("baked renderer, field head: one row at the surface point, or the quar
   const std::vector<float> u = test::uniform(grid.count, -0.5f, 0.5f, 5);
   std::copy(u.begin(), u.end(), params.begin() + long(grid.offset));
   model.set_params(params);
-  // The sensor at the scene's centre, the slab in front of it.
-  const Eigen::Vector3d centre = view.norm.center;
-  const bake::BakedScene slab = soft_slab(centre);
-  bake::RayCaster caster(test::runtime(), slab);
-  Pose T = Pose::Identity();
-  T.translation() = centre;
-  const size_t n = view.directions.size() / 3;
-  std::vector<float> origins(n * 3);
-  for (size_t p = 0; p < n; ++p)
-    for (size_t a = 0; a < 3; ++a) origins[3 * p + a] = float(centre[long(a)]);
-  const std::vector<float> cast = caster.cast(origins, view.directions);
+  const bake::BakedScene& slab = sv.slab;
+  const Pose& T = sv.T;
+  const size_t n = sv.n;
+  const std::vector<float>& cast = sv.cast;
   constexpr size_t K = bake::RayCaster::kOutputs;
 
   const render::RenderConfig expected = c.render;  // the smoke preset's: expected depth
@@ -150,17 +164,12 @@ TEST_CASE("baked renderer, field head: one row at the surface point, or the quar
 
 TEST_CASE("baked renderer: the run's evaluation rules, median and mix depth, from the caster's statistics",
           "[pipeline][bake]") {
-  const Scene view = make_scene(test::tiny_dataset());
-  const Eigen::Vector3d centre = view.norm.center;
-  const bake::BakedScene slab = soft_slab(centre);
-  Pose T = Pose::Identity();
-  T.translation() = centre;
-  const size_t n = view.directions.size() / 3;
-  std::vector<float> origins(n * 3);
-  for (size_t p = 0; p < n; ++p)
-    for (size_t a = 0; a < 3; ++a) origins[3 * p + a] = float(centre[long(a)]);
-  bake::RayCaster caster(test::runtime(), slab);
-  const std::vector<float> cast = caster.cast(origins, view.directions);
+  const SlabView sv;
+  const Scene& view = sv.view;
+  const bake::BakedScene& slab = sv.slab;
+  const Pose& T = sv.T;
+  const size_t n = sv.n;
+  const std::vector<float>& cast = sv.cast;
   constexpr size_t K = bake::RayCaster::kOutputs;
   render::RenderConfig rules;
   BakedRenderer expected(test::runtime(), slab, rules);  // the vertex head
