@@ -165,10 +165,12 @@ bool claim_row_stale(const Json& results, const std::string& method) {
 std::string claim_row_rules(const Json& results, const std::string& method) {
   std::vector<std::string> rules;
   const auto add = [&](const Json& run) {
-    const Json& render = at(at(run, "config"), "render");
-    if (!at(run, "config").is_object()) return;
+    const Json& config = at(run, "config");
+    if (!config.is_object()) return;
+    const Json& render = at(config, "render");
     const Json& depth = at(render, "eval_depth");
-    std::string r = (depth.is_string() ? depth.get<std::string>() : std::string("expected")) + " depth";
+    std::string r =
+        (depth.is_string() ? depth.get<std::string>() : std::string("expected")) + " depth";
     if (at(render, "eval_drop_out_of_range") == Json(true)) r += ", out-of-range drops";
     if (std::find(rules.begin(), rules.end(), r) == rules.end()) rules.push_back(r);
   };
