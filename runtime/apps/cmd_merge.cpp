@@ -36,6 +36,7 @@ const Registrar reg("merge",
   auto expect = std::make_shared<std::string>();
   auto later_wins = std::make_shared<bool>(false);
   auto keep_files = std::make_shared<bool>(false);
+  auto share = std::make_shared<bool>(false);
   sub.add_option("--out", *out, "Output folder (results.json, table.md)")->required();
   sub.add_option("INPUT", *inputs,
                  "Cell files or folders holding cell.json; or results.json files (or folders "
@@ -48,12 +49,18 @@ const Registrar reg("merge",
                "results.json inputs: where two inputs have different runs of the same row, "
                "sequence and seed, the later input (in the order given) replaces the earlier; without "
                "it such a conflict is refused");
+  sub.add_flag("--share-cells", *share,
+               "results.json inputs: accept another table's results of the same scale and data and "
+               "take its runs of this table's rows on the sequences both tables define alike (the "
+               "same cells: a row two tables share is run once); the rest of it is left out and "
+               "listed in combined_from.shared");
   sub.add_flag("--keep-run-files", *keep_files,
                "Copy each new run's metrics.json, summary.json and KITTI trajectories from its run "
                "folder to OUT/runs/<method>/<sequence>/seed<k>/ (files over 200 KB left out)");
   return std::function<int()>([=] {
     std::vector<std::pair<std::string, Json>> files;
-    std::string command = "sgnlf merge --out " + *out + (*later_wins ? " --later-wins" : "");
+    std::string command = "sgnlf merge --out " + *out + (*later_wins ? " --later-wins" : "") +
+                          (*share ? " --share-cells" : "");
     bool tables = false;
     for (size_t i = 0; i < inputs->size(); ++i) {
       const std::string& in = (*inputs)[i];
@@ -74,10 +81,12 @@ const Registrar reg("merge",
       files.emplace_back(path, std::move(j));
       command += " " + in;
     }
-    if (!tables && *later_wins) throw ConfigError("merge: --later-wins is for results.json inputs");
+    if (!tables && (*later_wins || *share))
+      throw ConfigError(std::string("merge: ") + (*later_wins ? "--later-wins" : "--share-cells") +
+                        " is for results.json inputs");
     if (tables && !expect->empty()) throw ConfigError("merge: --expect is for cell files");
     const Json results =
-        tables ? harness::combine_tables(files, harness::CombineOptions{*later_wins},
+        tables ? harness::combine_tables(files, harness::CombineOptions{*later_wins, *share},
                                          harness::default_hooks(), command, *out)
                : harness::merge_cells(files, command, *out);
     if (*keep_files) {
@@ -96,6 +105,13 @@ const Registrar reg("merge",
               << json_path << "\ntable:   " << md_path << "\n";
     if (tables)
       std::cout << not_run << " row(s) not run, " << stale << " row(s) with a stale config\n";
+    const Json no_shared = Json::array();
+    for (const auto& sh : tables && results.contains("combined_from")
+                              ? results["combined_from"].value("shared", no_shared)
+                              : no_shared)
+      std::cout << "shared from " << sh.value("input", "") << " (table " << sh.value("table", "")
+                << "): " << sh["taken"].size() << " row × sequence taken, "
+                << sh["left_out"].size() << " left out\n";
     if (!expect->empty()) {
       const auto diff = harness::table_differences(results, load_json_file(*expect));
       if (!diff.empty()) {

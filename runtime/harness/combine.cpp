@@ -85,14 +85,33 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
   const auto& [ref_path, ref] = inputs.front();
   for (const auto& [path, r] : inputs) {
     for (const char* k : {"table", "scale", "data"})
-      if (r[k] != ref[k])
+      if (r[k] != ref[k] && !(std::string(k) == "table" && opt.share_cells))
         throw ConfigError("merge: " + ref_path + " and " + path + " are of different " + k + ": " +
-                          ref[k].dump() + " vs " + r[k].dump());
+                          ref[k].dump() + " vs " + r[k].dump() +
+                          (std::string(k) == "table" ? " (--share-cells takes another table's "
+                                                       "runs of this table's rows)"
+                                                     : ""));
   }
   const TableDef def = table_def(ref["table"].get<std::string>());
   const std::string scale = ref["scale"].get<std::string>();
   const bool real = ref["data"] == "real";
   const auto def_seqs = table_sequences(def, scale, real);
+  const Json own_table = ref["table"];  // a copy: a lambda may not capture a structured binding
+  const auto is_foreign = [&](const Json& r) { return r["table"] != own_table; };
+  // Another table's sequence is this table's when this build defines both alike (name, preset,
+  // frequency, frames, width, window, real folder): the same training and evaluation.
+  // Returns "" when alike, else why not.
+  const auto unlike = [&](const TableDef& other, const std::string& sq) -> std::string {
+    const auto mine = std::find_if(def_seqs.begin(), def_seqs.end(),
+                                   [&](const SequenceDef& d) { return d.name == sq; });
+    if (mine == def_seqs.end()) return "not a sequence of " + def.name + " at scale " + scale;
+    for (const auto& d : table_sequences(other, scale, real))
+      if (d.name == sq)
+        return d.to_json() == mine->to_json() ? "" : "defined otherwise in " + def.name;
+    return "not a sequence of " + other.name + " at scale " + scale;
+  };
+  const auto alike = [&](const TableDef& other, const std::string& sq) { return unlike(other, sq).empty(); };
+  Json shared = Json::array();  // per foreign input: {input, table, taken, left_out}
   // The table's seeds: every input's, in order of first appearance (a one-seed table merged
   // with another seed's becomes a several-seed table; results/schema.md "Combined tables").
   std::vector<uint64_t> seeds;
@@ -125,29 +144,49 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
     const std::string& path = inputs[i].first;
     const Json& r = inputs[i].second;
     const Json& earlier = at_path(r, {"combined_from", "files"});
-    std::vector<size_t> local;
-    if (earlier.is_array())
-      for (const auto& d : earlier) local.push_back(add_source(d));
-    const size_t own = earlier.is_array() ? 0 : add_source(source_description(path, r));
+    // Another table's input (--share-cells) brings only the runs taken from it: its sources are
+    // added when a run needs one, each marked with the table and the file it came through.
+    const bool foreign = is_foreign(r);
+    const TableDef other = foreign ? table_def(r["table"].get<std::string>()) : TableDef{};
+    Json taken = Json::array(), left_out = Json::array();
+    std::map<size_t, size_t> local;  // the input's source index -> ours
+    const auto describe = [&](Json d) {
+      if (foreign) {
+        d["table"] = r["table"];
+        d["via"] = path;
+      }
+      return add_source(d);
+    };
+    if (earlier.is_array() && !foreign)
+      for (size_t k = 0; k < earlier.size(); ++k) local[k] = add_source(earlier[k]);
+    const size_t own = earlier.is_array() || foreign ? 0 : add_source(source_description(path, r));
     const auto source_of = [&](const Json& j) {
-      if (!earlier.is_array()) return own;
+      if (!earlier.is_array()) return foreign ? describe(source_description(path, r)) : own;
       const size_t k = j.value("source", size_t(0));
-      if (k >= local.size())
+      if (k >= earlier.size())
         throw ConfigError("merge: " + path + ": source " + std::to_string(k) + " out of range");
+      if (!local.count(k)) local[k] = describe(earlier[k]);
       return local[k];
     };
-    for (const char* list : {"superseded", "reproduced"})
-      for (const auto& s : at_path(r, {"combined_from", list})) {
-        Json x = s;
-        x["source"] = source_of(Json{{"source", s.value("source", 0)}});
-        x["by"] = source_of(Json{{"source", s.value("by", 0)}});
-        (std::string(list) == "superseded" ? superseded : reproduced).push_back(x);
-      }
+    if (!foreign)  // another table's history of its own cells is not this table's
+      for (const char* list : {"superseded", "reproduced"})
+        for (const auto& s : at_path(r, {"combined_from", list})) {
+          Json x = s;
+          x["source"] = source_of(Json{{"source", s.value("source", 0)}});
+          x["by"] = source_of(Json{{"source", s.value("by", 0)}});
+          (std::string(list) == "superseded" ? superseded : reproduced).push_back(x);
+        }
     for (const auto& row : r["rows"]) {
       const std::string m = row.value("method", ""), st = row.value("status", "");
       const bool data = st == "ok" || st == "failed" || row.contains("failures");
       if (!data) continue;  // not run, not implemented: nothing to carry
-      if (std::none_of(def.rows.begin(), def.rows.end(), [&](const RowDef& d) { return d.method == m; }))
+      const bool mine =
+          std::any_of(def.rows.begin(), def.rows.end(), [&](const RowDef& d) { return d.method == m; });
+      if (foreign && (!mine || st != "ok")) {  // only this table's rows' runs are taken
+        left_out.push_back(Json{{"method", m}, {"why", !mine ? "not a row of " + def.name : "status " + st}});
+        continue;
+      }
+      if (!mine)
         throw ConfigError("merge: " + path + ": row '" + m + "' is not a row of table " + def.name +
                           " in this build (sgnlf bench --list)");
       for (const auto& f : row.value("failures", Json::array()))
@@ -157,6 +196,11 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
       if (st != "ok") continue;
       for (const auto& e : row.value("sequences", Json::array())) {
         const std::string sq = e.value("sequence", "");
+        if (const std::string why = foreign ? unlike(other, sq) : ""; !why.empty()) {
+          left_out.push_back(Json{{"method", m}, {"sequence", sq}, {"why", why}});
+          continue;
+        }
+        if (foreign) taken.push_back(Json{{"method", m}, {"sequence", sq}});
         if (!seq_known(sq))
           throw ConfigError("merge: " + path + ": row " + m + " ran sequence '" + sq +
                             "', not a sequence of table " + def.name + " at scale " + scale +
@@ -173,6 +217,9 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
         }
       }
     }
+    if (foreign)
+      shared.push_back(Json{{"input", path}, {"table", r["table"]}, {"taken", taken},
+                            {"left_out", left_out}});
   }
   // One claim per row × sequence × seed: equal duplicates are one run, recorded as reproduced
   // (a rerun that certifies the cell), the later one's provenance taken with --later-wins;
@@ -280,6 +327,12 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
   for (const auto& sd : def_seqs) {
     Json found, skip;
     for (const auto& [path, r] : inputs) {
+      if (is_foreign(r)) {  // only a sequence defined alike, and no skip reason of its table's
+        if (found.is_null() && alike(table_def(r["table"].get<std::string>()), sd.name))
+          for (const auto& s : r.value("sequences", Json::array()))
+            if (found.is_null() && s.value("name", "") == sd.name) found = s;
+        continue;
+      }
       for (const auto& s : r.value("sequences", Json::array()))
         if (found.is_null() && s.value("name", "") == sd.name) found = s;
       for (const auto& s : r.value("skipped_sequences", Json::array()))
@@ -308,6 +361,7 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
   long rss = 0;
   Json metric_definitions, real_root;
   for (const auto& [path, r] : inputs) {
+    if (is_foreign(r)) continue;  // its timings are its own table's
     const Json& p = at_path(r, {"timings", "prepare_s"});
     if (!p.is_null())
       for (double x : repetitions(p)) prepare.push_back(x);
@@ -348,6 +402,7 @@ Json combine_tables(const std::vector<std::pair<std::string, Json>>& inputs,
   out["combined_from"] = Json{{"inputs", in_paths}, {"files", files},
                               {"later_wins", opt.later_wins}, {"superseded", superseded},
                               {"reproduced", reproduced}};
+  if (!shared.empty()) out["combined_from"]["shared"] = shared;
   return out;
 }
 

@@ -20,6 +20,10 @@ struct CombineOptions {
   // set: then the later input (command-line order) replaces the earlier one, and the
   // replacement is recorded in combined_from.superseded.
   bool later_wins = false;
+  // Inputs of another table (same scale and data) are accepted: their runs of this table's
+  // rows on the sequences both tables define alike are taken (the same config hash makes them
+  // the same cells); everything else of them is left out and listed in combined_from.shared.
+  bool share_cells = false;
 };
 
 // True when `results` is an sgnlf.results table (a `sgnlf bench` or combined output).

@@ -51,6 +51,26 @@ fs::path find_run_folder(const std::string& run_dir,
   return {};
 }
 
+// A run another table's combined input of this merge brought (merge --share-cells): that
+// table's kept run files, runs/<method>/<sequence>/seed<k> beside its results.json; empty when
+// the run did not come through an input of this merge or that folder is not there.
+fs::path shared_run_folder(const Json& results, const Json& e, const Inputs& inputs,
+                           const std::string& method, const std::string& sequence, uint64_t seed) {
+  const Json files = results.contains("combined_from")
+                         ? results["combined_from"].value("files", Json::array())
+                         : Json::array();
+  const size_t k = e.value("source", size_t(0));
+  if (k >= files.size() || !files[k].contains("via")) return {};
+  const std::string via = files[k].value("via", "");
+  for (const auto& in : inputs)
+    if (in.first == via && in.second.contains("combined_from")) {
+      const fs::path p = fs::path(via).parent_path() / "runs" / method / sequence /
+                         ("seed" + std::to_string(seed));
+      if (fs::is_directory(p)) return p;
+    }
+  return {};
+}
+
 }  // namespace
 
 const std::vector<std::string>& kept_run_file_names() {
@@ -69,9 +89,17 @@ KeptRunFiles keep_run_files(const Json& results, const Inputs& inputs, const std
     for (const auto& e : row.value("sequences", Json::array())) {
       for (const auto& x : e.contains("runs") ? e["runs"] : Json::array({e})) {
         // A several-seed entry of a combined table names each seed's source (they may differ).
-        const auto from = new_inputs_of(results, x.contains("source") ? x : e, inputs);
-        if (from.empty()) continue;
+        const Json& src = x.contains("source") ? x : e;
+        const auto from = new_inputs_of(results, src, inputs);
         RunToKeep k{m, e.value("sequence", ""), x.value("seed", uint64_t(1)), {}, {}};
+        if (from.empty()) {  // carried: kept only when another table's input brought it
+          k.from = shared_run_folder(results, src, inputs, m, k.sequence, k.seed);
+          if (k.from.empty()) continue;
+          k.to = fs::path(out_dir) / "runs" / m / k.sequence / ("seed" + std::to_string(k.seed));
+          if (fs::exists(k.to) && fs::equivalent(k.from, k.to)) continue;
+          runs.push_back(k);
+          continue;
+        }
         const std::string what = "merge --keep-run-files: " + m + " / " + k.sequence + " seed " +
                                  std::to_string(k.seed);
         const std::string run_dir = x.value("run_dir", "");
