@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "bake/head_rows.hpp"
 #include "core/error.hpp"
 #include "pipeline/model/view_rules.hpp"
 
@@ -65,48 +66,27 @@ RangeImage BakedRenderer::render(const Pose& T_world_lidar, const Scene& view,
     }
   }
   if (model_) {
-    // The head where each ray's weight lies (normalised frame, clamped to the box as the
-    // renderer clamps its samples), with the ray's direction: Σ w·head as the field's renderer
-    // sums it, by quadrature over the weight. A ray whose weight lies within head_spread_m (its
-    // 1/8 and 7/8 quartiles, or those it reached, no further apart) takes one row at its
-    // surface point o + d·depth/opacity; a ray whose weight spreads further (a far surface the field
-    // keeps soft) one row at each quartile it reached, equally weighted: there the head is
-    // trained along the band, and one point of it, at the mean depth, can lie where it is not.
-    // Rays that meet nothing keep zeros.
+    // The head where each ray's weight lies (bake::head_rows: one row at the surface point, or
+    // one at each quartile where the weight spreads), in the normalised frame, clamped to the
+    // box as the renderer clamps its samples, with the ray's direction: Σ w·head as the field's
+    // renderer sums it, by quadrature over the weight. Rays that meet nothing keep zeros.
     const auto th = std::chrono::steady_clock::now();
-    struct Row {
-      size_t pixel;
-      float weight;
-    };
-    std::vector<Row> rows;
+    const std::vector<bake::HeadRow> rows = bake::head_rows(out, n, spread_m_, &counts_.spread_rays);
     std::vector<float> x, dir;
+    x.reserve(rows.size() * 3), dir.reserve(rows.size() * 3);
     const double s = view.norm.scale;
-    const auto add = [&](size_t p, float t, float weight) {
-      rows.push_back({p, weight});
+    for (const auto& row : rows)
       for (size_t a = 0; a < 3; ++a) {
-        const double xm = double(origins_[3 * p + a]) + double(dirs_[3 * p + a]) * t;
+        const size_t i = 3 * row.ray + a;
+        const double xm = double(origins_[i]) + double(dirs_[i]) * row.t_m;
         x.push_back(std::clamp(float((xm - view.norm.center[long(a)]) * s), -1.0f, 1.0f));
-        dir.push_back(dirs_[3 * p + a]);
+        dir.push_back(dirs_[i]);
       }
-    };
-    for (size_t p = 0; p < n; ++p) {
-      const float* r = &out[K * p];
-      const float opacity = r[3];
-      if (!(opacity > 1e-4f)) continue;
-      int reached = 0;
-      while (reached < 4 && r[4 + reached] >= 0.0f) ++reached;
-      if (reached < 2 || r[4 + reached - 1] - r[4] <= spread_m_) {
-        add(p, r[0] / opacity, opacity);
-        continue;
-      }
-      for (int k = 0; k < reached; ++k) add(p, r[4 + k], opacity / float(reached));
-      ++counts_.spread_rays;
-    }
     const std::vector<float> h = model_->head_at(x, dir, int(rows.size()));
     for (size_t p = 0; p < n; ++p)
       if (out[K * p + 3] > 1e-4f) img.ray_drop[p] = img.intensity[p] = 0.0f;
     for (size_t q = 0; q < rows.size(); ++q) {
-      const size_t p = rows[q].pixel;
+      const size_t p = rows[q].ray;
       img.ray_drop[p] += rows[q].weight * h[2 * q];
       img.intensity[p] += rows[q].weight * h[2 * q + 1];
     }
