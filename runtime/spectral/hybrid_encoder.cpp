@@ -18,8 +18,7 @@ HybridEncoder::HybridEncoder(cl::Runtime& rt, const field::HashGridConfig& grid,
       grid_(rt, grid),
       psi_spec_((psi.validate(), psi)),
       psi_(rt, psi_mlp_spec(psi)),
-      fusion_(rt, geometric ? grid_.n_output() : 0, psi.k),
-      psi_adam_(rt, psi_.n_params()) {
+      fusion_(rt, geometric ? grid_.n_output() : 0, psi.k) {
   objective_ = std::make_unique<SpectralObjective>(rt, psi_, loss);
   psi_params_ = floats(rt, psi_.n_params());
   psi_grad_ = floats(rt, psi_.n_params());
@@ -33,7 +32,6 @@ void HybridEncoder::init_params(std::vector<float>& host_params, size_t offset, 
   std::vector<float> p(psi_.n_params(), 0.0f);
   init_psi_params(psi_, psi_spec_, p, 0, seed ^ 0x5151);
   psi_params_.write_vec(p);
-  psi_adam_.reset();
 }
 
 void HybridEncoder::set_lambda(float lambda) {
@@ -97,36 +95,21 @@ void HybridEncoder::backward(const cl::Buffer& params, size_t offset, const cl::
   accumulate_.launch({cl::round_up(size_t(n) * 3, 64)}, {64});
 }
 
-double HybridEncoder::spectral_step(const std::vector<SurfacePoint>& batch, float lr) {
-  const auto res = objective_->loss_and_grad(psi_params_, 0, batch, psi_grad_, 0);
-  psi_adam_.begin_step();
-  psi_adam_.update(psi_params_, psi_grad_, 0, psi_.n_params(), lr);
-  return res.loss;
+double HybridEncoder::spectral_gradient(const std::vector<SurfacePoint>& batch) {
+  return objective_->loss_and_grad(psi_params_, 0, batch, psi_grad_, 0).loss;
 }
 
 std::vector<float> HybridEncoder::psi_at(const std::vector<Eigen::Vector3d>& x) {
   return objective_->evaluate(psi_params_, 0, x);
 }
 
-HybridEncoder::PsiState HybridEncoder::psi_state() const {
-  PsiState s;
-  s.params = psi_params_.read_vec<float>(psi_.n_params());
-  s.adam_m = psi_adam_.m().read_vec<float>(psi_.n_params());
-  s.adam_v = psi_adam_.v().read_vec<float>(psi_.n_params());
-  s.adam_step = psi_adam_.step();
-  return s;
-}
+std::vector<float> HybridEncoder::read_psi() const { return psi_params_.read_vec<float>(psi_.n_params()); }
 
-void HybridEncoder::set_psi_state(const PsiState& s) {
-  const size_t n = psi_.n_params();
-  if (s.params.size() != n || s.adam_m.size() != n || s.adam_v.size() != n)
-    throw IoError("spectral embedding state has " + std::to_string(s.params.size()) +
-                  " parameters, the model's Psi " + std::to_string(n));
-  psi_params_.write_vec(s.params);
-  psi_adam_.reset();
-  psi_adam_.m().write_vec(s.adam_m);
-  psi_adam_.v().write_vec(s.adam_v);
-  for (int64_t i = 0; i < s.adam_step; ++i) psi_adam_.begin_step();
+void HybridEncoder::write_psi(const std::vector<float>& params) {
+  if (params.size() != psi_.n_params())
+    throw IoError("spectral embedding state has " + std::to_string(params.size()) +
+                  " parameters, the model's Psi " + std::to_string(psi_.n_params()));
+  psi_params_.write_vec(params);
 }
 
 }  // namespace sgnlf::spectral

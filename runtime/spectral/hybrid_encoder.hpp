@@ -1,8 +1,8 @@
 // SG-NLF's hybrid spectral-geometric encoding (method.md §4.1) as a field::Encoder:
 //   f_hyb(x) = [f_geo(x), λ·Ψ(x)],  f_geo the hash grid, Ψ the spectral-embedding MLP.
 // The hash grid lives in the model's flat buffer and trains with the range loss. Ψ owns its
-// parameters and its Adam and trains only on the spectral loss (spectral_step), on its own
-// schedule: the range loss reaches the positions through Ψ (dL/dx, for the pose gradients) but
+// parameters and trains only on the spectral loss (spectral_gradient; the optimiser that steps
+// it is its loss term's, pipeline::SpectralLoss), on its own schedule: the range loss reaches the positions through Ψ (dL/dx, for the pose gradients) but
 // never Ψ's weights, so Ψ stays a spectral embedding of the surface (the reading of method.md
 // §4.1 this project takes). With λ = 0 Ψ is not evaluated and f_hyb = [f_geo, 0].
 // Without the geometric part (`geometric` false: the ablation "spectral only", method.md §5)
@@ -10,7 +10,6 @@
 #pragma once
 #include <memory>
 
-#include "field/adam.hpp"
 #include "field/encoder.hpp"
 #include "field/hash_grid.hpp"
 #include "spectral/fusion.hpp"
@@ -32,7 +31,7 @@ class HybridEncoder : public field::Encoder {
   }
   size_t n_params() const override { return geometric_ ? grid_.n_params() : 0; }
   bool geometric() const { return geometric_; }
-  // The grid's slice from `seed`; Ψ from init_psi_params(seed ^ 0x5151); Ψ's Adam reset.
+  // The grid's slice from `seed`; Ψ from init_psi_params(seed ^ 0x5151).
   void init_params(std::vector<float>& host_params, size_t offset, uint64_t seed) override;
   void forward(const cl::Buffer& params, size_t offset, const cl::Buffer& x, int n,
                cl::Buffer& enc) override;
@@ -46,21 +45,22 @@ class HybridEncoder : public field::Encoder {
   void set_lambda(float lambda);
   float lambda() const { return lambda_; }
 
-  // One spectral step on a batch of surface samples (normalised box, weights summing to 1):
-  // the spectral loss, its gradient into Ψ and Ψ's Adam at `lr`. Returns the loss (blocking).
-  double spectral_step(const std::vector<SurfacePoint>& batch, float lr);
+  // The spectral loss of a batch of surface samples (normalised box, weights summing to 1) and
+  // its gradient with respect to Ψ's parameters into psi_grad(). Returns the loss (blocking).
+  double spectral_gradient(const std::vector<SurfacePoint>& batch);
+  // Ψ's parameters (psi_params() floats) and the gradient of the last spectral_gradient(), for
+  // the optimiser that steps them.
+  cl::Buffer& psi_param_buffer() { return psi_params_; }
+  const cl::Buffer& psi_grad() const { return psi_grad_; }
   // Ψ at points (N × K, normalised box), blocking.
   std::vector<float> psi_at(const std::vector<Eigen::Vector3d>& x);
 
   int k() const { return psi_spec_.k; }
   size_t psi_params() const { return psi_.n_params(); }
-  // Ψ's parameters, Adam moments and step, for checkpoints (host copies) and their restoration.
-  struct PsiState {
-    std::vector<float> params, adam_m, adam_v;
-    int64_t adam_step = 0;
-  };
-  PsiState psi_state() const;
-  void set_psi_state(const PsiState& s);  // throws IoError on a size mismatch
+  // Ψ's parameters, host copies (checkpoints) and their restoration (IoError on a size
+  // mismatch, naming both counts).
+  std::vector<float> read_psi() const;
+  void write_psi(const std::vector<float>& params);
 
  private:
   void ensure(int n);
@@ -71,7 +71,6 @@ class HybridEncoder : public field::Encoder {
   PsiSpec psi_spec_;
   field::Mlp psi_;
   SpectralFusion fusion_;
-  field::Adam psi_adam_;
   std::unique_ptr<SpectralObjective> objective_;
   cl::Buffer psi_params_, psi_grad_, psi_scratch_grad_;
   field::MlpContext ctx_;

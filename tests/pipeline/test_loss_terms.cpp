@@ -7,10 +7,13 @@
 // own optimiser's step after the batch's backward, without touching the field's gradient.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 
+#include "field/adam.hpp"
 #include "core/config.hpp"
 #include "core/rng.hpp"
 #include "pipeline/model/loss_term.hpp"
@@ -68,11 +71,11 @@ class ToyOutputTerm final : public LossTerm {
   void report(LossReport& r, const std::vector<float>&) const override { r.add("toy", 0.5); }
 };
 
-// Takes one step of Ψ's own Adam at every even step on a batch of a sphere's surface samples;
-// reports the last spectral loss, out of the total.
+// Takes one step of its own Adam over Ψ at every even step on a batch of a sphere's surface
+// samples; reports the last spectral loss, out of the total.
 class ToyGroupTerm final : public LossTerm {
  public:
-  ToyGroupTerm() {
+  explicit ToyGroupTerm(size_t psi_params) : adam(test::runtime(), std::max<size_t>(psi_params, 1)) {
     const auto shape =
         spectral::make_shape(spectral::ShapeSpec::preset(spectral::ShapeKind::sphere));
     Rng rng(3, 1);
@@ -81,13 +84,18 @@ class ToyGroupTerm final : public LossTerm {
   const char* name() const override { return "toy_group"; }
   void take_own_step(OwnGroupStep& group) override {
     steps.push_back(group.step);
-    if (group.step % 2 == 0) last = group.spectral_step(batch_, 1e-2f);
+    if (group.step % 2 != 0) return;
+    last = group.spectral_gradient(batch_);
+    const OwnGroupStep::Group psi = group.psi();
+    adam.begin_step();
+    adam.update(psi.params, psi.grad, 0, psi.count, 1e-2f);
   }
   void report(LossReport& r, const std::vector<float>&) const override {
     r.add("toy_group", last, false);
   }
   std::vector<long> steps;
   double last = 0.0;
+  field::Adam adam;
 
  private:
   std::vector<spectral::SurfacePoint> batch_;
@@ -205,18 +213,19 @@ TEST_CASE("a loss term with its own parameter group: its step follows the batch'
   auto plain = fresh(scene, c), m = fresh(scene, c);
   plain->set_fusion_weight(1.0f);
   m->set_fusion_weight(1.0f);  // Ψ in the field: the batch's forward and backward read it
-  auto& toy = static_cast<ToyGroupTerm&>(m->add_loss(std::make_unique<ToyGroupTerm>()));
-  const auto psi0 = m->psi_state();
+  auto& toy =
+      static_cast<ToyGroupTerm&>(m->add_loss(std::make_unique<ToyGroupTerm>(m->psi_params())));
+  const auto psi0 = m->read_psi();
   m->forward_backward(b, 7, 2, true);
   plain->forward_backward(b, 7, 2, true);
   CHECK(toy.steps == std::vector<long>{2});
   // The field's gradient and the rays' gradients are the batch's with Ψ before its step …
   CHECK(m->read_gradient() == plain->read_gradient());
   CHECK(m->read_ray_grads().origin == plain->read_ray_grads().origin);
-  // … and Ψ moved by its own Adam, one step, outside the field's.
-  const auto psi1 = m->psi_state();
-  CHECK(psi1.params != psi0.params);
-  CHECK(psi1.adam_step == psi0.adam_step + 1);
+  // … and Ψ moved by the term's own Adam, one step, outside the field's.
+  const auto psi1 = m->read_psi();
+  CHECK(psi1 != psi0);
+  CHECK(toy.adam.step() == 1);
   FieldOptimizer optim(*m, c);
   optim.step(1e-2f);
   CHECK(optim.steps() == 1);  // the field's optimiser: its own count, Ψ's apart
@@ -227,13 +236,13 @@ TEST_CASE("a loss term with its own parameter group: its step follows the batch'
   // An odd step: the hook runs, the term chooses not to step.
   m->forward_backward(draw_ray_batch(scene, c, 7, 3), 7, 3);
   CHECK(toy.steps == std::vector<long>{2, 3});
-  CHECK(m->psi_state().params == psi1.params);
+  CHECK(m->read_psi() == psi1);
 
   SECTION("a model without the hybrid field has no such group") {
     auto hg = fresh(scene, test::tiny_config());
-    hg->add_loss(std::make_unique<ToyGroupTerm>());
+    hg->add_loss(std::make_unique<ToyGroupTerm>(1));
     CHECK_THROWS_WITH(hg->forward_backward(b, 7, 2),
-                      Catch::Contains("OwnGroupStep::spectral_step") &&
+                      Catch::Contains("OwnGroupStep::spectral_gradient") &&
                           Catch::Contains("no hybrid spectral-geometric encoder"));
     CHECK_THROWS_WITH(hg->set_fusion_weight(0.5f), Catch::Contains("set_fusion_weight"));
   }

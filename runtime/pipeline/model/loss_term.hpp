@@ -105,18 +105,26 @@ class FieldPass {
   bool wrote_ = false;
 };
 
-// A term's step on a parameter group of the field that is not in the flat buffer and has its
-// own optimiser (step 5 above): SG-NLF's Ψ, which trains only on the spectral loss (the range
-// loss reaches the positions through Ψ, never its weights). Needs the hybrid encoder.
+// A term's step on a parameter group of the field that is not in the flat buffer (step 5
+// above), with the term's own optimiser: SG-NLF's Ψ, which trains only on the spectral loss
+// (the range loss reaches the positions through Ψ, never its weights). Needs the hybrid
+// encoder (sgnlf::Error naming the call without it).
 class OwnGroupStep {
  public:
   OwnGroupStep(LidarNerfModel& model, uint64_t seed, long step)
       : seed(seed), step(step), model_(model) {}
   const uint64_t seed;
   const long step;
-  // One step of Ψ's Adam at `lr` on the spectral loss of a batch of surface samples
-  // (normalised box, weights summing to 1). Returns the loss (blocking).
-  double spectral_step(const std::vector<spectral::SurfacePoint>& batch, float lr);
+  // The spectral loss of a batch of surface samples (normalised box, weights summing to 1) and
+  // its gradient with respect to Ψ into psi().grad. Returns the loss (blocking).
+  double spectral_gradient(const std::vector<spectral::SurfacePoint>& batch);
+  // Ψ's parameters and that gradient, `count` floats each, for the term's optimiser.
+  struct Group {
+    cl::Buffer& params;
+    const cl::Buffer& grad;
+    size_t count;
+  };
+  Group psi();
 
  private:
   LidarNerfModel& model_;

@@ -67,13 +67,6 @@ class SceneFlow;
 
 namespace sgnlf::pipeline {
 
-// SG-NLF's Ψ: its own parameters and Adam state, outside the flat buffer (host copies, for
-// checkpoints).
-struct PsiState {
-  std::vector<float> params, adam_m, adam_v;
-  int64_t adam_step = 0;
-};
-
 class LidarNerfModel {
  public:
   // `max_rays`: the largest ray count of one call (training batch or render chunk).
@@ -155,13 +148,14 @@ class LidarNerfModel {
   const field::Encoder& encoder() const { return *encoder_; }
   // SG-NLF's hybrid field (the config's hybrid_encoder()): the fusion weight λ(t) of
   // f_hyb = [f_geo, λ·Ψ] for the following passes (the spectral schedule's set_schedules sets it
-  // before every step), and Ψ's parameters and Adam state for checkpoints.
-  // Each throws sgnlf::Error without the hybrid encoder.
+  // before every step), and Ψ's parameters (outside the flat buffer; host copies for
+  // checkpoints, IoError on a size mismatch; the optimiser that steps them is the spectral loss
+  // term's). Each throws sgnlf::Error without the hybrid encoder.
   bool hybrid() const { return hybrid_ != nullptr; }
   void set_fusion_weight(float lambda);
   float fusion_weight() const;
-  PsiState psi_state() const;
-  void set_psi_state(const PsiState& s);
+  std::vector<float> read_psi() const;
+  void write_psi(const std::vector<float>& params);
   size_t psi_params() const;
   // LiDAR4D's 4D encoder when the config's four_d_encoder() is on, else null.
   field::Lidar4DEncoder* four_d_encoder() { return four_d_; }

@@ -1,6 +1,6 @@
 // LidarNerfModel's SG-NLF hybrid field (spectral::HybridEncoder, model.hpp): the fusion weight
-// λ(t), Ψ's checkpoint state, and OwnGroupStep (loss_term.hpp), through which a loss term takes
-// Ψ's own optimiser step on the spectral loss.
+// λ(t), Ψ's parameters for checkpoints, and OwnGroupStep (loss_term.hpp), through which a loss
+// term gets the spectral loss's gradient of Ψ and Ψ's parameters for its own optimiser.
 #include <string>
 
 #include "core/error.hpp"
@@ -24,22 +24,25 @@ float LidarNerfModel::fusion_weight() const {
   return hybrid_or_throw("LidarNerfModel::fusion_weight").lambda();
 }
 
-PsiState LidarNerfModel::psi_state() const {
-  auto s = hybrid_or_throw("LidarNerfModel::psi_state").psi_state();
-  return {std::move(s.params), std::move(s.adam_m), std::move(s.adam_v), s.adam_step};
+std::vector<float> LidarNerfModel::read_psi() const {
+  return hybrid_or_throw("LidarNerfModel::read_psi").read_psi();
 }
 
 size_t LidarNerfModel::psi_params() const {
   return hybrid_or_throw("LidarNerfModel::psi_params").psi_params();
 }
 
-void LidarNerfModel::set_psi_state(const PsiState& s) {
-  hybrid_or_throw("LidarNerfModel::set_psi_state")
-      .set_psi_state({s.params, s.adam_m, s.adam_v, s.adam_step});
+void LidarNerfModel::write_psi(const std::vector<float>& params) {
+  hybrid_or_throw("LidarNerfModel::write_psi").write_psi(params);
 }
 
-double OwnGroupStep::spectral_step(const std::vector<spectral::SurfacePoint>& batch, float lr) {
-  return model_.hybrid_or_throw("OwnGroupStep::spectral_step").spectral_step(batch, lr);
+double OwnGroupStep::spectral_gradient(const std::vector<spectral::SurfacePoint>& batch) {
+  return model_.hybrid_or_throw("OwnGroupStep::spectral_gradient").spectral_gradient(batch);
+}
+
+OwnGroupStep::Group OwnGroupStep::psi() {
+  auto& h = model_.hybrid_or_throw("OwnGroupStep::psi");
+  return {h.psi_param_buffer(), h.psi_grad(), h.psi_params()};
 }
 
 }  // namespace sgnlf::pipeline

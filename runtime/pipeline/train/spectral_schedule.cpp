@@ -35,19 +35,12 @@ std::vector<Pose> poses_from_doubles(const std::vector<double>& v) {
   return T;
 }
 
-PsiState psi_state_from(const Checkpoint& ck, size_t n) {
-  PsiState s;
-  s.params = ck.array("spectral.psi.params", n);
-  s.adam_m = ck.array("spectral.psi.adam_m", n);
-  s.adam_v = ck.array("spectral.psi.adam_v", n);
-  s.adam_step = int64_t(unpack_doubles(ck.array("spectral.psi.adam_t", 2)).at(0));
-  return s;
-}
-
 }  // namespace
 
-SpectralLoss::SpectralLoss(const TrainConfig& cfg, SurfacePoolSource source, uint64_t seed)
-    : cfg_(cfg), source_(std::move(source)), seed_(seed) {
+SpectralLoss::SpectralLoss(cl::Runtime& rt, size_t psi_params, const TrainConfig& cfg,
+                           SurfacePoolSource source, uint64_t seed)
+    : cfg_(cfg), source_(std::move(source)), seed_(seed), psi_params_(psi_params),
+      psi_adam_(rt, psi_params) {
   require(!source_.frames.empty() && source_.frames.size() == source_.points_lidar.size(),
           "SpectralLoss: the surface pool source needs one point set per frame (" +
               std::to_string(source_.frames.size()) + " frames, " +
@@ -87,8 +80,13 @@ void SpectralLoss::take_own_step(OwnGroupStep& group) {
     p = pool_[size_t(rng.next_u64() % pool_.size())];
     p.w = 1.0 / double(batch.size());
   }
-  last_loss_ =
-      group.spectral_step(batch, float(cfg_.spectral->lr_at(step, cfg_.schedule.iterations)));
+  last_loss_ = group.spectral_gradient(batch);
+  const OwnGroupStep::Group psi = group.psi();
+  require(psi.count == psi_params_, "SpectralLoss: the model's Psi has " + std::to_string(psi.count) +
+                                        " parameters, its optimiser " + std::to_string(psi_params_));
+  psi_adam_.begin_step();
+  psi_adam_.update(psi.params, psi.grad, 0, psi.count,
+                   float(cfg_.spectral->lr_at(step, cfg_.schedule.iterations)));
   if (!std::isfinite(last_loss_))
     throw NumericError("spectral embedding: loss not finite at step " + std::to_string(step));
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -96,6 +94,14 @@ void SpectralLoss::take_own_step(OwnGroupStep& group) {
 
 void SpectralLoss::report(LossReport& r, const std::vector<float>&) const {
   r.add("spectral", last_loss_, /*in_total=*/false);
+}
+
+NamedArrays SpectralLoss::optimizer_state() const {
+  NamedArrays a;
+  a.emplace_back("spectral.psi.adam_m", psi_adam_.m().read_vec<float>(psi_params_));
+  a.emplace_back("spectral.psi.adam_v", psi_adam_.v().read_vec<float>(psi_params_));
+  a.emplace_back("spectral.psi.adam_t", pack_doubles({double(psi_adam_.step())}));
+  return a;
 }
 
 NamedArrays SpectralLoss::state() const {
@@ -107,6 +113,13 @@ NamedArrays SpectralLoss::state() const {
 }
 
 void SpectralLoss::load_state(const Checkpoint& ck) {
+  const auto m = ck.array("spectral.psi.adam_m", psi_params_);
+  const auto v = ck.array("spectral.psi.adam_v", psi_params_);
+  const auto t = int64_t(unpack_doubles(ck.array("spectral.psi.adam_t", 2)).at(0));
+  psi_adam_.reset();
+  psi_adam_.m().write_vec(m);
+  psi_adam_.v().write_vec(v);
+  for (int64_t i = 0; i < t; ++i) psi_adam_.begin_step();  // Adam exposes no setter
   last_loss_ = unpack_doubles(ck.array("spectral.last_loss", 2)).at(0);
   const long epoch = long(unpack_doubles(ck.array("spectral.pool_epoch", 2)).at(0));
   pool_.clear();
@@ -156,11 +169,8 @@ std::string SpectralSchedule::progress_text() {
 
 NamedArrays SpectralSchedule::state() const {
   NamedArrays a = inner_.state();
-  auto s = model_.psi_state();
-  a.emplace_back("spectral.psi.params", std::move(s.params));
-  a.emplace_back("spectral.psi.adam_m", std::move(s.adam_m));
-  a.emplace_back("spectral.psi.adam_v", std::move(s.adam_v));
-  a.emplace_back("spectral.psi.adam_t", pack_doubles({double(s.adam_step)}));
+  a.emplace_back("spectral.psi.params", model_.read_psi());
+  for (auto& x : loss_.optimizer_state()) a.push_back(std::move(x));
   for (auto& x : loss_.state()) a.push_back(std::move(x));
   return a;
 }
@@ -168,12 +178,12 @@ NamedArrays SpectralSchedule::state() const {
 void SpectralSchedule::load_state(const Checkpoint& ck, LidarNerfModel& model) {
   inner_.load_state(ck, model);
   restore_hybrid_encoder(model, cfg_, ck);  // Ψ (and λ, which the trainer sets again)
-  loss_.load_state(ck);
+  loss_.load_state(ck);                     // Ψ's optimiser, the pool
 }
 
 void restore_hybrid_encoder(LidarNerfModel& model, const TrainConfig& cfg, const Checkpoint& ck) {
   if (!cfg.hybrid_encoder()) return;
-  model.set_psi_state(psi_state_from(ck, model.psi_params()));
+  model.write_psi(ck.array("spectral.psi.params", model.psi_params()));
   model.set_fusion_weight(float(cfg.spectral->fusion.lambda(int(std::max(0L, ck.step - 1)))));
 }
 

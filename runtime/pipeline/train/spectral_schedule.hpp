@@ -1,21 +1,23 @@
 // SG-NLF's spectral embedding Ψ trained on the scene being reconstructed (method.md §4.1), in
 // pose-free training:
 //  - SpectralLoss, a loss term of the model's step (loss_term.hpp) with a parameter group of its
-//    own: at every `every`-th step, after the batch's backward, Ψ takes one step of its own Adam
-//    (lr cosine-decayed) on the spectral loss of a batch drawn from the surface pool; it reports
-//    "spectral", out of the divergence check's total (Ψ's objective is not the field's);
+//    own and the optimiser for it: at every `every`-th step, after the batch's backward, Ψ takes
+//    one step of the term's Adam (lr cosine-decayed) on the spectral loss of a batch drawn from
+//    the surface pool; it reports "spectral", out of the divergence check's total (Ψ's
+//    objective is not the field's);
 //  - SpectralSchedule, the StepPolicy around the pose-free step: before each epoch, after the
 //    wrapped policy's epoch hook (the geometric stage may have moved the poses), the surface pool
 //    is rebuilt from the observed points of the training frames under the current poses,
 //    thinned to uniform area density with PCA normals and tangents
 //    (spectral::surface_from_points); its schedule (StepPolicy::set_schedules) is λ(t) of the
 //    fusion f_hyb = [f_geo, λ·Ψ], on the configured ramp (LidarNerfModel::set_fusion_weight).
-// Checkpoints carry Ψ's parameters and Adam state and the poses the pool was built from, so a
-// resumed run rebuilds the same pool and stays bit-identical.
+// Checkpoints carry Ψ's parameters, its optimiser's state and the poses the pool was built
+// from, so a resumed run rebuilds the same pool and stays bit-identical.
 #pragma once
 #include <functional>
 #include <vector>
 
+#include "field/adam.hpp"
 #include "geometry/se3.hpp"
 #include "pipeline/train/step_policy.hpp"
 #include "pipeline/model/loss_term.hpp"
@@ -36,8 +38,10 @@ using PoseOf = std::function<Pose(int frame)>;
 
 class SpectralLoss final : public LossTerm {
  public:
-  // Throws sgnlf::Error when the source is empty or its sizes disagree.
-  SpectralLoss(const TrainConfig& cfg, SurfacePoolSource source, uint64_t seed);
+  // Ψ's optimiser: Adam over `psi_params` floats (field::Adam's defaults). Throws sgnlf::Error
+  // when the source is empty or its sizes disagree.
+  SpectralLoss(cl::Runtime& rt, size_t psi_params, const TrainConfig& cfg, SurfacePoolSource source,
+               uint64_t seed);
 
   const char* name() const override { return "spectral"; }
   void take_own_step(OwnGroupStep& group) override;
@@ -50,7 +54,11 @@ class SpectralLoss final : public LossTerm {
   size_t pool_size() const { return pool_.size(); }
   double last_loss() const { return last_loss_; }
   double seconds() const { return seconds_; }  // pool builds + spectral steps, this process
+  // Ψ's optimiser: its moments and step count ("spectral.psi.adam_m", "adam_v", "adam_t").
+  NamedArrays optimizer_state() const;
+  int64_t optimizer_steps() const { return psi_adam_.step(); }
   NamedArrays state() const;  // the pool's epoch and poses, the last loss
+  // Both of the above from a checkpoint (IoError on sizes that are not Ψ's).
   void load_state(const Checkpoint& ck);
 
  private:
@@ -61,6 +69,8 @@ class SpectralLoss final : public LossTerm {
   std::vector<Pose> pool_poses_;  // per source entry, normalised
   long pool_epoch_ = -1;
   double last_loss_ = 0.0, seconds_ = 0.0;
+  size_t psi_params_;
+  field::Adam psi_adam_;
 };
 
 class SpectralSchedule : public StepPolicy {

@@ -51,7 +51,8 @@ StepPolicy& RunStepParts::spectral(StepPolicy& inner) {
   require(poses_ != nullptr, "the hybrid spectral field needs a pose-free method");
   const PoseSet& ps = *poses_;
   auto& loss = static_cast<SpectralLoss&>(model_.add_loss(std::make_unique<SpectralLoss>(
-      c_, make_surface_pool_source(d_, scene_, c_.spectral->points_per_frame, seed_), seed_)));
+      rt_, model_.psi_params(), c_,
+      make_surface_pool_source(d_, scene_, c_.spectral->points_per_frame, seed_), seed_)));
   spectral_step_ = std::make_unique<SpectralSchedule>(
       inner, loss, model_, c_, [&ps](int frame) { return ps.pose(size_t(frame)); });
   return *spectral_step_;
