@@ -69,6 +69,7 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
   sub.add_option("--reseed-min-difference", a->reseed.min_difference_m, "Re-seed an edge whose relative translation differs from both neighbours' by more than this while they agree within it (m)");
   sub.add_option("--reseed-judge", a->reseed.judge, "Residual that decides a re-seeding: point_to_point or point_to_plane (default: the stage's)");
   sub.add_option("--reseed-min-gain", a->reseed.min_gain, "Keep a re-seeding when the crossing edges' loss falls by more than this fraction");
+  sub.add_flag("--reseed-judge-total", a->reseed.judge_total, "Keep a re-seeding when the whole graph's loss falls (and the crossing edges' by min-gain), instead of bounding the other edges' rise by min-gain");
   sub.add_flag("--reseed-frames", a->reseed.frames, "Also re-seed single frames whose two edges both differ from their outer neighbours' (a frame halfway between its neighbours; posegraph/edge_reseeding.hpp)");
   sub.add_option("--out", a->out, "Folder for trajectories/ and posegraph_log.json");
   sub.add_option("--graph", a->graph, "Pose graph: sequential (GeoNLF) or confidence (SG-NLF, stand-in features)")
@@ -140,11 +141,14 @@ const Registrar reg("posegraph", "Run the geometric pose optimiser alone on a da
             std::snprintf(what, sizeof what, "frame %d", t.frame);
           else
             std::snprintf(what, sizeof what, "edge %d-%d", t.edge, t.edge + 1);
+          char total[64] = "";
+          if (a->reseed.judge_total)
+            std::snprintf(total, sizeof total, ", all %.5f -> %.5f", t.total_before, t.total_after);
           std::printf("reseed round %d %s (%.3f m off the neighbours): local %.5f -> "
-                      "%.5f (stage %.5f -> %.5f), other edges %.5f -> %.5f%s\n", t.round, what,
+                      "%.5f (stage %.5f -> %.5f), other edges %.5f -> %.5f%s%s\n", t.round, what,
                       t.difference_m, t.crossing_before, t.crossing_after,
                       t.stage_crossing_before, t.stage_crossing_after, t.rest_before,
-                      t.rest_after, t.kept ? "  kept" : "");
+                      t.rest_after, total, t.kept ? "  kept" : "");
         }
         reseed_log = posegraph::reseed_json(rs);
         report(int(log.size()), 1.0, nullptr);

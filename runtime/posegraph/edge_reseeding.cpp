@@ -120,9 +120,13 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
     t.crossing_after = loss_at(local, cand, tau);
     t.stage_crossing_after = loss_at(stage_local, cand, tau);
     t.rest_after = rest ? loss_at(*rest, cand, tau) : 0.0;
-    t.kept = std::isfinite(t.crossing_after) &&
-             t.crossing_after < (1.0 - cfg.min_gain) * t.crossing_before &&
-             t.rest_after <= (1.0 + cfg.min_gain) * t.rest_before;
+    if (cfg.judge_total) {
+      const GraphLoss all(judge->clouds(), judge->edges(), judge->min_distance(), base.threads,
+                          judge->direction(), judge->max_distance());
+      t.total_before = loss_at(all, cur, tau);
+      t.total_after = loss_at(all, cand, tau);
+    }
+    t.kept = keep_trial(t, cfg);
     out.trials.push_back(t);
     if (t.kept) {
       T = std::move(cand);
@@ -181,6 +185,14 @@ ReseedResult reseed_edges(std::shared_ptr<const GraphLoss> loss, const Geometric
   return out;
 }
 
+bool keep_trial(const ReseedTrial& t, const ReseedConfig& cfg) {
+  const bool local = std::isfinite(t.crossing_after) &&
+                     t.crossing_after < (1.0 - cfg.min_gain) * t.crossing_before;
+  const bool rest = cfg.judge_total ? t.total_after < t.total_before
+                                    : t.rest_after <= (1.0 + cfg.min_gain) * t.rest_before;
+  return local && rest;
+}
+
 Json reseed_json(const ReseedResult& r) {
   Json trials = Json::array();
   for (const auto& t : r.trials) {
@@ -197,6 +209,8 @@ Json reseed_json(const ReseedResult& r) {
                   {"rest_before", t.rest_before},
                   {"rest_after", t.rest_after},
                   {"kept", t.kept}});
+    if (t.total_before != 0.0 || t.total_after != 0.0)  // judge_total
+      j.update(Json{{"total_before", t.total_before}, {"total_after", t.total_after}});
     trials.push_back(j);
   }
   return Json{{"kept", r.kept}, {"trials", trials}};

@@ -53,6 +53,10 @@ struct ReseedConfig {
   // The residual that decides ("point_to_point" or "point_to_plane"; "" = the stage's own).
   std::string judge;
   bool frames = false;  // also single-frame hypotheses (above)
+  // The rule for the other edges: false, their loss may rise by at most min_gain of its own;
+  // true, the whole graph's loss (every edge, the judge's residual) must fall instead, so a
+  // large gain where the cut is may pay for the refinement's noise elsewhere.
+  bool judge_total = false;
 
   template <class Self, class V>
   static void fields(Self& s, V& v) {
@@ -63,6 +67,7 @@ struct ReseedConfig {
     v("max_rounds", s.max_rounds, 1, 100);
     v("judge", s.judge, config::omit_when(std::string()));  // added later
     v("frames", s.frames, config::omit_when(false));        // added later
+    v("judge_total", s.judge_total, config::omit_when(false));  // added later
   }
   // ConfigError naming the field.
   void validate(const std::string& where = "reseed") const;
@@ -79,8 +84,15 @@ struct ReseedTrial {
   double stage_crossing_before = 0.0, stage_crossing_after = 0.0;
   // The judge's loss of every other edge, before and with the hypothesis (both refined).
   double rest_before = 0.0, rest_after = 0.0;
+  // With judge_total: the judge's loss of every edge together, before and with the hypothesis.
+  double total_before = 0.0, total_after = 0.0;
   bool kept = false;
 };
+
+// The rule of the header on a refined trial's losses: the crossing (or touching) edges' loss
+// falls by more than min_gain, and the other edges' rises by at most min_gain of its own (or,
+// with judge_total, the whole graph's falls).
+bool keep_trial(const ReseedTrial& t, const ReseedConfig& cfg);
 
 struct ReseedResult {
   std::vector<ReseedTrial> trials;
